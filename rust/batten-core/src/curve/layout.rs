@@ -1,0 +1,181 @@
+//! Curves from the usual ways of laying out knots and control points: uniform, end-point
+//! (clamped) and Bézier-segmented NURBS, optionally periodic; Bézier splines with handles; and
+//! polylines. These are the spline kinds of Blender and most modellers; the core knows the
+//! conventions, not Blender.
+
+use glam::DVec3;
+
+use super::nurbs::NurbsCurve;
+use crate::error::CurveError;
+
+/// How a NURBS spline's knots are laid out from its control-point count and order.
+///
+/// Knots are integers counted up from 0: inner knots step by 1 (`Uniform`, `Endpoint`) or are
+/// repeated `order − 1` times (`Bezier`, `EndpointBezier`, giving Bézier-like segments);
+/// end-point layouts repeat the first and last knot `order` times so the curve starts and ends
+/// at its end control points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KnotLayout {
+    /// Uniform knots 0, 1, 2, …; the curve does not reach its end control points.
+    Uniform,
+    /// Clamped: first and last knots repeated `order` times.
+    Endpoint,
+    /// Inner knots repeated `order − 1` times.
+    Bezier,
+    /// Clamped and Bézier-segmented.
+    EndpointBezier,
+}
+
+impl KnotLayout {
+    /// The knot vector for `count` control points (before wrapping for a periodic curve) of
+    /// `order`: `count + order` knots, or `count + 2·order − 1` when `cyclic`.
+    ///
+    /// The head knot is repeated `order` times for end-point layouts (`order − 1` times when
+    /// cyclic, after one leading knot), twice for Bézier layouts, once otherwise. A cyclic
+    /// vector ends with `2·order − 1` knots that repeat the widths of the first ones, so the
+    /// wrapped curve closes with the same spacing it starts with.
+    pub fn knots(self, count: usize, order: usize, cyclic: bool) -> Vec<f64> {
+        let is_bezier = matches!(self, KnotLayout::Bezier | KnotLayout::EndpointBezier);
+        let is_endpoint = matches!(self, KnotLayout::Endpoint | KnotLayout::EndpointBezier);
+        let len = count + order + if cyclic { order - 1 } else { 0 };
+        let repeat_inner = if is_bezier { order - 1 } else { 1 };
+        let head = if is_endpoint {
+            order - usize::from(cyclic)
+        } else if is_bezier {
+            repeat_inner.min(2)
+        } else {
+            1
+        };
+        let tail = if cyclic {
+            2 * order - 1
+        } else if is_endpoint {
+            order
+        } else {
+            0
+        };
+        let mut knots = vec![0.0; len];
+        let offset = usize::from(is_endpoint && cyclic);
+        let mut current = 0.0;
+        if offset == 1 {
+            knots[0] = current;
+            current += 1.0;
+        }
+        let mut r = head;
+        for k in knots.iter_mut().take(len - tail).skip(offset) {
+            *k = current;
+            r -= 1;
+            if r == 0 {
+                current += 1.0;
+                r = repeat_inner;
+            }
+        }
+        let first = knots[0];
+        for i in 0..tail {
+            knots[len - tail + i] = current + (knots[i] - first);
+        }
+        knots
+    }
+}
+
+impl NurbsCurve {
+    /// A NURBS spline given as control points, optional weights, order and knot layout; a
+    /// `cyclic` spline wraps its first `order − 1` control points round to close smoothly.
+    pub fn from_layout(
+        points: &[DVec3],
+        weights: Option<&[f64]>,
+        order: usize,
+        layout: KnotLayout,
+        cyclic: bool,
+    ) -> Result<NurbsCurve, CurveError> {
+        if order < 2 {
+            return Err(CurveError::Degree {
+                degree: order.saturating_sub(1),
+                max: super::MAX_DEGREE,
+            });
+        }
+        if points.len() < order {
+            return Err(CurveError::TooFewPoints {
+                count: points.len(),
+                order,
+            });
+        }
+        let knots = layout.knots(points.len(), order, cyclic);
+        let wrap = if cyclic { order - 1 } else { 0 };
+        let pts: Vec<DVec3> = points
+            .iter()
+            .chain(points.iter().take(wrap))
+            .copied()
+            .collect();
+        let w = weights.map(|w| w.iter().chain(w.iter().take(wrap)).copied().collect());
+        NurbsCurve::try_new(order - 1, knots, pts, w)
+    }
+
+    /// A piecewise cubic Bézier spline (points with left and right handles, as drawn in Blender
+    /// and most illustration tools) as a cubic B-spline with triple inner knots: segment `i` runs
+    /// from `co[i]` via `right[i]`, `left[i+1]` to `co[i+1]` on parameters `[i, i+1]`. Corners
+    /// (non-aligned handles) stay corners: see [`NurbsCurve::corner_parameters`].
+    pub fn from_bezier(
+        co: &[DVec3],
+        left: &[DVec3],
+        right: &[DVec3],
+        cyclic: bool,
+    ) -> Result<NurbsCurve, CurveError> {
+        let n = co.len();
+        assert!(
+            left.len() == n && right.len() == n,
+            "one handle pair per point"
+        );
+        if n < 2 {
+            return Err(CurveError::TooFewPoints { count: n, order: 2 });
+        }
+        let segments = if cyclic { n } else { n - 1 };
+        let mut pts = Vec::with_capacity(3 * segments + 1);
+        for i in 0..segments {
+            let j = (i + 1) % n;
+            pts.extend_from_slice(&[co[i], right[i], left[j]]);
+        }
+        pts.push(co[segments % n]);
+        let mut knots = vec![0.0; 4];
+        for i in 1..segments {
+            knots.extend(std::iter::repeat_n(i as f64, 3));
+        }
+        knots.extend(std::iter::repeat_n(segments as f64, 4));
+        NurbsCurve::try_new(3, knots, pts, None)
+    }
+
+    /// A polyline as a degree-1 B-spline with one knot per vertex (`cyclic` closes it).
+    pub fn from_polyline(points: &[DVec3], cyclic: bool) -> Result<NurbsCurve, CurveError> {
+        let mut pts = points.to_vec();
+        if cyclic && !pts.is_empty() {
+            pts.push(pts[0]);
+        }
+        let n = pts.len();
+        if n < 2 {
+            return Err(CurveError::TooFewPoints { count: n, order: 2 });
+        }
+        let mut knots = Vec::with_capacity(n + 2);
+        knots.push(0.0);
+        knots.extend((0..n).map(|i| i as f64));
+        knots.push((n - 1) as f64);
+        NurbsCurve::try_new(1, knots, pts, None)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn knot_layouts_order_4_six_points() {
+        assert_eq!(
+            KnotLayout::Uniform.knots(6, 4, false),
+            (0..10).map(f64::from).collect::<Vec<_>>(),
+            "uniform"
+        );
+        assert_eq!(
+            KnotLayout::Endpoint.knots(6, 4, false),
+            vec![0., 0., 0., 0., 1., 2., 3., 3., 3., 3.],
+            "endpoint"
+        );
+    }
+}

@@ -1,0 +1,23 @@
+//! The curve kernel: B-spline and NURBS curves and the operations hull design needs on them.
+//!
+//! Algorithms follow Piegl & Tiller, *The NURBS Book* (2nd ed.): span search (A2.1), basis
+//! functions (A2.2) and their derivatives (A2.3), rational derivatives (A4.2, eq. 4.8), knot
+//! insertion (A5.1). Closest points and bounding boxes work on the Bézier decomposition with
+//! branch and bound, so they are global, not local.
+
+mod arclen;
+mod basis;
+mod bbox;
+mod bezier;
+mod corners;
+mod edit;
+mod layout;
+mod nearest;
+mod nurbs;
+
+pub use basis::MAX_DEGREE;
+pub use bbox::Aabb;
+pub use bezier::BezierDecomposition;
+pub use layout::KnotLayout;
+pub use nearest::Nearest;
+pub use nurbs::{CurveDerivs, NurbsCurve};

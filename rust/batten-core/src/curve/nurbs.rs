@@ -1,0 +1,294 @@
+//! The NURBS curve type: validated construction and evaluation with derivatives.
+
+use glam::{DVec3, DVec4};
+
+use super::basis::{basis_funs, ders_basis_funs, find_span, MAX_DEGREE, MAX_ORDER};
+use crate::error::CurveError;
+
+/// A point on a curve with its first three parametric derivatives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurveDerivs {
+    /// C(t).
+    pub point: DVec3,
+    /// C'(t).
+    pub d1: DVec3,
+    /// C''(t).
+    pub d2: DVec3,
+    /// C'''(t).
+    pub d3: DVec3,
+}
+
+/// A non-uniform rational B-spline curve in 3D; a B-spline when every weight is 1.
+///
+/// Control points are stored homogeneous (`w·P, w`), so evaluation, knot insertion and
+/// subdivision are linear operations. The parameter domain is `[knots[p], knots[n]]` for degree
+/// `p` and `n` control points, so unclamped (uniform) knot vectors are represented exactly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NurbsCurve {
+    degree: usize,
+    knots: Vec<f64>,
+    cw: Vec<DVec4>,
+    rational: bool,
+}
+
+impl NurbsCurve {
+    /// Validated constructor: a curve of `degree` with `knots` (`points.len() + degree + 1` of
+    /// them), `points`, and optional positive `weights` (`None` means all 1).
+    ///
+    /// Rejects degrees outside `1..=MAX_DEGREE`, fewer points than the order, non-finite
+    /// coordinates, knots or weights, decreasing knots, an empty domain, and interior knots
+    /// repeated more than `degree` times (the curve would fall apart).
+    pub fn try_new(
+        degree: usize,
+        knots: Vec<f64>,
+        points: Vec<DVec3>,
+        weights: Option<Vec<f64>>,
+    ) -> Result<Self, CurveError> {
+        if degree == 0 || degree > MAX_DEGREE {
+            return Err(CurveError::Degree {
+                degree,
+                max: MAX_DEGREE,
+            });
+        }
+        let n = points.len();
+        if n < degree + 1 {
+            return Err(CurveError::TooFewPoints {
+                count: n,
+                order: degree + 1,
+            });
+        }
+        for (index, p) in points.iter().enumerate() {
+            if let Some(&value) = p.to_array().iter().find(|v| !v.is_finite()) {
+                return Err(CurveError::NonFinitePoint { index, value });
+            }
+        }
+        if let Some(w) = &weights {
+            if w.len() != n {
+                return Err(CurveError::WeightCount {
+                    expected: n,
+                    got: w.len(),
+                });
+            }
+            if let Some((index, &value)) = w
+                .iter()
+                .enumerate()
+                .find(|(_, v)| !(v.is_finite() && **v > 0.0))
+            {
+                return Err(CurveError::BadWeight { index, value });
+            }
+        }
+        validate_knots(&knots, degree, n)?;
+        let rational = weights
+            .as_ref()
+            .is_some_and(|w| w.iter().any(|&v| v != 1.0));
+        let cw = match &weights {
+            Some(w) => points
+                .iter()
+                .zip(w)
+                .map(|(p, &w)| (*p * w).extend(w))
+                .collect(),
+            None => points.iter().map(|p| p.extend(1.0)).collect(),
+        };
+        Ok(NurbsCurve {
+            degree,
+            knots,
+            cw,
+            rational,
+        })
+    }
+
+    /// Constructor from homogeneous control points without validation, for results of
+    /// operations that keep the invariants (knot insertion, splitting, reversal).
+    ///
+    /// Obligations: `knots.len() == cw.len() + degree + 1`, knots non-decreasing with a
+    /// non-empty domain, every `w > 0` and finite, every coordinate finite.
+    pub(crate) fn new_unchecked(degree: usize, knots: Vec<f64>, cw: Vec<DVec4>) -> Self {
+        debug_assert_eq!(knots.len(), cw.len() + degree + 1, "knot count invariant");
+        let rational = cw.iter().any(|c| c.w != 1.0);
+        NurbsCurve {
+            degree,
+            knots,
+            cw,
+            rational,
+        }
+    }
+
+    /// The polynomial degree p.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// The order p + 1.
+    pub fn order(&self) -> usize {
+        self.degree + 1
+    }
+
+    /// The knot vector.
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
+    /// Number of control points.
+    pub fn control_point_count(&self) -> usize {
+        self.cw.len()
+    }
+
+    /// Cartesian control points.
+    pub fn control_points(&self) -> Vec<DVec3> {
+        self.cw.iter().map(|c| c.truncate() / c.w).collect()
+    }
+
+    /// Weights, or `None` for a non-rational curve (all weights 1).
+    pub fn weights(&self) -> Option<Vec<f64>> {
+        self.rational.then(|| self.cw.iter().map(|c| c.w).collect())
+    }
+
+    /// Homogeneous control points `(w·P, w)`.
+    pub fn homogeneous_points(&self) -> &[DVec4] {
+        &self.cw
+    }
+
+    /// True when some weight differs from 1.
+    pub fn is_rational(&self) -> bool {
+        self.rational
+    }
+
+    /// The parameter domain `[knots[p], knots[n]]`.
+    pub fn domain(&self) -> (f64, f64) {
+        (self.knots[self.degree], self.knots[self.cw.len()])
+    }
+
+    /// The point C(t); `t` is clamped into the domain.
+    #[inline]
+    pub fn point(&self, t: f64) -> DVec3 {
+        let p = self.degree;
+        let span = find_span(&self.knots, p, self.cw.len(), t);
+        let mut b = [0.0; MAX_ORDER];
+        basis_funs(&self.knots, span, t, p, &mut b);
+        let mut acc = DVec4::ZERO;
+        let base = span - p;
+        for j in 0..=p {
+            acc += self.cw[base + j] * b[j];
+        }
+        acc.truncate() / acc.w
+    }
+
+    /// Evaluate at many parameters, writing `x, y, z` triples into `out` (`3 * ts.len()` long).
+    ///
+    /// The inner loop allocates nothing; parameters may come in any order.
+    pub fn points_into(&self, ts: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            3 * ts.len(),
+            "output holds three values per parameter"
+        );
+        let p = self.degree;
+        let n = self.cw.len();
+        let mut b = [0.0; MAX_ORDER];
+        for (t, o) in ts.iter().zip(out.chunks_exact_mut(3)) {
+            let span = find_span(&self.knots, p, n, *t);
+            basis_funs(&self.knots, span, *t, p, &mut b);
+            let cw = &self.cw[span - p..=span];
+            let mut acc = DVec4::ZERO;
+            for (c, bj) in cw.iter().zip(&b) {
+                acc += *c * *bj;
+            }
+            let v = acc.truncate() / acc.w;
+            o.copy_from_slice(&v.to_array());
+        }
+    }
+
+    /// C(t) and its first three derivatives (A3.2 with A2.3; rational curves by A4.2, eq. 4.8).
+    pub fn derivs(&self, t: f64) -> CurveDerivs {
+        let span = find_span(&self.knots, self.degree, self.cw.len(), t);
+        self.derivs_in_span(span, t)
+    }
+
+    /// Derivatives at `t` using the polynomial piece of knot span `span` (so that at a knot the
+    /// one-sided derivative of either neighbouring piece can be asked for).
+    pub(crate) fn derivs_in_span(&self, span: usize, t: f64) -> CurveDerivs {
+        let p = self.degree;
+        let mut d = [[0.0; MAX_ORDER]; 4];
+        ders_basis_funs(&self.knots, span, t, p, 3, &mut d);
+        let mut h = [DVec4::ZERO; 4];
+        for (k, hk) in h.iter_mut().enumerate() {
+            for j in 0..=p {
+                *hk += self.cw[span - p + j] * d[k][j];
+            }
+        }
+        let (a, w) = (h.map(|v| v.truncate()), h.map(|v| v.w));
+        let c0 = a[0] / w[0];
+        let c1 = (a[1] - w[1] * c0) / w[0];
+        let c2 = (a[2] - 2.0 * w[1] * c1 - w[2] * c0) / w[0];
+        let c3 = (a[3] - 3.0 * w[1] * c2 - 3.0 * w[2] * c1 - w[3] * c0) / w[0];
+        CurveDerivs {
+            point: c0,
+            d1: c1,
+            d2: c2,
+            d3: c3,
+        }
+    }
+
+    /// The curve traversed the other way: same shape, parameter `t` maps to `a + b - t` on the
+    /// knot vector's full range `[a, b]`.
+    pub fn reversed(&self) -> NurbsCurve {
+        let (a, b) = (self.knots[0], self.knots[self.knots.len() - 1]);
+        let knots = self.knots.iter().rev().map(|&u| a + b - u).collect();
+        let cw = self.cw.iter().rev().copied().collect();
+        NurbsCurve::new_unchecked(self.degree, knots, cw)
+    }
+
+    /// Multiplicity of the knot value `u` (exact comparison).
+    pub(crate) fn multiplicity(&self, u: f64) -> usize {
+        self.knots.iter().filter(|&&k| k == u).count()
+    }
+}
+
+fn validate_knots(knots: &[f64], degree: usize, n: usize) -> Result<(), CurveError> {
+    let expected = n + degree + 1;
+    if knots.len() != expected {
+        return Err(CurveError::KnotCount {
+            expected,
+            got: knots.len(),
+        });
+    }
+    if let Some((index, &value)) = knots.iter().enumerate().find(|(_, k)| !k.is_finite()) {
+        return Err(CurveError::NonFiniteKnot { index, value });
+    }
+    for i in 1..knots.len() {
+        if knots[i] < knots[i - 1] {
+            return Err(CurveError::DecreasingKnots {
+                index: i,
+                prev: knots[i - 1],
+                next: knots[i],
+            });
+        }
+    }
+    let (start, end) = (knots[degree], knots[n]);
+    if start >= end {
+        return Err(CurveError::EmptyDomain { start, end });
+    }
+    let mut i = 0;
+    while i < knots.len() {
+        let value = knots[i];
+        let mut j = i;
+        while j < knots.len() && knots[j] == value {
+            j += 1;
+        }
+        let multiplicity = j - i;
+        let max = if value > start && value < end {
+            degree
+        } else {
+            degree + 1
+        };
+        if multiplicity > max {
+            return Err(CurveError::KnotMultiplicity {
+                value,
+                multiplicity,
+                max,
+            });
+        }
+        i = j;
+    }
+    Ok(())
+}

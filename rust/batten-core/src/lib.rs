@@ -1,0 +1,20 @@
+//! batten-core: the geometry of batten, a hull-design tool that turns a network of designer curves
+//! into a smooth multi-patch surface.
+//!
+//! This crate knows nothing of Python or Blender. It holds the curve kernel (B-spline and NURBS
+//! curves with derivatives, knot insertion, splitting, arc length, closest points, bounding boxes),
+//! the model tolerance, typed errors and the versioned JSON format for curve networks.
+//!
+//! The public API is flat: every type is re-exported here and the modules stay private.
+
+mod curve;
+mod error;
+mod network;
+mod tolerance;
+
+pub use curve::{
+    Aabb, BezierDecomposition, CurveDerivs, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
+};
+pub use error::{CurveError, Error};
+pub use network::{Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION};
+pub use tolerance::Tolerance;

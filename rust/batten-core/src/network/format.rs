@@ -1,0 +1,115 @@
+//! The versioned JSON format of a curve network.
+//!
+//! ```json
+//! {"format": "batten-network", "version": 1, "name": "frigate",
+//!  "curves": [{"name": "keel", "role": "keel", "degree": 3,
+//!              "knots": [...], "points": [[x, y, z], ...], "weights": null}]}
+//! ```
+//! Floats are written in shortest round-trip form and read with correct rounding, so
+//! writing and reading a network gives back bitwise the same curves.
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use super::{Network, NetworkCurve, Role};
+use crate::curve::NurbsCurve;
+use crate::error::Error;
+
+/// The `format` tag of a network file.
+pub const NETWORK_FORMAT: &str = "batten-network";
+/// The newest network file version; files of a newer version are refused with a clear error.
+pub const NETWORK_VERSION: u32 = 1;
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileV1 {
+    format: String,
+    version: u32,
+    #[serde(default)]
+    name: String,
+    curves: Vec<CurveRecord>,
+}
+
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CurveRecord {
+    name: String,
+    #[serde(default)]
+    role: Role,
+    degree: usize,
+    knots: Vec<f64>,
+    points: Vec<[f64; 3]>,
+    #[serde(default)]
+    weights: Option<Vec<f64>>,
+}
+
+#[derive(Deserialize)]
+struct Header {
+    format: Option<String>,
+    version: Option<u32>,
+}
+
+impl Network {
+    /// The network as JSON text (format version [`NETWORK_VERSION`]).
+    pub fn to_json(&self) -> String {
+        let file = FileV1 {
+            format: NETWORK_FORMAT.to_owned(),
+            version: NETWORK_VERSION,
+            name: self.name.clone(),
+            curves: self
+                .curves()
+                .iter()
+                .map(|c| CurveRecord {
+                    name: c.name.clone(),
+                    role: c.role,
+                    degree: c.curve.degree(),
+                    knots: c.curve.knots().to_vec(),
+                    points: c
+                        .curve
+                        .control_points()
+                        .iter()
+                        .map(|p| p.to_array())
+                        .collect(),
+                    weights: c.curve.weights(),
+                })
+                .collect(),
+        };
+        serde_json::to_string_pretty(&file).expect("a network always serialises")
+    }
+
+    /// Read a network from JSON text, validating every curve; an error names the curve.
+    pub fn from_json(text: &str) -> Result<Network, Error> {
+        let header: Header =
+            serde_json::from_str(text).map_err(|e| Error::Format(e.to_string()))?;
+        if header.format.as_deref() != Some(NETWORK_FORMAT) {
+            return Err(Error::Format(format!(
+                "not a batten network (expected \"format\": \"{NETWORK_FORMAT}\")"
+            )));
+        }
+        match header.version {
+            Some(v) if (1..=NETWORK_VERSION).contains(&v) => {}
+            Some(v) => {
+                return Err(Error::Format(format!(
+                    "version {v} is newer than this batten reads ({NETWORK_VERSION})"
+                )))
+            }
+            None => return Err(Error::Format("missing \"version\"".to_owned())),
+        }
+        let file: FileV1 = serde_json::from_str(text).map_err(|e| Error::Format(e.to_string()))?;
+        let curves = file
+            .curves
+            .into_iter()
+            .map(|r| {
+                let points = r.points.iter().map(|p| DVec3::from_array(*p)).collect();
+                NurbsCurve::try_new(r.degree, r.knots, points, r.weights)
+                    .map(|curve| NetworkCurve {
+                        name: r.name.clone(),
+                        role: r.role,
+                        curve,
+                    })
+                    .map_err(|e| e.named(r.name))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Network::try_new(file.name, curves)
+    }
+}

@@ -1,0 +1,72 @@
+//! The model tolerance: one distance that decides when two points are the same point.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::Error;
+
+/// Model tolerance in metres: points closer than this are the same point.
+///
+/// Every geometric comparison in batten derives its threshold from one `Tolerance`, never from
+/// a bare literal (the fornjot `validation/config.rs` practice). It is always positive and finite.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd, Serialize, Deserialize)]
+#[serde(try_from = "f64", into = "f64")]
+pub struct Tolerance(f64);
+
+impl Tolerance {
+    /// The default model tolerance, 0.1 mm: well below drawing accuracy at ship scale and well
+    /// above the f64 rounding of coordinates of a few hundred metres.
+    pub const DEFAULT: Tolerance = Tolerance(1e-4);
+
+    /// Validated constructor: rejects zero, negative and non-finite values.
+    pub fn try_new(value: f64) -> Result<Self, Error> {
+        if value.is_finite() && value > 0.0 {
+            Ok(Tolerance(value))
+        } else {
+            Err(Error::Tolerance(value))
+        }
+    }
+
+    /// The tolerance in metres.
+    pub fn get(self) -> f64 {
+        self.0
+    }
+
+    /// Distance below which two things are "nearly" touching: a gap between the tolerance and
+    /// this is reported as a near miss rather than silently joined or left apart (10× tolerance).
+    pub fn near_miss(self) -> f64 {
+        10.0 * self.0
+    }
+}
+
+impl Default for Tolerance {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+impl TryFrom<f64> for Tolerance {
+    type Error = Error;
+    fn try_from(value: f64) -> Result<Self, Error> {
+        Tolerance::try_new(value)
+    }
+}
+
+impl From<Tolerance> for f64 {
+    fn from(t: Tolerance) -> f64 {
+        t.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_non_positive_and_non_finite() {
+        for bad in [0.0, -1e-4, f64::NAN, f64::INFINITY] {
+            assert!(Tolerance::try_new(bad).is_err(), "{bad} must be rejected");
+        }
+        assert_eq!(Tolerance::try_new(1e-3).unwrap().get(), 1e-3, "value kept");
+        assert_eq!(Tolerance::DEFAULT.near_miss(), 1e-3, "near miss is 10x");
+    }
+}

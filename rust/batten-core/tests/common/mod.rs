@@ -1,0 +1,72 @@
+//! Shared test helpers: `assert_near!` (prints both sides and the tolerance, as truck's
+//! `tolerance.rs`) and a few analytic curves.
+#![allow(dead_code)]
+
+use batten_core::{KnotLayout, NurbsCurve};
+use glam::DVec3;
+
+/// Assert two f64 or DVec3 values differ by at most `tol` (Euclidean for vectors).
+#[macro_export]
+macro_rules! assert_near {
+    ($a:expr, $b:expr, $tol:expr) => {
+        $crate::assert_near!($a, $b, $tol, "")
+    };
+    ($a:expr, $b:expr, $tol:expr, $($msg:tt)+) => {{
+        let (a, b, tol) = ($a, $b, $tol);
+        let d = $crate::common::Distance::distance(&a, &b);
+        assert!(d <= tol, "{:?} vs {:?}: distance {:e} > {:e}: {}", a, b, d, tol, format!($($msg)+));
+    }};
+}
+
+/// Distance between two values of one kind.
+pub trait Distance {
+    /// |a − b|.
+    fn distance(&self, other: &Self) -> f64;
+}
+impl Distance for f64 {
+    fn distance(&self, other: &Self) -> f64 {
+        (self - other).abs()
+    }
+}
+impl Distance for DVec3 {
+    fn distance(&self, other: &Self) -> f64 {
+        (*self - *other).length()
+    }
+}
+
+/// A full circle of radius `r` about the origin in the xy plane: rational quadratic with nine
+/// control points (Piegl & Tiller Ex. 7.2), exact.
+pub fn circle(r: f64) -> NurbsCurve {
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let pts = [
+        (1., 0.),
+        (1., 1.),
+        (0., 1.),
+        (-1., 1.),
+        (-1., 0.),
+        (-1., -1.),
+        (0., -1.),
+        (1., -1.),
+        (1., 0.),
+    ]
+    .map(|(x, y)| DVec3::new(r * x, r * y, 0.0));
+    let w = vec![1., s, 1., s, 1., s, 1., s, 1.];
+    let knots = vec![0., 0., 0., 1., 1., 2., 2., 3., 3., 4., 4., 4.];
+    NurbsCurve::try_new(2, knots, pts.to_vec(), Some(w)).unwrap()
+}
+
+/// A cubic S-bend: a B-spline whose curvature changes sign twice, a trap for local Newton.
+pub fn s_bend() -> NurbsCurve {
+    let pts = [
+        (0., 0.),
+        (1., 2.),
+        (2., 2.),
+        (3., -2.),
+        (4., -2.),
+        (5., 2.),
+        (6., 2.),
+        (7., 0.),
+    ]
+    .map(|(x, y)| DVec3::new(x, y, 0.1 * x));
+    NurbsCurve::from_layout(&pts, None, 4, KnotLayout::Endpoint, false).unwrap()
+}
