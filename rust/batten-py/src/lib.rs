@@ -1,1 +1,26 @@
-//! placeholder
+//! `batten_native`: the thin Python binding of batten-core.
+//!
+//! Arguments are converted first, then the core runs with the GIL released; every core error is
+//! mapped in one place ([`errors`]) to `batten_native.BattenError` (a `ValueError`), and a panic
+//! never crosses into Python ([`errors::guard`]).
+
+mod curve;
+mod errors;
+mod network;
+
+use pyo3::prelude::*;
+
+/// The compiled module `batten_native._native`, re-exported by the `batten_native` package.
+#[pymodule]
+#[pyo3(name = "_native")]
+fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("BattenError", m.py().get_type::<errors::BattenError>())?;
+    m.add("DEFAULT_TOLERANCE", batten_core::Tolerance::DEFAULT.get())?;
+    m.add("ROLES", batten_core::Role::ALL.map(|r| r.name()).to_vec())?;
+    m.add_class::<curve::Curve>()?;
+    m.add_function(wrap_pyfunction!(network::network_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
+    Ok(())
+}

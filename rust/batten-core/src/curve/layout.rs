@@ -161,6 +161,41 @@ impl NurbsCurve {
     }
 }
 
+impl NurbsCurve {
+    /// The open (non-cyclic) layout whose knots this curve's knot vector is an affine image of,
+    /// checked for `Endpoint` then `Uniform`; `None` for any other knot vector.
+    ///
+    /// A curve with a matching layout can be handed to a modeller that only knows layouts
+    /// (Blender) with its control points unchanged.
+    pub fn matching_layout(&self) -> Option<KnotLayout> {
+        let k = self.knots();
+        let (n, order) = (self.control_point_count(), self.order());
+        [KnotLayout::Endpoint, KnotLayout::Uniform]
+            .into_iter()
+            .find(|layout| {
+                let l = layout.knots(n, order, false);
+                let scale = (k[k.len() - 1] - k[0]) / (l[l.len() - 1] - l[0]);
+                let tol = 1e-12 * (k[k.len() - 1] - k[0]);
+                k.iter()
+                    .zip(&l)
+                    .all(|(&u, &v)| (u - (k[0] + scale * (v - l[0]))).abs() <= tol)
+            })
+    }
+
+    /// Control points of the curve cut into Bézier pieces, consecutive pieces sharing their
+    /// joint point (`1 + pieces·degree` homogeneous points). With the `EndpointBezier` layout
+    /// and the same order they give back exactly this shape (parameterised per piece).
+    pub fn bezier_control_points(&self) -> Vec<glam::DVec4> {
+        let dec = self.bezier_decomposition();
+        let mut out = Vec::with_capacity(1 + dec.piece_count() * self.degree());
+        for (i, piece) in dec.pieces.iter().enumerate() {
+            let skip = usize::from(i > 0);
+            out.extend_from_slice(&piece.cw[skip..]);
+        }
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -176,6 +211,46 @@ mod tests {
             KnotLayout::Endpoint.knots(6, 4, false),
             vec![0., 0., 0., 0., 1., 2., 3., 3., 3., 3.],
             "endpoint"
+        );
+    }
+
+    #[test]
+    fn layouts_are_recognised_and_bezier_points_rebuild_the_shape() {
+        let pts: Vec<DVec3> = (0..7)
+            .map(|i| DVec3::new(i as f64, (i as f64 * 0.9).sin(), 0.2 * i as f64))
+            .collect();
+        let w = [1.0, 0.5, 2.0, 1.0, 3.0, 0.7, 1.0];
+        for layout in [KnotLayout::Endpoint, KnotLayout::Uniform] {
+            let c = NurbsCurve::from_layout(&pts, Some(&w), 4, layout, false).unwrap();
+            assert_eq!(c.matching_layout(), Some(layout), "{layout:?} recognised");
+            let hw = c.bezier_control_points();
+            let (bp, bw): (Vec<DVec3>, Vec<f64>) =
+                hw.iter().map(|h| (h.truncate() / h.w, h.w)).unzip();
+            let b = NurbsCurve::from_layout(&bp, Some(&bw), 4, KnotLayout::EndpointBezier, false)
+                .unwrap();
+            let (a0, a1) = c.domain();
+            let (b0, b1) = b.domain();
+            for i in 0..=60 {
+                let s = i as f64 / 60.0;
+                let (pa, pb) = (c.point(a0 + s * (a1 - a0)), b.point(b0 + s * (b1 - b0)));
+                // Same pieces, uniform per-piece parameters on both: pointwise equal.
+                assert!(
+                    (pa - pb).length() < 1e-12,
+                    "{layout:?} at {s}: {pa} vs {pb}"
+                );
+            }
+        }
+        let odd = NurbsCurve::try_new(
+            2,
+            vec![0.0, 0.0, 0.0, 0.3, 1.0, 1.0, 1.0],
+            pts[..4].to_vec(),
+            None,
+        )
+        .unwrap();
+        assert_eq!(
+            odd.matching_layout(),
+            None,
+            "non-uniform knots match no layout"
         );
     }
 }

@@ -1,0 +1,67 @@
+# batten: `make demo` builds the example hulls headless; `make test` runs every test.
+# Both work on a fresh machine with Rust and Python 3.11: they make a local venv (.venv) with
+# the pinned tools of requirements-dev.txt, build the Rust module into build/, and reuse both.
+
+PYTHON ?= python3.11
+VENV ?= .venv
+VPY := $(VENV)/bin/python
+PROFILE ?= dev
+WHEEL_DIR := build/wheels/$(PROFILE)
+NATIVE_DIR := build/native/$(PROFILE)
+EXT_DIR := build/extension/$(PROFILE)
+OUT ?= out
+
+.PHONY: demo test extension package native venv sysdeps lint fmt bench clean
+
+demo: venv sysdeps
+	$(MAKE) --no-print-directory native PROFILE=release
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/demo.py -- --out $(OUT)
+
+test: venv sysdeps lint
+	cargo test -p batten-core
+	$(MAKE) --no-print-directory package PROFILE=dev
+	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \
+	  PYTHONPATH=build/native/dev:addon $(VPY) -m pytest -q tests
+
+## The installable Blender extension zip (release build) in build/extension/release/.
+extension: venv
+	$(MAKE) --no-print-directory package PROFILE=release
+	@ls build/extension/release/*.zip
+
+package: native
+	$(VPY) blender_scripts/build_extension.py --wheel-dir $(WHEEL_DIR) --out $(EXT_DIR)
+
+native: venv
+	rm -rf $(WHEEL_DIR) $(NATIVE_DIR)
+	$(VPY) -m maturin build --quiet --profile $(PROFILE) --out $(WHEEL_DIR)
+	$(VPY) -m zipfile -e $(WHEEL_DIR)/*.whl $(NATIVE_DIR)
+
+venv: $(VENV)/.installed
+
+$(VENV)/.installed: requirements-dev.txt
+	test -x $(VPY) || $(PYTHON) -m venv $(VENV)
+	$(VPY) -m pip install --quiet --upgrade pip
+	$(VPY) -m pip install --quiet -r requirements-dev.txt
+	touch $@
+
+sysdeps:
+	bash blender_scripts/system_deps.sh
+
+lint: venv
+	cargo fmt --all --check
+	cargo clippy --workspace --all-targets --quiet -- -D warnings
+	$(VPY) -m ruff check --quiet addon tests blender_scripts examples rust/batten-py/python
+
+fmt: venv
+	cargo fmt --all
+	$(VPY) -m ruff check --fix --quiet addon tests blender_scripts examples rust/batten-py/python
+	$(VPY) -m ruff format --quiet addon tests blender_scripts examples rust/batten-py/python
+
+## Speed figures: criterion in the core, and the Python-side benchmark beside scipy.
+bench: venv sysdeps
+	cargo bench -p batten-core
+	$(MAKE) --no-print-directory native PROFILE=release
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_curves.py
+
+clean:
+	rm -rf build $(OUT) target

@@ -1,0 +1,1 @@
+"""Conversions between Blender data and batten_native arrays (no geometry is computed here)."""

@@ -1,0 +1,58 @@
+"""batten curves → Blender curve objects that Blender draws as exactly the same shape.
+
+A curve whose knots are an end-point or uniform layout keeps its control points (so it stays
+as editable as it was drawn); any other knot vector is written as an end-point + Bézier NURBS
+spline of its Bézier pieces, which Blender evaluates as exactly the same curve. Degree-1 curves
+become POLY splines.
+"""
+
+from __future__ import annotations
+
+import bpy
+import numpy as np
+from batten_native import BattenError, Curve
+
+#: Blender's legacy curves have orders 2..6.
+MAX_BLENDER_DEGREE = 5
+
+
+def _spline_data(curve: Curve) -> tuple[str, np.ndarray, dict]:
+    degree = curve.degree
+    if degree > MAX_BLENDER_DEGREE:
+        raise BattenError(
+            f"curve '{curve.name}': degree {degree} is above the largest Blender draws ({MAX_BLENDER_DEGREE})"
+        )
+    layout = curve.matching_layout()
+    weights = curve.weights
+    if layout is not None:
+        pts = curve.control_points
+        w = np.ones(len(pts)) if weights is None else weights
+        points = np.column_stack([pts, w])
+        if degree == 1 and layout == "endpoint" and weights is None:
+            return "POLY", points, {}
+        return "NURBS", points, {"order_u": degree + 1, "use_endpoint_u": layout == "endpoint"}
+    points = curve.bezier_control_points()
+    return "NURBS", points, {"order_u": degree + 1, "use_endpoint_u": True, "use_bezier_u": True}
+
+
+def new_curve_object(curve: Curve, collection, *, resolution: int = 16):
+    """A new curve object drawing ``curve`` (world coordinates, identity transform), linked to
+    ``collection``, with the curve's role set. Returns the object."""
+    kind, points, flags = _spline_data(curve)
+    data = bpy.data.curves.new(curve.name, "CURVE")
+    try:
+        data.dimensions = "3D"
+        data.resolution_u = resolution
+        spline = data.splines.new(kind)
+        spline.points.add(len(points) - 1)
+        spline.points.foreach_set("co", points.astype(np.float32).ravel())
+        for key, value in flags.items():
+            setattr(spline, key, value)
+        obj = bpy.data.objects.new(curve.name, data)
+    except Exception:
+        bpy.data.curves.remove(data)
+        raise
+    if hasattr(obj, "batten"):
+        obj.batten.role = curve.role
+    collection.objects.link(obj)
+    return obj

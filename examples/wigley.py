@@ -1,0 +1,78 @@
+"""Write ``wigley.json``: the Wigley hull as an exact batten curve network.
+
+The Wigley hull, port half, x forward from midship, z up from the baseline:
+
+    y(x, z) = B/2 · (1 − (2x/L)²) · (1 − ((T − z)/T)²)      for 0 ≤ z ≤ T
+
+and wall-sided above the design waterline up to the deck at z = T + F. Every station and every
+waterline of it is a parabola, so each curve is an exact rational-free quadratic B-spline. Exact
+hydrostatics (both halves, to the design waterline): volume ∇ = (4/9)·L·B·T, waterplane area
+A_wp = (2/3)·L·B, block coefficient C_B = 4/9.
+
+    python examples/wigley.py            # rewrites examples/wigley.json
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+L, B, T, F = 100.0, 10.0, 6.25, 2.5
+STATIONS = [L * k / 8.0 for k in range(-3, 4)]  # 7 stations
+WATERLINES = [T * k / 3.0 for k in (1, 2)] + [T]  # 2 waterlines + the design waterline
+DECK = T + F
+
+
+def half_breadth(x: float) -> float:
+    return 0.5 * B * (1.0 - (2.0 * x / L) ** 2)
+
+
+def depth_factor(z: float) -> float:
+    s = (T - z) / T
+    return 1.0 - s * s
+
+
+def curve(name, role, degree, knots, points):
+    return {"name": name, "role": role, "degree": degree, "knots": knots,
+            "points": [[float(c) for c in p] for p in points], "weights": None}
+
+
+def station(x: float):
+    """Keel (y=0, z=0) → waterline (y=c, z=T) parabola with vertical tangent at T, then the
+    straight wall side to the deck: a quadratic B-spline with a double knot at the waterline."""
+    c = half_breadth(x)
+    pts = [(x, 0.0, 0.0), (x, c, T / 2), (x, c, T), (x, c, T + F / 2), (x, c, DECK)]
+    return curve(f"station {x:+.1f}", "free", 2, [0, 0, 0, 1, 1, 2, 2, 2], pts)
+
+
+def waterline(z: float, name: str, role: str = "free"):
+    """y = c(z)·(1 − (2x/L)²): one quadratic Bézier from stern to stem."""
+    g = depth_factor(z) if z < T else 1.0
+    pts = [(-L / 2, 0.0, z), (0.0, B * g, z), (L / 2, 0.0, z)]
+    return curve(name, role, 2, [0, 0, 0, 1, 1, 1], pts)
+
+
+def network() -> dict:
+    curves = [station(x) for x in STATIONS]
+    curves += [waterline(z, f"waterline {z:.3f}") for z in WATERLINES[:-1]]
+    curves.append(waterline(T, "design waterline"))
+    curves.append(waterline(DECK, "deck edge", "deck"))
+    curves.append(curve("keel", "keel", 1, [0, 0, 1, 1], [(-L / 2, 0.0, 0.0), (L / 2, 0.0, 0.0)]))
+    curves.append(curve("stem", "stem", 1, [0, 0, 1, 1], [(L / 2, 0.0, 0.0), (L / 2, 0.0, DECK)]))
+    curves.append(curve("stern", "transom", 1, [0, 0, 1, 1], [(-L / 2, 0.0, 0.0), (-L / 2, 0.0, DECK)]))
+    return {
+        "format": "batten-network",
+        "version": 1,
+        "name": "wigley",
+        "curves": curves,
+    }
+
+
+def text() -> str:
+    return json.dumps(network(), indent=2) + "\n"
+
+
+if __name__ == "__main__":
+    out = Path(__file__).with_name("wigley.json")
+    out.write_text(text())
+    print(f"wrote {out}")

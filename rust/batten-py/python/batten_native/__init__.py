@@ -1,0 +1,27 @@
+"""batten_native: the Rust core of batten (curves, networks, hull surfaces) for Python.
+
+Everything here is implemented in Rust (``batten_native._native``); errors are raised as
+:class:`BattenError`, a :class:`ValueError` whose message names the curve and the problem.
+"""
+
+from ._native import (
+    DEFAULT_TOLERANCE,
+    ROLES,
+    BattenError,
+    Curve,
+    __version__,
+    check_lengths,
+    network_from_json,
+    network_to_json,
+)
+
+__all__ = [
+    "DEFAULT_TOLERANCE",
+    "ROLES",
+    "BattenError",
+    "Curve",
+    "__version__",
+    "check_lengths",
+    "network_from_json",
+    "network_to_json",
+]

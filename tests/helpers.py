@@ -1,0 +1,68 @@
+"""Helpers for building Blender curves in tests (foreach_set, no per-point loops)."""
+
+from __future__ import annotations
+
+import bpy
+import numpy as np
+
+
+def new_curve(name: str, kind: str, points, *, order: int = 4, endpoint: bool = False, bezier: bool = False,
+              cyclic: bool = False, weights=None, resolution: int = 12, collection=None, matrix=None):
+    """A curve object with one POLY or NURBS spline through ``points`` (n, 3)."""
+    points = np.asarray(points, dtype=np.float64)
+    data = bpy.data.curves.new(name, "CURVE")
+    data.dimensions = "3D"
+    data.resolution_u = resolution
+    spline = data.splines.new(kind)
+    spline.points.add(len(points) - 1)
+    w = np.ones(len(points)) if weights is None else np.asarray(weights, dtype=np.float64)
+    spline.points.foreach_set("co", np.column_stack([points, w]).astype(np.float32).ravel())
+    spline.order_u = order
+    spline.use_endpoint_u = endpoint
+    spline.use_bezier_u = bezier
+    spline.use_cyclic_u = cyclic
+    obj = bpy.data.objects.new(name, data)
+    if matrix is not None:
+        obj.matrix_world = matrix
+    (collection or bpy.context.scene.collection).objects.link(obj)
+    return obj
+
+
+def new_bezier(name: str, co, left, right, *, cyclic: bool = False, resolution: int = 12, collection=None,
+               matrix=None):
+    """A curve object with one BEZIER spline (points and FREE handles as given)."""
+    co = np.asarray(co, dtype=np.float32)
+    data = bpy.data.curves.new(name, "CURVE")
+    data.dimensions = "3D"
+    data.resolution_u = resolution
+    spline = data.splines.new("BEZIER")
+    bp = spline.bezier_points
+    bp.add(len(co) - 1)
+    n = len(co)
+    bp.foreach_set("handle_left_type", np.full(n, 0, dtype=np.int32))  # HD_FREE
+    bp.foreach_set("handle_right_type", np.full(n, 0, dtype=np.int32))
+    bp.foreach_set("co", co.ravel())
+    bp.foreach_set("handle_left", np.asarray(left, dtype=np.float32).ravel())
+    bp.foreach_set("handle_right", np.asarray(right, dtype=np.float32).ravel())
+    spline.use_cyclic_u = cyclic
+    obj = bpy.data.objects.new(name, data)
+    if matrix is not None:
+        obj.matrix_world = matrix
+    (collection or bpy.context.scene.collection).objects.link(obj)
+    return obj
+
+
+def evaluated_polyline(obj) -> np.ndarray:
+    """Blender's own evaluated polyline of a curve object, in world coordinates."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    ev = obj.evaluated_get(depsgraph)
+    mesh = ev.to_mesh()
+    try:
+        n = len(mesh.vertices)
+        buf = np.empty(3 * n, dtype=np.float32)
+        mesh.vertices.foreach_get("co", buf)
+        local = buf.reshape(n, 3).astype(np.float64)
+    finally:
+        ev.to_mesh_clear()
+    m = np.array(obj.matrix_world, dtype=np.float64)
+    return local @ m[:3, :3].T + m[:3, 3]
