@@ -42,7 +42,9 @@ def main() -> None:
 
     wheels = sorted(args.wheel_dir.glob("batten_native-*.whl"))
     if len(wheels) != 1:
-        sys.exit(f"build_extension: expected one batten_native wheel in {args.wheel_dir}, found {len(wheels)}")
+        sys.exit(
+            f"build_extension: expected one batten_native wheel in {args.wheel_dir}, found {len(wheels)}"
+        )
     wheel = wheels[0]
 
     stage = args.out / "stage" / "batten"

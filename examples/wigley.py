@@ -33,8 +33,14 @@ def depth_factor(z: float) -> float:
 
 
 def curve(name, role, degree, knots, points):
-    return {"name": name, "role": role, "degree": degree, "knots": knots,
-            "points": [[float(c) for c in p] for p in points], "weights": None}
+    return {
+        "name": name,
+        "role": role,
+        "degree": degree,
+        "knots": knots,
+        "points": [[float(c) for c in p] for p in points],
+        "weights": None,
+    }
 
 
 def station(x: float):

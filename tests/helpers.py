@@ -6,8 +6,20 @@ import bpy
 import numpy as np
 
 
-def new_curve(name: str, kind: str, points, *, order: int = 4, endpoint: bool = False, bezier: bool = False,
-              cyclic: bool = False, weights=None, resolution: int = 12, collection=None, matrix=None):
+def new_curve(
+    name: str,
+    kind: str,
+    points,
+    *,
+    order: int = 4,
+    endpoint: bool = False,
+    bezier: bool = False,
+    cyclic: bool = False,
+    weights=None,
+    resolution: int = 12,
+    collection=None,
+    matrix=None,
+):
     """A curve object with one POLY or NURBS spline through ``points`` (n, 3)."""
     points = np.asarray(points, dtype=np.float64)
     data = bpy.data.curves.new(name, "CURVE")
@@ -28,8 +40,9 @@ def new_curve(name: str, kind: str, points, *, order: int = 4, endpoint: bool = 
     return obj
 
 
-def new_bezier(name: str, co, left, right, *, cyclic: bool = False, resolution: int = 12, collection=None,
-               matrix=None):
+def new_bezier(
+    name: str, co, left, right, *, cyclic: bool = False, resolution: int = 12, collection=None, matrix=None
+):
     """A curve object with one BEZIER spline (points and FREE handles as given)."""
     co = np.asarray(co, dtype=np.float32)
     data = bpy.data.curves.new(name, "CURVE")

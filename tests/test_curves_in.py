@@ -48,8 +48,17 @@ NURBS_CASES = list(itertools.product(range(2, 7), [False, True], [False, True], 
 def test_nurbs_splines_match_blender(order, endpoint, bezier, cyclic, rational):
     n = 13 if order in (2, 4, 5) else 11  # both valid and invalid Bézier-mode counts occur
     weights = np.array([1, 0.5, 3, 1, 2, 0.25, 1.5, 1, 0.7, 2.2, 1, 0.9, 1.3])[:n] if rational else None
-    obj = new_curve("nurbs", "NURBS", control_points(n, order), order=order, endpoint=endpoint, bezier=bezier,
-                    cyclic=cyclic, weights=weights, matrix=WORLD)
+    obj = new_curve(
+        "nurbs",
+        "NURBS",
+        control_points(n, order),
+        order=order,
+        endpoint=endpoint,
+        bezier=bezier,
+        cyclic=cyclic,
+        weights=weights,
+        matrix=WORLD,
+    )
     curve = check_on_curve(obj, cyclic)
     if curves_in._blender_nurbs_valid(n, order, endpoint, bezier, cyclic):
         assert curve.degree == order - 1

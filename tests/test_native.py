@@ -88,7 +88,9 @@ def test_bad_arguments_raise_clean_errors():
         c.nearest([np.nan, 0, 0])
     with pytest.raises(bn.BattenError, match="unknown role 'bulb'"):
         bn.Curve.from_poly("x", np.zeros((2, 3)) + [[0, 0, 0], [1, 0, 0]], role="bulb")
-    with pytest.raises(bn.BattenError, match=r"curve .x.: points must have shape \(n, 3 or 4\), got \(4, 2\)"):
+    with pytest.raises(
+        bn.BattenError, match=r"curve .x.: points must have shape \(n, 3 or 4\), got \(4, 2\)"
+    ):
         bn.Curve.from_poly("x", np.zeros((4, 2)))
 
 

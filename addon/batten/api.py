@@ -58,7 +58,9 @@ def curve_objects(source) -> list:
         objects = list(source)
         where = "the given objects"
     else:
-        raise BattenError(f"expected a collection, a curve object or a list of them, got {type(source).__name__}")
+        raise BattenError(
+            f"expected a collection, a curve object or a list of them, got {type(source).__name__}"
+        )
     if not objects:
         raise BattenError(f"{where} holds no curves")
     for obj in objects:

@@ -28,7 +28,9 @@ class BATTEN_OT_export_network(bpy.types.Operator, ExportHelper):
 
     def execute(self, context):
         try:
-            path = api.export_network(_hull_source(context), self.filepath, tolerance=context.scene.batten.tolerance)
+            path = api.export_network(
+                _hull_source(context), self.filepath, tolerance=context.scene.batten.tolerance
+            )
         except (api.BattenError, OSError) as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}

@@ -92,6 +92,4 @@ def _read_spline(spline, name: str, role: str, matrix: np.ndarray) -> Curve:
         # Blender shows such a spline as its control polygon; so does batten.
         return Curve.from_poly(name, xyz, cyclic=cyclic, role=role)
     points = np.column_stack([xyz, co[:, 3]])
-    return Curve.from_nurbs(
-        name, points, order, endpoint=endpoint, bezier=bezier, cyclic=cyclic, role=role
-    )
+    return Curve.from_nurbs(name, points, order, endpoint=endpoint, bezier=bezier, cyclic=cyclic, role=role)

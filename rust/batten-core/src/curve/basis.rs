@@ -65,6 +65,9 @@ pub(crate) fn basis_funs(
 
 /// Basis functions and their derivatives up to order `nd` (at most 3): `ders[k][j]` is the k-th
 /// derivative of `N[span-degree+j]` at `t` (A2.3).
+///
+/// The loops keep the book's index arithmetic so the code can be checked against it.
+#[allow(clippy::needless_range_loop)]
 pub(crate) fn ders_basis_funs(
     knots: &[f64],
     span: usize,

@@ -42,9 +42,7 @@ impl NurbsCurve {
 
         let mut qw = vec![DVec4::ZERO; pw.len() + r];
         qw[..=k - p].copy_from_slice(&pw[..=k - p]);
-        for i in k - s..=np {
-            qw[i + r] = pw[i];
-        }
+        qw[k - s + r..=np + r].copy_from_slice(&pw[k - s..=np]);
         let mut rw: Vec<DVec4> = (0..=p - s).map(|i| pw[k - p + i]).collect();
         let mut l = 0;
         for j in 1..=r {
@@ -56,8 +54,8 @@ impl NurbsCurve {
             qw[l] = rw[0];
             qw[k + r - j - s] = rw[p - j - s];
         }
-        for i in l + 1..k - s {
-            qw[i] = rw[i - l];
+        if l + 1 < k - s {
+            qw[l + 1..k - s].copy_from_slice(&rw[1..k - s - l]);
         }
         Ok(NurbsCurve::new_unchecked(p, uq, qw))
     }

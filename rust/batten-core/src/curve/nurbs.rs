@@ -165,11 +165,10 @@ impl NurbsCurve {
         let span = find_span(&self.knots, p, self.cw.len(), t);
         let mut b = [0.0; MAX_ORDER];
         basis_funs(&self.knots, span, t, p, &mut b);
-        let mut acc = DVec4::ZERO;
-        let base = span - p;
-        for j in 0..=p {
-            acc += self.cw[base + j] * b[j];
-        }
+        let acc = self.cw[span - p..=span]
+            .iter()
+            .zip(&b)
+            .fold(DVec4::ZERO, |acc, (c, bj)| acc + *c * *bj);
         acc.truncate() / acc.w
     }
 
@@ -211,9 +210,9 @@ impl NurbsCurve {
         let mut d = [[0.0; MAX_ORDER]; 4];
         ders_basis_funs(&self.knots, span, t, p, 3, &mut d);
         let mut h = [DVec4::ZERO; 4];
-        for (k, hk) in h.iter_mut().enumerate() {
-            for j in 0..=p {
-                *hk += self.cw[span - p + j] * d[k][j];
+        for (hk, dk) in h.iter_mut().zip(&d) {
+            for (c, dkj) in self.cw[span - p..=span].iter().zip(dk) {
+                *hk += *c * *dkj;
             }
         }
         let (a, w) = (h.map(|v| v.truncate()), h.map(|v| v.w));
