@@ -115,3 +115,12 @@ def test_json_round_trip_is_exact():
     assert np.array_equal(back[0].control_points, c.control_points)
     assert np.array_equal(back[0].weights, c.weights)
     assert bn.network_to_json("net", back) == text
+
+
+def test_a_panic_in_the_core_is_a_batten_error_not_a_crash():
+    from batten_native import _native
+
+    with pytest.raises(bn.BattenError, match="internal error in batten's core \\(boom at node 7\\)"):
+        _native._panic_for_tests("boom at node 7")
+    # and the module still works afterwards
+    assert bn.Curve.from_poly("after", np.array([[0.0, 0, 0], [1, 0, 0]])).arc_length() == 1.0

@@ -295,7 +295,7 @@ impl Curve {
 
     /// C(t), C'(t), C''(t), C'''(t) as a (4, 3) array.
     fn derivatives<'py>(&self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let d = self.inner.curve.derivs(t);
+        let d = guard(self.name(), || Ok(self.inner.curve.derivs(t)))?;
         points_array(py, &[d.point, d.d1, d.d2, d.d3])
     }
 

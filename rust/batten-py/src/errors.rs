@@ -5,6 +5,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use batten_core::{CurveError, Error};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
 use pyo3::PyErr;
 
 create_exception!(
@@ -45,4 +46,10 @@ pub fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, PyErr>) -> Result<T, P
             )))
         }
     }
+}
+
+/// Panics inside [`guard`], so tests can prove a panic reaches Python as `BattenError`.
+#[pyfunction]
+pub fn _panic_for_tests(message: &str) -> PyResult<()> {
+    guard("panic test", || panic!("{message}"))
 }

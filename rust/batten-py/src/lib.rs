@@ -22,5 +22,6 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network_to_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
+    m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     Ok(())
 }
