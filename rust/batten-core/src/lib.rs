@@ -9,6 +9,7 @@
 
 mod curve;
 mod error;
+mod fair;
 mod network;
 mod tolerance;
 
@@ -16,5 +17,10 @@ pub use curve::{
     Aabb, BezierDecomposition, CurveDerivs, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
 };
 pub use error::{CurveError, Error};
+pub use fair::{
+    corner_indices, fair_points, fairness_metrics, FairError, FairOptions, FairReport, FairedCurve,
+    FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
+    MAX_FAIR_DEGREE,
+};
 pub use network::{Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION};
 pub use tolerance::Tolerance;

@@ -69,6 +69,21 @@ fn derivatives_of_the_circle_are_analytic() {
 }
 
 #[test]
+fn curvature_of_a_circle_points_to_its_centre() {
+    let c = circle(2.5);
+    for (t, p) in sample(&c, 101) {
+        let k = c.curvature_vector(t);
+        assert_near!(k.length(), 0.4, 1e-12, "kappa = 1/r at {t}");
+        assert_near!(
+            k.normalize(),
+            -p.normalize(),
+            1e-12,
+            "towards the centre at {t}"
+        );
+    }
+}
+
+#[test]
 fn closest_point_on_circle_is_radial() {
     let c = circle(2.0);
     for k in 0..40 {
@@ -448,6 +463,42 @@ proptest! {
             .fold(f64::INFINITY, f64::min);
         prop_assert!(near.distance <= brute + 1e-9, "{} > sampled {}", near.distance, brute);
         prop_assert!((c.point(near.t) - near.point).length() <= 1e-9 * (1.0 + near.point.length()));
+    }
+
+    #[test]
+    fn nearest_is_global_with_very_unequal_spans(
+        gaps in prop::collection::vec(prop_oneof![0.001f64..0.03, 1.0f64..3.4], 30..60),
+        seed in prop::array::uniform3(-1.0f64..1.0),
+        s in 0.0f64..1.0,
+        off in prop::array::uniform3(-0.05f64..0.05),
+    ) {
+        // A long waterline-like curve whose knot spans range from 1 mm to 3.4 m (the shape of
+        // fitted hull curves), queried near a curve point: the answer is never worse than
+        // dense sampling, and near the true distance.
+        let n = gaps.len() + 3;
+        let mut knots = vec![0.0; 4];
+        let mut u = 0.0;
+        for g in &gaps[..gaps.len() - 1] {
+            u += g;
+            knots.push(u);
+        }
+        u += gaps[gaps.len() - 1];
+        knots.extend([u; 4]);
+        let mut x = 0.0;
+        let pts: Vec<DVec3> = (0..n)
+            .map(|i| {
+                x += if i % 7 == 3 { 0.02 } else { 4.0 };
+                DVec3::new(x, 15.0 + 3.0 * (x * 0.05 + seed[0]).sin(), 0.3 * seed[1] * (x * 0.2).cos())
+            })
+            .collect();
+        let c = NurbsCurve::try_new(3, knots, pts, None).unwrap();
+        let (a, b) = c.domain();
+        let q = c.point(a + s * (b - a)) + DVec3::from_array(off);
+        let near = c.nearest(q, 1e-9).unwrap();
+        let brute = (0..=200_000)
+            .map(|i| (c.point(a + (b - a) * i as f64 / 200_000.0) - q).length())
+            .fold(f64::INFINITY, f64::min);
+        prop_assert!(near.distance <= brute + 1e-9, "{} > sampled {}", near.distance, brute);
     }
 
     #[test]

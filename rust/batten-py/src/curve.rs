@@ -98,6 +98,11 @@ impl Curve {
     fn name(&self) -> &str {
         &self.inner.name
     }
+
+    /// A curve from core geometry with a name and role (role validated).
+    pub(crate) fn from_parts(name: &str, role: &str, curve: NurbsCurve) -> PyResult<Curve> {
+        Curve::make(name, role, Ok(curve))
+    }
 }
 
 #[pymethods]
@@ -297,6 +302,27 @@ impl Curve {
     fn derivatives<'py>(&self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let d = guard(self.name(), || Ok(self.inner.curve.derivs(t)))?;
         points_array(py, &[d.point, d.d1, d.d2, d.d3])
+    }
+
+    /// Points and curvature vectors (towards the centre of curvature, length κ) at the
+    /// parameters `t`: two (len(t), 3) arrays, for curvature combs.
+    fn curvature<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
+        let ts = t
+            .as_slice()
+            .map_err(|_| msg_err("t must be a contiguous 1-D float64 array"))?;
+        let curve = &self.inner.curve;
+        let (pts, ks) = py.detach(|| {
+            guard(self.name(), || {
+                let pts: Vec<DVec3> = ts.iter().map(|&t| curve.point(t)).collect();
+                let ks: Vec<DVec3> = ts.iter().map(|&t| curve.curvature_vector(t)).collect();
+                Ok((pts, ks))
+            })
+        })?;
+        Ok((points_array(py, &pts)?, points_array(py, &ks)?))
     }
 
     /// Curve length within `accuracy` metres.

@@ -25,6 +25,11 @@ pub fn curve_err(name: &str, err: CurveError) -> PyErr {
     core_err(err.named(name))
 }
 
+/// Any displayable error as `BattenError`, naming the curve.
+pub fn named_err(name: &str, err: impl std::fmt::Display) -> PyErr {
+    BattenError::new_err(format!("curve '{name}': {err}"))
+}
+
 /// A plain message as `BattenError` (argument problems found in the binding).
 pub fn msg_err(msg: impl Into<String>) -> PyErr {
     BattenError::new_err(msg.into())

@@ -6,6 +6,7 @@
 
 mod curve;
 mod errors;
+mod fair;
 mod network;
 
 use pyo3::prelude::*;
@@ -23,5 +24,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
+    m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
+    m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
     Ok(())
 }

@@ -23,6 +23,28 @@ impl BezierPiece {
         Aabb::from_points(self.cw.iter().map(|c| c.truncate() / c.w)).expect("a piece has points")
     }
 
+    /// A lower bound of the distance from `q` to the piece: the larger of the distance to its
+    /// control-point box and the distance to its chord (end to end) less its flatness (the
+    /// largest distance of a control point from the chord; the piece lies in the convex hull
+    /// of its control points, so within that distance of the chord). The chord bound is exact
+    /// to O(width²), which keeps branch and bound from splitting a flat minimum into
+    /// thousands of pieces.
+    pub fn lower_bound(&self, q: DVec3) -> f64 {
+        let (a, b) = self.ends();
+        let chord = segment_distance(q, a, b) - self.flatness();
+        chord.max(self.hull_box().distance_to(q))
+    }
+
+    /// Largest distance of a control point from the chord: how far the piece can stray from
+    /// the straight line between its ends.
+    pub fn flatness(&self) -> f64 {
+        let (a, b) = self.ends();
+        self.cw
+            .iter()
+            .map(|c| segment_distance(c.truncate() / c.w, a, b))
+            .fold(0.0, f64::max)
+    }
+
     /// End points, which lie on the curve.
     pub fn ends(&self) -> (DVec3, DVec3) {
         let (a, b) = (self.cw[0], self.cw[self.cw.len() - 1]);
@@ -150,6 +172,18 @@ impl BezierDecomposition {
         }
         Ok(known)
     }
+}
+
+/// Distance from `p` to the segment `[a, b]`.
+pub(crate) fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let s = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * s - p).length()
 }
 
 impl NurbsCurve {

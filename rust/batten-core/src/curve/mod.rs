@@ -15,7 +15,10 @@ mod layout;
 mod nearest;
 mod nurbs;
 
+pub(crate) use arclen::GL8;
 pub use basis::MAX_DEGREE;
+// The fairing module builds least-squares rows from the same basis functions.
+pub(crate) use basis::{basis_funs, find_span, MAX_ORDER};
 pub use bbox::Aabb;
 pub use bezier::BezierDecomposition;
 pub use layout::KnotLayout;

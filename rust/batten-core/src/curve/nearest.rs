@@ -59,15 +59,17 @@ impl BezierDecomposition {
         if !q.is_finite() {
             return Err(CurveError::NonFiniteQuery);
         }
-        let size = self.hull_box().diagonal();
-        // Pieces smaller than this go to Newton; it converges fast on a piece this small.
-        let leaf = (size * 1e-3).max(accuracy);
+        // A piece flat to within the accuracy is a leaf: its chord bound is then within the
+        // accuracy of its true distance, so the bound alone proves the answer and Newton only
+        // polishes the parameter. (Handing larger pieces to an unguarded Newton failed on
+        // curves with very unequal spans: 54 mm off on a 230 m waterline.)
+        let leaf = 0.5 * accuracy;
         let mut best = self.endpoint_nearest(q);
         let mut heap: BinaryHeap<Candidate> = self
             .pieces
             .iter()
             .map(|p| Candidate {
-                lower: p.hull_box().distance_to(q),
+                lower: p.lower_bound(q),
                 piece: p.clone(),
             })
             .collect();
@@ -75,13 +77,10 @@ impl BezierDecomposition {
             if lower >= best.distance - accuracy {
                 break;
             }
-            let hull = piece.hull_box();
-            if hull.diagonal() <= leaf {
-                let start = [piece.t0, 0.5 * (piece.t0 + piece.t1), piece.t1]
-                    .map(|t| self.at(q, t))
-                    .into_iter()
-                    .min_by(|a, b| a.distance.total_cmp(&b.distance))
-                    .expect("three samples");
+            if piece.flatness() <= leaf
+                || piece.t1 - piece.t0 <= f64::EPSILON * piece.t1.abs().max(1.0)
+            {
+                let start = self.golden(q, piece.t0, piece.t1);
                 let polished = self.newton(q, start, piece.t0, piece.t1);
                 if polished.distance < best.distance {
                     best = polished;
@@ -99,7 +98,7 @@ impl BezierDecomposition {
                 };
             }
             for half in [l, r] {
-                let lower = half.hull_box().distance_to(q);
+                let lower = half.lower_bound(q);
                 if lower < best.distance - accuracy {
                     heap.push(Candidate { lower, piece: half });
                 }
@@ -142,33 +141,75 @@ impl BezierDecomposition {
         best.expect("a curve has at least one piece")
     }
 
+    /// Golden-section search for the smallest distance on `[lo, hi]`: robust on a leaf,
+    /// which is flat to the accuracy, so the distance along it has one minimum whatever the
+    /// (rational) parameterisation; ends are candidates too.
+    fn golden(&self, q: DVec3, lo: f64, hi: f64) -> Nearest {
+        const INV_PHI: f64 = 0.618_033_988_749_894_8;
+        let (mut a, mut b) = (lo, hi);
+        let mut c = b - INV_PHI * (b - a);
+        let mut d = a + INV_PHI * (b - a);
+        let (mut fc, mut fd) = (self.at(q, c), self.at(q, d));
+        for _ in 0..80 {
+            if b - a <= f64::EPSILON * (a.abs() + b.abs()).max(f64::MIN_POSITIVE) {
+                break;
+            }
+            if fc.distance <= fd.distance {
+                b = d;
+                (d, fd) = (c, fc);
+                c = b - INV_PHI * (b - a);
+                fc = self.at(q, c);
+            } else {
+                a = c;
+                (c, fc) = (d, fd);
+                d = a + INV_PHI * (b - a);
+                fd = self.at(q, d);
+            }
+        }
+        [self.at(q, lo), self.at(q, hi), fc, fd]
+            .into_iter()
+            .min_by(|x, y| x.distance.total_cmp(&y.distance))
+            .expect("four candidates")
+    }
+
     /// Newton's method on `f(t) = C'(t)·(C(t) − q)` from `start`, kept inside `[lo, hi]`;
     /// returns the best point seen (never worse than `start`).
     fn newton(&self, q: DVec3, start: Nearest, lo: f64, hi: f64) -> Nearest {
         let mut best = start;
         let mut t = best.t;
-        for _ in 0..20 {
+        for _ in 0..30 {
             let d = self.curve.derivs(t);
             let diff = d.point - q;
             let f = d.d1.dot(diff);
             let df = d.d2.dot(diff) + d.d1.length_squared();
-            if df <= 0.0 || !df.is_finite() {
+            let speed2 = d.d1.length_squared();
+            if !(df.is_finite() && speed2 > 0.0) {
                 break;
             }
-            let next = (t - f / df).clamp(lo, hi);
-            let cand = self.at(q, next);
-            // Near the minimum the distance is flat to rounding: accept steps that do not
-            // make it measurably worse, so the parameter converges too.
-            let slack = 4.0 * f64::EPSILON * (1.0 + best.distance + cand.point.length());
-            if cand.distance <= best.distance + slack {
-                best = cand;
-            } else {
+            // Newton where the squared distance is convex, a gradient step elsewhere (rational
+            // parameterisations bend f′ negative); backtracking halves a step that makes the
+            // distance measurably worse.
+            let mut step = if df > 0.0 { -f / df } else { -f / speed2 };
+            let mut accepted = None;
+            for _ in 0..8 {
+                let next = (t + step).clamp(lo, hi);
+                let cand = self.at(q, next);
+                // Near the minimum the distance is flat to rounding: accept steps that do not
+                // make it measurably worse, so the parameter converges too.
+                let slack = 4.0 * f64::EPSILON * (1.0 + best.distance + cand.point.length());
+                if cand.distance <= best.distance + slack {
+                    accepted = Some(cand);
+                    break;
+                }
+                step *= 0.5;
+            }
+            let Some(cand) = accepted else { break };
+            let moved = (cand.t - t).abs();
+            best = cand;
+            t = cand.t;
+            if moved <= f64::EPSILON * (hi - lo).max(1.0) * 4.0 {
                 break;
             }
-            if (next - t).abs() <= f64::EPSILON * (hi - lo).max(1.0) * 4.0 {
-                break;
-            }
-            t = next;
         }
         best
     }

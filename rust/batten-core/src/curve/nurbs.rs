@@ -228,6 +228,17 @@ impl NurbsCurve {
         }
     }
 
+    /// The curvature vector at `t`: pointing to the centre of curvature, length κ = 1/radius
+    /// (`(C′ × C″) × C′ / |C′|⁴`); zero where the curve has no tangent.
+    pub fn curvature_vector(&self, t: f64) -> DVec3 {
+        let d = self.derivs(t);
+        let speed2 = d.d1.length_squared();
+        if speed2 == 0.0 {
+            return DVec3::ZERO;
+        }
+        d.d1.cross(d.d2).cross(d.d1) / (speed2 * speed2)
+    }
+
     /// The curve traversed the other way: same shape, parameter `t` maps to `a + b - t` on the
     /// knot vector's full range `[a, b]`.
     pub fn reversed(&self) -> NurbsCurve {

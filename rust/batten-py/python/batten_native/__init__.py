@@ -11,6 +11,8 @@ from ._native import (
     Curve,
     __version__,
     check_lengths,
+    fair_points,
+    fairness,
     network_from_json,
     network_to_json,
 )
@@ -22,6 +24,8 @@ __all__ = [
     "Curve",
     "__version__",
     "check_lengths",
+    "fair_points",
+    "fairness",
     "network_from_json",
     "network_to_json",
 ]

@@ -1,0 +1,419 @@
+//! The smoothing spline of one smooth piece for fixed data parameters: Dierckx's `fpcurf`
+//! (Dierckx 1993 ch. 5, routines curfit/parcur) with the H-rep paper's one-knot-at-a-time rule.
+//!
+//! Part 1 adds knots until the least-squares spline `s∞` satisfies `F(∞) = E(s∞) ≤ S`; part 2
+//! finds `p` with `F(p) = S` for the spline minimising `E + J/p²` (Dierckx's scaling of the
+//! paper's `J + p·E`), by Dierckx's rational interpolation (`fprati`). The end points are
+//! interpolated by fixing the end control points; fixed end derivatives fix the next control
+//! point too (as Dierckx's concur does with end derivatives).
+
+use glam::DVec3;
+
+use super::knots::{clamped, jump_rows, next_knot, Design};
+use super::lsq::BandedQr;
+
+/// Dierckx's relative tolerance on `F(p) = S` (curfit's `tol = 0.001`).
+const REL_ACC: f64 = 1e-3;
+/// Dierckx's maximum number of iterations for p (curfit's `maxit = 20`).
+const MAX_P_ITER: usize = 20;
+/// Step factors of fpcurf when the bracket on p is not yet found (`con1`, `con4`, `con9`).
+const CON1: f64 = 0.1;
+const CON4: f64 = 0.04;
+const CON9: f64 = 0.9;
+
+/// Constraints at the ends of a piece: the end points, and optionally the end derivatives
+/// `C'(a)`, `C'(b)` (with respect to the fitting parameter).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Ends {
+    pub start: DVec3,
+    pub end: DVec3,
+    pub start_derivative: Option<DVec3>,
+    pub end_derivative: Option<DVec3>,
+}
+
+/// The smoothing factor S, and the value of `F(∞)` at which knot insertion may stop (`≥ s`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Target {
+    pub s: f64,
+    pub accept: f64,
+}
+
+impl Target {
+    /// Knots are added until `F(∞) ≤ s` (Dierckx's rule).
+    pub fn exact(s: f64) -> Self {
+        Target { s, accept: s }
+    }
+}
+
+/// A fitted piece: a clamped B-spline on `[params[0], params[m-1]]`.
+#[derive(Clone, Debug)]
+pub(crate) struct Spline {
+    pub degree: usize,
+    pub knots: Vec<f64>,
+    pub coefs: Vec<DVec3>,
+    /// The smoothing parameter: 0 for the least-squares polynomial, ∞ for the least-squares
+    /// spline, otherwise the root of `F(p) = S` (Dierckx's scaling).
+    pub p: f64,
+    /// `E`, the sum of squared residuals at the data parameters.
+    pub fp: f64,
+    /// True when `E ≤ S` within Dierckx's tolerance.
+    pub reached: bool,
+}
+
+/// The least-squares machinery for one knot vector.
+struct System<'a> {
+    degree: usize,
+    knots: Vec<f64>,
+    n: usize,
+    /// Free coefficients are `first_free..first_free + qr.unknowns()`.
+    first_free: usize,
+    fixed: Vec<(usize, DVec3)>,
+    design: Design,
+    points: &'a [DVec3],
+    ls: BandedQr,
+}
+
+impl<'a> System<'a> {
+    fn new(
+        degree: usize,
+        knots: Vec<f64>,
+        points: &'a [DVec3],
+        params: &[f64],
+        ends: &Ends,
+    ) -> Self {
+        let k = degree;
+        let n = knots.len() - k - 1;
+        let mut fixed = vec![(0, ends.start), (n - 1, ends.end)];
+        let mut first_free = 1;
+        let mut last_free = n - 1; // exclusive
+        if let Some(d) = ends.start_derivative {
+            // C'(a) = k (c1 − c0) / (t[k+1] − t[1])  (Piegl & Tiller eq. 3.7)
+            fixed.push((1, ends.start + d * (knots[k + 1] - knots[1]) / k as f64));
+            first_free = 2;
+        }
+        if let Some(d) = ends.end_derivative {
+            fixed.push((
+                n - 2,
+                ends.end - d * (knots[n + k - 1] - knots[n - 1]) / k as f64,
+            ));
+            last_free = n - 2;
+        }
+        let free = last_free.saturating_sub(first_free);
+        let design = Design::new(&knots, k, params);
+        let mut ls = BandedQr::new(free, k + 1);
+        let mut h = [0.0; crate::curve::MAX_ORDER];
+        for (i, q) in points.iter().enumerate() {
+            let s = design.span[i];
+            let b = &design.basis[i];
+            let mut rhs = *q;
+            let mut lo = usize::MAX;
+            let mut len = 0;
+            for (j, &bj) in b.iter().enumerate().take(k + 1) {
+                let col = s - k + j;
+                if let Some(&(_, v)) = fixed.iter().find(|(c, _)| *c == col) {
+                    rhs -= v * bj;
+                } else {
+                    if lo == usize::MAX {
+                        lo = col;
+                    }
+                    h[len] = bj;
+                    len += 1;
+                }
+            }
+            if len > 0 {
+                ls.add_row(lo - first_free, &mut h[..len], rhs);
+            }
+        }
+        System {
+            degree,
+            knots,
+            n,
+            first_free,
+            fixed,
+            design,
+            points,
+            ls,
+        }
+    }
+
+    /// All coefficients from the free ones.
+    fn full(&self, free: &[DVec3]) -> Vec<DVec3> {
+        let mut c = vec![DVec3::ZERO; self.n];
+        c[self.first_free..self.first_free + free.len()].copy_from_slice(free);
+        for &(j, v) in &self.fixed {
+            c[j] = v;
+        }
+        c
+    }
+
+    /// Squared residual per data point.
+    fn residuals2(&self, c: &[DVec3]) -> Vec<f64> {
+        self.points
+            .iter()
+            .enumerate()
+            .map(|(i, q)| (self.design.value(i, c) - *q).length_squared())
+            .collect()
+    }
+
+    /// The least-squares spline (p = ∞).
+    fn least_squares(&self) -> Option<Vec<DVec3>> {
+        Some(self.full(&self.ls.solve()?))
+    }
+
+    /// The smoothing spline for `p` > 0: the least-squares triangle with the jump rows, scaled
+    /// by 1/p, rotated in (fpcurf part 2).
+    fn smoothing(&self, p: f64) -> Option<Vec<DVec3>> {
+        let k = self.degree;
+        let pinv = 1.0 / p;
+        let mut g = self.ls.widened(k + 2);
+        let free = g.unknowns();
+        let mut h = [0.0; crate::curve::MAX_ORDER + 1];
+        for row in jump_rows(&self.knots, k) {
+            let mut rhs = DVec3::ZERO;
+            let mut lo = usize::MAX;
+            let mut len = 0;
+            for j in 0..k + 2 {
+                let col = row.first + j;
+                let bj = row.b[j] * pinv;
+                if let Some(&(_, v)) = self.fixed.iter().find(|(c, _)| *c == col) {
+                    rhs -= v * bj;
+                } else {
+                    if lo == usize::MAX {
+                        lo = col;
+                    }
+                    h[len] = bj;
+                    len += 1;
+                }
+            }
+            if len > 0 && free > 0 {
+                g.add_row(lo - self.first_free, &mut h[..len], rhs);
+            }
+        }
+        Some(self.full(&g.solve()?))
+    }
+
+    fn spline(&self, coefs: Vec<DVec3>, p: f64, fp: f64, s: f64) -> Spline {
+        Spline {
+            degree: self.degree,
+            knots: self.knots.clone(),
+            coefs,
+            p,
+            fp,
+            reached: fp <= s * (1.0 + REL_ACC),
+        }
+    }
+}
+
+/// How many fixed coefficients the end conditions take.
+fn fixed_count(ends: &Ends) -> usize {
+    2 + usize::from(ends.start_derivative.is_some()) + usize::from(ends.end_derivative.is_some())
+}
+
+/// Interior knots needed before any free coefficient exists (only when the end conditions fix
+/// more coefficients than a polynomial of this degree has).
+fn initial_interior(degree: usize, ends: &Ends, params: &[f64]) -> Vec<f64> {
+    let need = fixed_count(ends).saturating_sub(degree + 1);
+    let m = params.len();
+    (1..=need)
+        .map(|i| params[i * (m - 1) / (need + 1)])
+        .collect()
+}
+
+/// The smoothing spline of degree `degree` through `points` at sorted `params` with
+/// `E ≤ S` (Dierckx fpcurf with single knot insertion, H-rep paper §4); knot insertion stops
+/// at `F(∞) ≤ target.accept`, and when that is above S the least-squares spline is returned.
+///
+/// Requires at least `degree + 1` points with distinct end parameters; `None` when the
+/// parameters cannot determine even the polynomial (Schoenberg–Whitney fails).
+pub(crate) fn smoothing_spline(
+    points: &[DVec3],
+    params: &[f64],
+    degree: usize,
+    target: Target,
+    ends: &Ends,
+) -> Option<Spline> {
+    let k = degree;
+    let s = target.s;
+    let m = points.len();
+    let (a, b) = (params[0], params[m - 1]);
+    let acc = REL_ACC * s;
+    let mut interior = initial_interior(k, ends, params);
+
+    // Part 1: knots until F(∞) ≤ S.
+    let mut fp0: Option<f64> = None;
+    let mut previous: Option<Spline> = None;
+    let (system, ls_coefs, fp_inf) = loop {
+        let knots = clamped(k, a, b, &interior);
+        let system = System::new(k, knots, points, params, ends);
+        // Knots are only added where Schoenberg–Whitney holds, so this fails only when
+        // rounding makes the system numerically singular: keep the last good spline then.
+        let Some(coefs) = system.least_squares() else {
+            return previous;
+        };
+        let r2 = system.residuals2(&coefs);
+        let fp: f64 = r2.iter().sum();
+        if fp0.is_none() {
+            fp0 = Some(fp);
+            if fp <= s {
+                // The least-squares polynomial is smooth enough (fpcurf ier = -2).
+                return Some(system.spline(coefs, 0.0, fp, s));
+            }
+        }
+        if (fp - s).abs() < acc || fp < s {
+            break (system, coefs, fp);
+        }
+        if fp <= target.accept {
+            // Within the accepted range above S: the least-squares spline.
+            return Some(system.spline(coefs, f64::INFINITY, fp, target.accept));
+        }
+        match next_knot(&system.knots, k, &system.design, &r2, params) {
+            Some(t) => {
+                let pos = interior.partition_point(|&u| u < t);
+                interior.insert(pos, t);
+                previous = Some(system.spline(coefs, f64::INFINITY, fp, s));
+            }
+            // No span can take a knot: the least-squares spline is the closest we get.
+            None => return Some(system.spline(coefs, f64::INFINITY, fp, s)),
+        }
+    };
+    if (fp_inf - s).abs() < acc || interior.is_empty() {
+        return Some(system.spline(ls_coefs, f64::INFINITY, fp_inf, s));
+    }
+
+    // Part 2: p with F(p) = S by rational interpolation (fpcurf, fprati).
+    let fp0 = fp0.expect("set on the first pass");
+    let eval = |p: f64| -> Option<(Vec<DVec3>, f64)> {
+        let c = system.smoothing(p)?;
+        let fp = system.residuals2(&c).iter().sum();
+        Some((c, fp))
+    };
+    // Best feasible result (E ≤ S) with the smallest p, starting from the LS spline.
+    let mut best = (f64::INFINITY, ls_coefs, fp_inf);
+    let (mut p1, mut f1) = (0.0, fp0 - s);
+    let (mut p3, mut f3) = (-1.0, fp_inf - s);
+    let rn = system.ls.unknowns().max(1) as f64;
+    let diag = system.ls.diagonal_sum();
+    let mut p = if diag > 0.0 { rn / diag } else { 1.0 };
+    let (mut ich1, mut ich3) = (false, false);
+    for _ in 0..MAX_P_ITER {
+        let Some((c, fp)) = eval(p) else { break };
+        let fpms = fp - s;
+        if fpms <= acc && p < best.0 {
+            best = (p, c, fp);
+        }
+        if fpms.abs() < acc {
+            break;
+        }
+        let (p2, f2) = (p, fpms);
+        if !ich3 {
+            if f2 - f3 <= acc {
+                // Initial p too large.
+                p3 = p2;
+                f3 = f2;
+                p *= CON4;
+                if p <= p1 {
+                    p = p1 * CON9 + p2 * CON1;
+                }
+                continue;
+            }
+            if f2 < 0.0 {
+                ich3 = true;
+            }
+        }
+        if !ich1 {
+            if f1 - f2 <= acc {
+                // Initial p too small.
+                p1 = p2;
+                f1 = f2;
+                p /= CON4;
+                if p3 >= 0.0 && p >= p3 {
+                    p = p2 * CON1 + p3 * CON9;
+                }
+                continue;
+            }
+            if f2 > 0.0 {
+                ich1 = true;
+            }
+        }
+        if f2 >= f1 || f2 <= f3 {
+            // Not monotone as theory says (fpcurf ier = 2): keep the best feasible result.
+            break;
+        }
+        p = fprati(&mut p1, &mut f1, p2, f2, &mut p3, &mut f3);
+    }
+    let (p, coefs, fp) = best;
+    Some(system.spline(coefs, p, fp, s))
+}
+
+/// Dierckx's `fprati`: the zero of the rational function `R(p) = (u·p + v)/(p + w)` through
+/// `(p1, f1)`, `(p2, f2)`, `(p3, f3)` (`p3 < 0` meaning ∞), then narrowing the bracket so that
+/// `f1 > 0 > f3`.
+fn fprati(p1: &mut f64, f1: &mut f64, p2: f64, f2: f64, p3: &mut f64, f3: &mut f64) -> f64 {
+    let p = if *p3 > 0.0 {
+        let h1 = *f1 * (f2 - *f3);
+        let h2 = f2 * (*f3 - *f1);
+        let h3 = *f3 * (*f1 - f2);
+        -(*p1 * p2 * h3 + p2 * *p3 * h1 + *p3 * *p1 * h2) / (*p1 * h1 + p2 * h2 + *p3 * h3)
+    } else {
+        (*p1 * (*f1 - *f3) * f2 - p2 * (f2 - *f3) * *f1) / ((*f1 - f2) * *f3)
+    };
+    if f2 < 0.0 {
+        *p3 = p2;
+        *f3 = f2;
+    } else {
+        *p1 = p2;
+        *f1 = f2;
+    }
+    p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ends(points: &[DVec3]) -> Ends {
+        Ends {
+            start: points[0],
+            end: points[points.len() - 1],
+            start_derivative: None,
+            end_derivative: None,
+        }
+    }
+
+    #[test]
+    fn a_cubic_is_reproduced_by_the_polynomial_stage() {
+        let params: Vec<f64> = (0..20).map(|i| f64::from(i) / 19.0).collect();
+        let points: Vec<DVec3> = params
+            .iter()
+            .map(|&u| DVec3::new(u, u * u * u - u, 0.5 * u * u))
+            .collect();
+        let sp = smoothing_spline(&points, &params, 3, Target::exact(1e-12), &ends(&points))
+            .expect("fits");
+        assert_eq!(sp.knots.len(), 8, "no interior knot for a cubic");
+        assert!(sp.fp < 1e-20, "exact: {}", sp.fp);
+        assert_eq!(sp.p, 0.0, "polynomial stage");
+    }
+
+    #[test]
+    fn smoothing_hits_the_smoothing_factor() {
+        let params: Vec<f64> = (0..60).map(|i| f64::from(i) / 59.0).collect();
+        let points: Vec<DVec3> = params
+            .iter()
+            .enumerate()
+            .map(|(i, &u)| {
+                let wobble = if i % 2 == 0 { 0.01 } else { -0.01 };
+                DVec3::new(u, (6.0 * u).sin() + wobble, 0.0)
+            })
+            .collect();
+        let s = 60.0 * 0.012f64.powi(2);
+        let sp =
+            smoothing_spline(&points, &params, 3, Target::exact(s), &ends(&points)).expect("fits");
+        assert!(sp.reached, "E {} vs S {s}", sp.fp);
+        assert!(
+            (sp.fp - s).abs() <= 2.0 * REL_ACC * s || sp.p.is_infinite(),
+            "F(p) = S: {} vs {s} (p = {})",
+            sp.fp,
+            sp.p
+        );
+    }
+}

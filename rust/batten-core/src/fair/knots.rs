@@ -1,0 +1,260 @@
+//! Knot vectors of the fitting: the observation rows (B-spline values at the data parameters),
+//! the derivative-jump rows of the fairness term (Dierckx `fpdisc`), the Schoenberg–Whitney
+//! test, and the choice of the next knot (H-rep paper eq. 12: the parametric middle of the span
+//! with the largest error).
+
+use glam::DVec3;
+
+use crate::curve::{basis_funs, find_span, MAX_ORDER};
+
+/// A clamped knot vector `a` (×(k+1)), interior knots, `b` (×(k+1)).
+pub(crate) fn clamped(degree: usize, a: f64, b: f64, interior: &[f64]) -> Vec<f64> {
+    let mut t = Vec::with_capacity(interior.len() + 2 * degree + 2);
+    t.extend(std::iter::repeat_n(a, degree + 1));
+    t.extend_from_slice(interior);
+    t.extend(std::iter::repeat_n(b, degree + 1));
+    t
+}
+
+/// The observation matrix in band form: for each data parameter, the knot span `s` and the
+/// `k + 1` non-zero basis values `N[s-k..=s]` (Dierckx `fpbspl`).
+#[derive(Clone, Debug)]
+pub(crate) struct Design {
+    pub degree: usize,
+    pub span: Vec<usize>,
+    pub basis: Vec<[f64; MAX_ORDER]>,
+}
+
+impl Design {
+    /// Rows for `params` (each inside `[knots[k], knots[n]]`).
+    pub fn new(knots: &[f64], degree: usize, params: &[f64]) -> Design {
+        let n = knots.len() - degree - 1;
+        let mut span = Vec::with_capacity(params.len());
+        let mut basis = Vec::with_capacity(params.len());
+        for &u in params {
+            let s = find_span(knots, degree, n, u);
+            let mut b = [0.0; MAX_ORDER];
+            basis_funs(knots, s, u, degree, &mut b);
+            span.push(s);
+            basis.push(b);
+        }
+        Design {
+            degree,
+            span,
+            basis,
+        }
+    }
+
+    /// The spline value at data parameter `i` for coefficients `c`.
+    #[inline]
+    pub fn value(&self, i: usize, c: &[DVec3]) -> DVec3 {
+        let (s, k) = (self.span[i], self.degree);
+        let b = &self.basis[i];
+        let mut acc = DVec3::ZERO;
+        for j in 0..=k {
+            acc += c[s - k + j] * b[j];
+        }
+        acc
+    }
+}
+
+/// The k-th derivatives (constants) of the degree-k B-splines `N[s-k..=s]` on knot span `s`,
+/// by differentiating the Cox–de Boor recurrence k times:
+/// `N⁽ᵈ⁾[i,d] = d·(N⁽ᵈ⁻¹⁾[i,d−1]/(t[i+d]−t[i]) − N⁽ᵈ⁻¹⁾[i+1,d−1]/(t[i+d+1]−t[i+1]))`.
+fn kth_derivatives(knots: &[f64], s: usize, k: usize) -> [f64; MAX_ORDER] {
+    let mut cur = [0.0; MAX_ORDER];
+    cur[0] = 1.0; // degree 0: N[s,0] = 1 on span s
+    for d in 1..=k {
+        let mut next = [0.0; MAX_ORDER];
+        for (x, out) in next.iter_mut().enumerate().take(d + 1) {
+            let i = s + x - d; // next[x] is N[i, d]
+            let mut v = 0.0;
+            if x >= 1 {
+                let den = knots[i + d] - knots[i];
+                if den > 0.0 {
+                    v += cur[x - 1] / den;
+                }
+            }
+            if x < d {
+                let den = knots[i + d + 1] - knots[i + 1];
+                if den > 0.0 {
+                    v -= cur[x] / den;
+                }
+            }
+            *out = d as f64 * v;
+        }
+        cur = next;
+    }
+    cur
+}
+
+/// One row of the fairness matrix: the jump of the k-th derivative of the B-splines
+/// `N[first..first+k+2]` at one interior knot.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct JumpRow {
+    pub first: usize,
+    pub b: [f64; MAX_ORDER + 1],
+}
+
+/// The rows `b` with `Σⱼ b[j]·c[first+j] = s⁽ᵏ⁾(λ+) − s⁽ᵏ⁾(λ−)` for every interior knot λ
+/// (Dierckx `fpdisc`, the matrix of the smoothing norm in Dierckx 1993 eq. 5.2), scaled like
+/// fpdisc by `h^k`, `h` the mean knot spacing, so that the value of p does not depend on
+/// the size of the curve.
+pub(crate) fn jump_rows(knots: &[f64], degree: usize) -> Vec<JumpRow> {
+    let k = degree;
+    let n = knots.len() - k - 1;
+    let (a, b) = (knots[k], knots[n]);
+    let h = (b - a) / (n - k) as f64;
+    let scale = h.powi(k as i32);
+    (k + 1..n)
+        .map(|l| {
+            let left = kth_derivatives(knots, l - 1, k); // N[l-1-k..=l-1]
+            let right = kth_derivatives(knots, l, k); // N[l-k..=l]
+            let mut row = [0.0; MAX_ORDER + 1];
+            for j in 0..=k + 1 {
+                let r = if j >= 1 { right[j - 1] } else { 0.0 };
+                let lf = if j <= k { left[j] } else { 0.0 };
+                row[j] = (r - lf) * scale;
+            }
+            JumpRow {
+                first: l - 1 - k,
+                b: row,
+            }
+        })
+        .collect()
+}
+
+/// True when the sorted `params` satisfy the Schoenberg–Whitney conditions for the clamped
+/// `knots`: some increasing choice of data parameters puts one inside the support of every
+/// B-spline, so the least-squares problem has a unique solution (Dierckx 1993 §4.1.1).
+pub(crate) fn schoenberg_whitney(knots: &[f64], degree: usize, params: &[f64]) -> bool {
+    let k = degree;
+    let n = knots.len() - k - 1;
+    let (a, b) = (knots[k], knots[n]);
+    let mut i = 0;
+    for j in 0..n {
+        let (lo, hi) = (knots[j], knots[j + k + 1]);
+        loop {
+            let Some(&u) = params.get(i) else {
+                return false;
+            };
+            i += 1;
+            let inside = (lo < u && u < hi) || (j == 0 && u == a) || (j == n - 1 && u == b);
+            if inside {
+                break;
+            }
+            if u >= hi && !(j == n - 1 && u == b) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The next interior knot: the parametric middle of the span with the largest sum of squared
+/// residuals (H-rep paper eq. 12), among the spans where the new knot keeps data on both sides
+/// and the Schoenberg–Whitney conditions hold; where the middle leaves one side empty, the
+/// point between the span's middle data points (Dierckx's fpknot). `None` when no span can be
+/// split.
+pub(crate) fn next_knot(
+    knots: &[f64],
+    degree: usize,
+    design: &Design,
+    residual2: &[f64],
+    params: &[f64],
+) -> Option<f64> {
+    let k = degree;
+    let n = knots.len() - k - 1;
+    let mut err = vec![0.0; n - k];
+    let mut count = vec![0usize; n - k];
+    for (s, r) in design.span.iter().zip(residual2) {
+        err[s - k] += r;
+        count[s - k] += 1;
+    }
+    let mut order: Vec<usize> = (0..n - k).filter(|&j| count[j] >= 2).collect();
+    order.sort_by(|&x, &y| err[y].total_cmp(&err[x]));
+    for j in order {
+        if err[j] <= 0.0 {
+            break;
+        }
+        let (lo, hi) = (knots[j + k], knots[j + k + 1]);
+        let inside: Vec<f64> = params
+            .iter()
+            .copied()
+            .filter(|&u| lo < u && u < hi)
+            .collect();
+        // The paper's knot, the parametric middle; where that leaves one side without data
+        // (unevenly spaced points), Dierckx's choice (fpknot): between the middle data points.
+        let mid = 0.5 * (lo + hi);
+        let median = (inside.len() >= 2).then(|| {
+            let h = inside.len() / 2;
+            0.5 * (inside[h - 1] + inside[h])
+        });
+        for t in std::iter::once(mid).chain(median) {
+            if !(lo < t && t < hi) {
+                continue;
+            }
+            let left = inside.iter().any(|&u| u < t);
+            let right = inside.iter().any(|&u| u > t);
+            if !(left && right) {
+                continue;
+            }
+            let mut trial = knots.to_vec();
+            trial.insert(j + k + 1, t);
+            if schoenberg_whitney(&trial, k, params) {
+                return Some(t);
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn jump_of_cubic_b_splines_matches_a_spline_with_one_kink_in_d3() {
+        // On knots 0,0,0,0,1,2,2,2,2 the spline with coefficients c has s''' jumping at 1 by
+        // Σ b[j] c[j]; check against finite third derivatives from the power form.
+        let knots = clamped(3, 0.0, 2.0, &[1.0]);
+        let rows = jump_rows(&knots, 3);
+        assert_eq!(rows.len(), 1, "one interior knot");
+        let c = [0.3, -1.0, 2.0, 0.5, 1.5];
+        let jump: f64 = (0..5).map(|j| rows[0].b[j] * c[rows[0].first + j]).sum();
+        // Third derivative on each span from k-th derivative sums.
+        let left = kth_derivatives(&knots, 3, 3);
+        let right = kth_derivatives(&knots, 4, 3);
+        let dl: f64 = (0..4).map(|j| left[j] * c[j]).sum();
+        let dr: f64 = (0..4).map(|j| right[j] * c[1 + j]).sum();
+        // Mean spacing is 1, so the scale is 1.
+        assert!(
+            (jump - (dr - dl)).abs() < 1e-12,
+            "jump {jump} vs {}",
+            dr - dl
+        );
+        // Independent check: on a Bézier span [0,1] the third derivative of the cubic with
+        // control points P is 6(P3 − 3P2 + 3P1 − P0)/h³; with a single interior knot at 1 the
+        // left span's derivatives of the four B-splines are those of the degree-3 B-splines
+        // on 0,0,0,0,1,2: N0''' = −1 (from (1−u)³)… so the sum over j of left[j] must be 0.
+        let sum: f64 = left[..4].iter().sum();
+        assert!(
+            sum.abs() < 1e-12,
+            "k-th derivatives of a partition of unity sum to 0"
+        );
+        assert!((left[0] + 6.0).abs() < 1e-12, "N0 = (1-u)^3 has N0''' = -6");
+    }
+
+    #[test]
+    fn schoenberg_whitney_needs_data_in_every_support() {
+        let knots = clamped(3, 0.0, 1.0, &[0.3, 0.6]);
+        let good = [0.0, 0.1, 0.35, 0.5, 0.8, 1.0];
+        assert!(schoenberg_whitney(&knots, 3, &good), "spread data");
+        // Six B-splines but only the end point beyond 0.3: N4 (support (0.3, 1)) has no datum.
+        let bad = [0.0, 0.1, 0.2, 0.25, 0.28, 1.0];
+        assert!(
+            !schoenberg_whitney(&knots, 3, &bad),
+            "no data after the first knot but the end"
+        );
+    }
+}

@@ -1,0 +1,307 @@
+//! Fairness measures of a curve: inflections and curvature extrema in its best-fit plane, and
+//! the bending energy ∫κ² ds; and the orthogonal deviation of points from a curve.
+
+use glam::DVec3;
+
+use crate::curve::{NurbsCurve, GL8};
+use crate::error::CurveError;
+
+/// Curvature samples per non-empty knot span for counting sign changes and extrema.
+const SAMPLES_PER_SPAN: usize = 24;
+/// A sign change of the curvature counts as an inflection only when the curvature reaches this
+/// fraction of the curve's largest |κ| on both sides (so the rounding wobble of a straight
+/// part is not an inflection).
+pub const INFLECTION_THRESHOLD: f64 = 0.01;
+/// A curvature extremum counts only when κ rises or falls by this fraction of the largest |κ|
+/// on both sides of it.
+pub const EXTREMUM_THRESHOLD: f64 = 0.02;
+
+/// Fairness of one curve, the figures a designer reads off a curvature comb.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FairnessMetrics {
+    /// Sign changes of the curvature in the best-fit plane, ignoring changes where |κ| stays
+    /// below [`INFLECTION_THRESHOLD`] × max |κ|; counted within each smooth piece (a knuckle
+    /// is not an inflection).
+    pub inflections: usize,
+    /// Interior local extrema of the signed in-plane curvature with a rise or fall of at least
+    /// [`EXTREMUM_THRESHOLD`] × max |κ| on either side.
+    pub curvature_extrema: usize,
+    /// The bending energy ∫κ² ds over the whole curve (1/m), the usual fairness functional.
+    pub fairness_energy: f64,
+    /// Largest curvature |κ| found (1/m).
+    pub max_curvature: f64,
+    /// Unit normal of the best-fit plane of the control points (least-squares plane).
+    pub plane_normal: DVec3,
+}
+
+/// Fairness measures of `curve`: inflections and curvature extrema of the signed curvature
+/// `κ = (C′ × C″)·n / |C′|³` in the best-fit plane (normal `n`), sampled densely per knot
+/// span, and ∫κ² ds by 8-point Gauss–Legendre per span with the space curvature
+/// `|C′ × C″| / |C′|³` (the fairness criteria of the H-rep paper §4 and of Dierckx 1993 §5.1).
+pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
+    let n = best_fit_normal(&curve.control_points());
+    let p = curve.degree();
+    let knots = curve.knots();
+    let (start, end) = curve.domain();
+    // Smooth pieces: split where a knot's multiplicity reaches the degree (C0 or worse).
+    let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+    let mut energy = 0.0;
+    let mut i = p;
+    while i < knots.len() - p - 1 {
+        let (t0, t1) = (knots[i], knots[i + 1]);
+        if t0 >= start && t1 <= end && t1 > t0 {
+            let spans = pieces.last_mut().expect("one piece at least");
+            spans.push((t0, t1));
+            energy += span_energy(curve, t0, t1);
+            let mult = knots.iter().filter(|&&u| u == t1).count();
+            if t1 < end && mult >= p {
+                pieces.push(Vec::new());
+            }
+        }
+        i += 1;
+    }
+    let mut kappa: Vec<Vec<f64>> = Vec::with_capacity(pieces.len());
+    let mut kmax: f64 = 0.0;
+    for spans in &pieces {
+        let mut ks = Vec::with_capacity(spans.len() * SAMPLES_PER_SPAN);
+        for &(t0, t1) in spans {
+            for j in 0..SAMPLES_PER_SPAN {
+                let t = t0 + (t1 - t0) * (j as f64 + 0.5) / SAMPLES_PER_SPAN as f64;
+                let d = curve.derivs(t);
+                let speed = d.d1.length();
+                let k = if speed > 0.0 {
+                    d.d1.cross(d.d2).dot(n) / speed.powi(3)
+                } else {
+                    0.0
+                };
+                kmax = kmax.max(k.abs());
+                ks.push(k);
+            }
+        }
+        kappa.push(ks);
+    }
+    let infl_thr = INFLECTION_THRESHOLD * kmax;
+    let ext_thr = EXTREMUM_THRESHOLD * kmax;
+    FairnessMetrics {
+        inflections: kappa
+            .iter()
+            .map(|ks| count_sign_changes(ks, infl_thr))
+            .sum(),
+        curvature_extrema: kappa.iter().map(|ks| count_extrema(ks, ext_thr)).sum(),
+        fairness_energy: energy,
+        max_curvature: kmax,
+        plane_normal: n,
+    }
+}
+
+fn span_energy(curve: &NurbsCurve, t0: f64, t1: f64) -> f64 {
+    // Two Gauss–Legendre panels per span: κ²|C′| is smooth but not polynomial.
+    let mut total = 0.0;
+    for (a, b) in [(t0, 0.5 * (t0 + t1)), (0.5 * (t0 + t1), t1)] {
+        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        for &(x, w) in &GL8 {
+            let d = curve.derivs(mid + half * x);
+            let speed = d.d1.length();
+            if speed > 0.0 {
+                let k2 = d.d1.cross(d.d2).length_squared() / speed.powi(6);
+                total += w * k2 * speed * half;
+            }
+        }
+    }
+    total
+}
+
+/// Sign changes with hysteresis: a change counts when κ goes from below −thr to above +thr or
+/// back.
+fn count_sign_changes(ks: &[f64], thr: f64) -> usize {
+    let mut state = 0i8;
+    let mut count = 0;
+    for &k in ks {
+        if k > thr {
+            if state < 0 {
+                count += 1;
+            }
+            state = 1;
+        } else if k < -thr {
+            if state > 0 {
+                count += 1;
+            }
+            state = -1;
+        }
+    }
+    count
+}
+
+/// Interior extrema with hysteresis `thr`: a maximum counts once κ has fallen `thr` below it,
+/// a minimum once κ has risen `thr` above it.
+fn count_extrema(ks: &[f64], thr: f64) -> usize {
+    let Some(&first) = ks.first() else { return 0 };
+    let (mut hi, mut lo) = (first, first);
+    // 0: direction unknown, 1: rising (looking for a maximum), -1: falling.
+    let mut dir = 0i8;
+    let mut count = 0;
+    for &k in &ks[1..] {
+        match dir {
+            0 => {
+                hi = hi.max(k);
+                lo = lo.min(k);
+                if k > lo + thr && k >= hi {
+                    dir = 1;
+                    hi = k;
+                } else if k < hi - thr && k <= lo {
+                    dir = -1;
+                    lo = k;
+                }
+            }
+            1 => {
+                if k > hi {
+                    hi = k;
+                } else if k < hi - thr {
+                    count += 1;
+                    dir = -1;
+                    lo = k;
+                }
+            }
+            _ => {
+                if k < lo {
+                    lo = k;
+                } else if k > lo + thr {
+                    count += 1;
+                    dir = 1;
+                    hi = k;
+                }
+            }
+        }
+    }
+    count
+}
+
+/// Unit normal of the least-squares plane through `points`: the eigenvector of the smallest
+/// eigenvalue of their covariance (cyclic Jacobi). A straight or degenerate set gives some
+/// unit vector perpendicular to its main direction.
+pub(crate) fn best_fit_normal(points: &[DVec3]) -> DVec3 {
+    let m = points.len().max(1) as f64;
+    let c = points.iter().copied().sum::<DVec3>() / m;
+    let mut a = [[0.0f64; 3]; 3];
+    for p in points {
+        let d = (*p - c).to_array();
+        for (i, row) in a.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                *v += d[i] * d[j];
+            }
+        }
+    }
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..50 {
+        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let diag = a[0][0].abs() + a[1][1].abs() + a[2][2].abs();
+        if off <= 1e-15 * diag.max(f64::MIN_POSITIVE) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let cs = 1.0 / (t * t + 1.0).sqrt();
+            let sn = t * cs;
+            // A ← Jᵀ A J for the rotation in the (p, q) plane.
+            for row in a.iter_mut() {
+                let (x, y) = (row[p], row[q]);
+                row[p] = cs * x - sn * y;
+                row[q] = sn * x + cs * y;
+            }
+            let (rp, rq) = (a[p], a[q]);
+            for k in 0..3 {
+                a[p][k] = cs * rp[k] - sn * rq[k];
+                a[q][k] = sn * rp[k] + cs * rq[k];
+            }
+            for row in v.iter_mut() {
+                let (x, y) = (row[p], row[q]);
+                row[p] = cs * x - sn * y;
+                row[q] = sn * x + cs * y;
+            }
+        }
+    }
+    let k = (0..3)
+        .min_by(|&i, &j| a[i][i].total_cmp(&a[j][j]))
+        .expect("three eigenvalues");
+    let n = DVec3::new(v[0][k], v[1][k], v[2][k]);
+    let n = n.normalize_or_zero();
+    if n == DVec3::ZERO {
+        DVec3::Z
+    } else {
+        // A fixed orientation: the largest component positive, so the sign of κ is stable.
+        let arr = n.to_array();
+        let big = (0..3)
+            .max_by(|&i, &j| arr[i].abs().total_cmp(&arr[j].abs()))
+            .expect("three components");
+        if arr[big] < 0.0 {
+            -n
+        } else {
+            n
+        }
+    }
+}
+
+/// Orthogonal deviations of points from a curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Deviation {
+    pub max: f64,
+    pub max_index: usize,
+    pub rms: f64,
+}
+
+/// Largest and RMS distance of `points` from `curve`: each the global closest-point distance
+/// (branch and bound on the Bézier decomposition, built once).
+pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviation, CurveError> {
+    let bez = curve.bezier_decomposition();
+    let size = bez.hull_box().diagonal();
+    let accuracy = (size * 1e-10).max(1e-12);
+    let mut out = Deviation {
+        max: 0.0,
+        max_index: 0,
+        rms: 0.0,
+    };
+    let mut sum2 = 0.0;
+    for (i, q) in points.iter().enumerate() {
+        let d = bez.nearest(*q, accuracy)?.distance;
+        sum2 += d * d;
+        if d > out.max {
+            out.max = d;
+            out.max_index = i;
+        }
+    }
+    out.rms = (sum2 / points.len().max(1) as f64).sqrt();
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plane_normal_of_a_tilted_planar_set() {
+        let n = DVec3::new(1.0, 2.0, 2.0).normalize();
+        let u = n.any_orthonormal_vector();
+        let w = n.cross(u);
+        let pts: Vec<DVec3> = (0..20)
+            .map(|i| {
+                let a = f64::from(i) * 0.3;
+                u * a.cos() * 3.0 + w * a.sin() + DVec3::new(5.0, -1.0, 2.0)
+            })
+            .collect();
+        let got = best_fit_normal(&pts);
+        assert!(got.cross(n).length() < 1e-10, "normal {got} vs {n}");
+    }
+
+    #[test]
+    fn hysteresis_counts() {
+        let ks = [1.0, 0.5, 0.001, -0.001, 0.002, -0.5, -1.0, -0.2, 0.3];
+        assert_eq!(count_sign_changes(&ks, 0.01), 2, "two real changes");
+        let ks = [0.0, 1.0, 2.0, 1.0, 1.01, 0.0, 0.5];
+        assert_eq!(count_extrema(&ks, 0.1), 2, "max at 2, min at 0");
+    }
+}

@@ -1,0 +1,310 @@
+//! Curve fairing: a smoothing B-spline through a sequence of measured or digitised points, as in
+//! the H-rep paper §4 (eqs. 9–12), which follows Dierckx, *Curve and Surface Fitting with
+//! Splines* (1993), ch. 5 and 6 (FITPACK curfit/parcur).
+//!
+//! The fit minimises the fairness functional `J` (sum of squared jumps of the k-th derivative at
+//! the interior knots) subject to `E ≤ S` (`E` the sum of squared distances of the points from
+//! the curve at their parameters). Knots are added one at a time at the parametric middle of the
+//! span with the largest error until the least-squares spline meets `S`; then the smoothing
+//! parameter p with `E = S` is found by Dierckx's rational interpolation. Parameters start as
+//! chord lengths and are corrected by foot-point projection until they settle. End points are
+//! interpolated, end tangents may be fixed, and corners (knuckle points) split the fit into
+//! pieces joined with a knot of multiplicity `degree`, so the curve stays sharp there.
+
+mod clean;
+mod error;
+mod fit;
+mod knots;
+mod lsq;
+mod metrics;
+mod param;
+mod piece;
+
+use glam::DVec3;
+
+pub use clean::corner_indices;
+pub use error::FairError;
+pub use metrics::{fairness_metrics, FairnessMetrics, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD};
+
+use crate::curve::NurbsCurve;
+use crate::tolerance::Tolerance;
+use fit::Target;
+use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
+
+/// Highest degree the fairing accepts (Dierckx's curfit: 1 ≤ k ≤ 5).
+pub const MAX_FAIR_DEGREE: usize = 5;
+
+/// How close the faired curve must stay to the points: the smoothing factor S of Dierckx
+/// (1993) eq. 5.3 / the H-rep paper eq. 9, given in one of three ways.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Smoothing {
+    /// The largest orthogonal distance (metres) of any point from the curve. S is searched
+    /// downwards from `M·tol²` (M points) until the fit is within the tolerance.
+    MaxDeviation(f64),
+    /// The noise level σ (metres): the RMS distance of the points from the true curve. Then
+    /// `S = M·σ²`, the H-rep paper's eq. 9 with the mean deviation σ and unit weights, and
+    /// Dierckx's advice for data with known standard deviation (1993 §5.2.2).
+    ///
+    /// Implementation note: the sum of squares of pure noise scatters by about `√(2M)·σ²`
+    /// about `M·σ²`, so knots stop being added once the least-squares spline is within
+    /// `(M + √(2M))·σ²` (the upper end of Dierckx's range for S); adding more would fit the
+    /// noise. If it stops above `M·σ²`, the least-squares spline is the result.
+    Noise(f64),
+    /// S itself (square metres): the bound on the sum of squared distances.
+    Factor(f64),
+}
+
+/// Options of [`fair_points`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct FairOptions {
+    /// Spline degree, 1..=5 (default 3).
+    pub degree: usize,
+    /// How close to the points (default: within 1 mm).
+    pub smoothing: Smoothing,
+    /// Indices (into the input points) of knuckle points the curve must keep sharp.
+    pub corners: Vec<usize>,
+    /// Also treat as corners the points where the polyline turns by more than this angle
+    /// (radians); `None` to detect none (default 45°; use `None` for noisy data, where the
+    /// turning angle between neighbours is meaningless).
+    pub corner_angle: Option<f64>,
+    /// Fixed tangent direction at the first point (pointing along the curve); the end
+    /// derivative is this unit vector times the fit's mean speed, as Dierckx's concur fixes end
+    /// derivatives. Needs degree ≥ 2 (≥ 3 with both tangents).
+    pub start_tangent: Option<DVec3>,
+    /// Fixed tangent direction at the last point (pointing along the curve, i.e. out of it).
+    pub end_tangent: Option<DVec3>,
+    /// Points closer than this to the previous kept point are duplicates and are dropped.
+    pub model_tolerance: Tolerance,
+    /// Most foot-point parameter corrections per fit (default 20; 0 keeps chord lengths).
+    pub max_parameter_iterations: usize,
+}
+
+impl Default for FairOptions {
+    fn default() -> Self {
+        FairOptions {
+            degree: 3,
+            smoothing: Smoothing::MaxDeviation(1e-3),
+            corners: Vec::new(),
+            corner_angle: Some(45f64.to_radians()),
+            start_tangent: None,
+            end_tangent: None,
+            model_tolerance: Tolerance::DEFAULT,
+            max_parameter_iterations: 20,
+        }
+    }
+}
+
+/// What the fit of one smooth piece (between corners or ends) came to.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PieceReport {
+    /// Points in the piece (corner points count in both pieces they end).
+    pub points: usize,
+    /// Interior knots of the piece.
+    pub interior_knots: usize,
+    /// The smoothing factor S the piece was fitted to (m²).
+    pub smoothing_factor: f64,
+    /// E, the sum of squared distances at the final parameters (m²).
+    pub residual: f64,
+    /// Dierckx's smoothing parameter p: 0 for the least-squares polynomial, ∞ for the
+    /// least-squares spline.
+    pub p: f64,
+    /// Foot-point parameter corrections made.
+    pub parameter_iterations: usize,
+    /// True when the parameters settled before the iteration limit.
+    pub parameters_settled: bool,
+}
+
+/// The report of one faired curve: size, closeness and fairness.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FairReport {
+    /// Number of control points.
+    pub control_points: usize,
+    /// The knot vector.
+    pub knots: Vec<f64>,
+    /// Largest orthogonal distance of a (kept) point from the curve (m).
+    pub max_deviation: f64,
+    /// Input index of the point at `max_deviation`.
+    pub max_deviation_index: usize,
+    /// Root mean square orthogonal distance of the kept points from the curve (m).
+    pub rms_deviation: f64,
+    /// Inflections, curvature extrema and ∫κ² ds of the faired curve.
+    pub metrics: FairnessMetrics,
+    /// Sum of the pieces' smoothing factors (m²).
+    pub smoothing_factor: f64,
+    /// Consecutive duplicate points dropped before fitting.
+    pub dropped_duplicates: usize,
+    /// Input indices of the corners kept (given and detected).
+    pub corners: Vec<usize>,
+    /// Curve parameters of those corners (knots of multiplicity `degree`).
+    pub corner_parameters: Vec<f64>,
+    /// One report per smooth piece.
+    pub pieces: Vec<PieceReport>,
+}
+
+/// A faired curve and its report.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FairedCurve {
+    /// The smoothing spline: a clamped non-rational B-spline through the end points whose
+    /// parameter runs over the chord length of the points.
+    pub curve: NurbsCurve,
+    /// How it was made and how good it is.
+    pub report: FairReport,
+}
+
+/// Fair a sequence of points into a smooth B-spline curve (H-rep paper §4; Dierckx 1993 ch. 5,
+/// FITPACK curfit/parcur with single-knot insertion).
+///
+/// Clean-up first: non-finite coordinates are an error; consecutive points within the model
+/// tolerance of the previous kept point are dropped and counted (the last point is kept
+/// exactly); points not in order along the curve are an error. Then the curve is split at the
+/// corners (given and detected), each piece is fitted (end points interpolated; end tangents
+/// fixed where asked), and the pieces are joined with knots of multiplicity `degree`.
+pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurve, FairError> {
+    let k = options.degree;
+    if !(1..=MAX_FAIR_DEGREE).contains(&k) {
+        return Err(FairError::Degree { degree: k });
+    }
+    match options.smoothing {
+        Smoothing::MaxDeviation(t) if !(t.is_finite() && t > 0.0) => {
+            return Err(FairError::Tolerance(t))
+        }
+        Smoothing::Noise(s) if !(s.is_finite() && s > 0.0) => return Err(FairError::Noise(s)),
+        Smoothing::Factor(s) if !(s.is_finite() && s > 0.0) => {
+            return Err(FairError::SmoothingFactor(s))
+        }
+        _ => {}
+    }
+    if let Some(a) = options.corner_angle {
+        if !(a > 0.0 && a < std::f64::consts::PI) {
+            return Err(FairError::CornerAngle(a));
+        }
+    }
+    let start_dir = direction(options.start_tangent, "start")?;
+    let end_dir = direction(options.end_tangent, "end")?;
+    let tangents = usize::from(start_dir.is_some()) + usize::from(end_dir.is_some());
+    if tangents > 0 && k < tangents + 1 {
+        return Err(FairError::TangentDegree {
+            degree: k,
+            tangents,
+            needed: tangents + 1,
+        });
+    }
+    for &index in &options.corners {
+        if index == 0 || index + 1 >= points.len() {
+            return Err(FairError::CornerIndex {
+                index,
+                count: points.len(),
+            });
+        }
+    }
+
+    let tol = options.model_tolerance.get();
+    let cleaned = clean::clean(points, tol)?;
+    let pts = &cleaned.points;
+    let m = pts.len();
+    if m < k + 1 {
+        return Err(FairError::TooFewPoints {
+            count: m,
+            needed: k + 1,
+            degree: k,
+            dropped: cleaned.dropped,
+        });
+    }
+    clean::check_order(pts)?;
+
+    // Corners in cleaned indexing: a given corner that was dropped as a duplicate moves to the
+    // kept point it duplicated.
+    let mut corners: Vec<usize> = options
+        .corners
+        .iter()
+        .map(|&c| cleaned.index.partition_point(|&i| i <= c) - 1)
+        .collect();
+    if let Some(angle) = options.corner_angle {
+        corners.extend(corner_indices(pts, angle));
+    }
+    corners.retain(|&c| c > 0 && c + 1 < m);
+    corners.sort_unstable();
+    corners.dedup();
+
+    let mut bounds = vec![0];
+    bounds.extend_from_slice(&corners);
+    bounds.push(m - 1);
+    let count = bounds.len() - 1;
+    let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
+    for (i, w) in bounds.windows(2).enumerate() {
+        let piece = &pts[w[0]..=w[1]];
+        let dirs = Directions {
+            start: if i == 0 { start_dir } else { None },
+            end: if i + 1 == count { end_dir } else { None },
+        };
+        let iters = options.max_parameter_iterations;
+        let fit = match options.smoothing {
+            Smoothing::MaxDeviation(t) => match fit_within(piece, k, t, dirs, iters)? {
+                Ok(fit) => fit,
+                Err((achieved, index)) => {
+                    return Err(FairError::ToleranceNotReached {
+                        tolerance: t,
+                        achieved,
+                        index: cleaned.index[w[0] + index],
+                    })
+                }
+            },
+            Smoothing::Noise(sigma) => {
+                // S = M·σ²; the knots may stop within one standard deviation of the noise's
+                // sum of squares above it, M + √(2M) (Dierckx 1993 §5.2.2's range for S).
+                let mp = piece.len() as f64;
+                let s = Target {
+                    s: mp * sigma * sigma,
+                    accept: (mp + (2.0 * mp).sqrt()) * sigma * sigma,
+                };
+                fit_smooth(piece, k, s, dirs, iters)?
+            }
+            Smoothing::Factor(s) => {
+                let share = (piece.len() - 1) as f64 / (m - 1) as f64;
+                fit_smooth(piece, k, Target::exact(s * share), dirs, iters)?
+            }
+        };
+        pieces.push(fit);
+    }
+
+    let (knots, coefs, corner_parameters) = join(&pieces, k);
+    let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
+    let dev = metrics::deviation(&curve, pts)?;
+    let report = FairReport {
+        control_points: curve.control_point_count(),
+        knots,
+        max_deviation: dev.max,
+        max_deviation_index: cleaned.index[dev.max_index],
+        rms_deviation: dev.rms,
+        metrics: fairness_metrics(&curve),
+        smoothing_factor: pieces.iter().map(|p| p.s).sum(),
+        dropped_duplicates: cleaned.dropped,
+        corners: corners.iter().map(|&c| cleaned.index[c]).collect(),
+        corner_parameters,
+        pieces: pieces
+            .iter()
+            .zip(bounds.windows(2))
+            .map(|(p, w)| PieceReport {
+                points: w[1] - w[0] + 1,
+                interior_knots: p.spline.knots.len() - 2 * (p.spline.degree + 1),
+                smoothing_factor: p.s,
+                residual: p.spline.fp,
+                p: p.spline.p,
+                parameter_iterations: p.iterations,
+                parameters_settled: p.settled,
+            })
+            .collect(),
+    };
+    Ok(FairedCurve { curve, report })
+}
+
+fn direction(v: Option<DVec3>, end: &'static str) -> Result<Option<DVec3>, FairError> {
+    match v {
+        None => Ok(None),
+        Some(d) if d.is_finite() && d.length_squared() > 0.0 => Ok(Some(d.normalize())),
+        Some(d) => Err(FairError::Tangent {
+            end,
+            value: d.to_array(),
+        }),
+    }
+}

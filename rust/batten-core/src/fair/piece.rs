@@ -1,0 +1,221 @@
+//! Fitting one smooth piece (between corners): the parameter-correction loop around the
+//! smoothing spline, the search for S that meets a maximum deviation, and joining pieces G0.
+
+use glam::DVec3;
+
+use super::error::FairError;
+use super::fit::{smoothing_spline, Ends, Spline, Target};
+use super::metrics::deviation;
+use super::param::{chord_length, reproject};
+use crate::curve::NurbsCurve;
+
+/// The parameters have settled when no parameter moved by more than this fraction of the mean
+/// point spacing in one correction step.
+const SETTLE: f64 = 1e-3;
+/// ... or when projecting the points onto the fit lowers E by less than this fraction of S:
+/// the parameters still drift (parameter correction converges linearly), but the closeness of
+/// fit no longer changes.
+const SETTLE_E: f64 = 1e-4;
+/// Most steps of the search for S in tolerance mode.
+const MAX_S_STEPS: usize = 24;
+/// Each step lowers S by the squared ratio of tolerance to deviation times this safety factor
+/// (E scales with the square of the deviations).
+const S_SAFETY: f64 = 0.8;
+
+/// A fitted piece with what it took.
+#[derive(Clone, Debug)]
+pub(crate) struct PieceFit {
+    pub spline: Spline,
+    pub curve: NurbsCurve,
+    pub s: f64,
+    pub iterations: usize,
+    pub settled: bool,
+}
+
+/// End directions (unit vectors) of the piece, if fixed.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Directions {
+    pub start: Option<DVec3>,
+    pub end: Option<DVec3>,
+}
+
+/// Smoothing spline of `points` with `E ≤ s.s`, starting from chord-length parameters and
+/// correcting them by foot-point projection until they settle or `max_iter` corrections are
+/// done (Dierckx parcur, then Hoschek's parameter correction).
+pub(crate) fn fit_smooth(
+    points: &[DVec3],
+    degree: usize,
+    s: Target,
+    dirs: Directions,
+    max_iter: usize,
+) -> Result<PieceFit, FairError> {
+    let m = points.len();
+    if m < degree + 1 {
+        return short_piece(points, degree);
+    }
+    let mut pts = points.to_vec();
+    let mut u = chord_length(&pts);
+    let domain = u[m - 1];
+    let spacing = domain / (m - 1) as f64;
+    // |C′| of the fit; chord length makes it close to 1 to start with.
+    let mut speed = 1.0;
+    let mut last: Option<(Spline, NurbsCurve)> = None;
+    let mut iterations = 0;
+    let mut settled = false;
+    loop {
+        let ends = Ends {
+            start: pts[0],
+            end: pts[m - 1],
+            start_derivative: dirs.start.map(|d| d * speed),
+            end_derivative: dirs.end.map(|d| d * speed),
+        };
+        let Some(spline) = smoothing_spline(&pts, &u, degree, s, &ends) else {
+            break;
+        };
+        let curve = NurbsCurve::try_new(degree, spline.knots.clone(), spline.coefs.clone(), None)?;
+        last = Some((spline, curve));
+        let (_, curve) = last.as_ref().expect("just set");
+        if iterations >= max_iter {
+            break;
+        }
+        iterations += 1;
+        let fp = last.as_ref().expect("just set").0.fp;
+        let (change, e_proj) = reproject(curve, &mut pts, &mut u);
+        if change <= SETTLE * spacing || fp - e_proj <= SETTLE_E * s.s {
+            settled = true;
+            break;
+        }
+        if dirs.start.is_some() || dirs.end.is_some() {
+            let length = curve.arc_length(domain * 1e-9)?;
+            speed = length / domain;
+        }
+    }
+    let (spline, curve) = match last {
+        Some(fit) => fit,
+        // Chord-length parameters of distinct points always determine the polynomial; this is
+        // reached only if rounding breaks that.
+        None => return Err(FairError::Unfittable { points: m }),
+    };
+    Ok(PieceFit {
+        spline,
+        curve,
+        s: s.s,
+        iterations,
+        settled,
+    })
+}
+
+/// Search S downwards from `M·tol²` until the largest orthogonal deviation of the fit is within
+/// `tol` (the designer's tolerance), each step scaling S by `(tol / deviation)²`.
+/// On failure returns the smallest deviation reached and the index of its worst point.
+pub(crate) fn fit_within(
+    points: &[DVec3],
+    degree: usize,
+    tol: f64,
+    dirs: Directions,
+    max_iter: usize,
+) -> Result<Result<PieceFit, (f64, usize)>, FairError> {
+    let m = points.len();
+    let mut s = m as f64 * tol * tol;
+    let mut best: Option<(f64, usize)> = None;
+    for _ in 0..MAX_S_STEPS {
+        let fit = fit_smooth(points, degree, Target::exact(s), dirs, max_iter)?;
+        let dev = deviation(&fit.curve, points)?;
+        if dev.max <= tol {
+            return Ok(Ok(fit));
+        }
+        if best.is_none_or(|(d, _)| dev.max < d) {
+            best = Some((dev.max, dev.max_index));
+        }
+        if fit.spline.p.is_infinite() && !fit.spline.reached {
+            // Every span that can take a knot has one: a smaller S cannot help.
+            break;
+        }
+        s *= S_SAFETY * (tol / dev.max).powi(2);
+    }
+    Ok(Err(best.unwrap_or((f64::INFINITY, 0))))
+}
+
+/// A piece with fewer points than `degree + 1`: the interpolating polynomial of degree
+/// `m − 1` on chord-length parameters, raised to `degree`.
+fn short_piece(points: &[DVec3], degree: usize) -> Result<PieceFit, FairError> {
+    let m = points.len();
+    let d = m - 1;
+    let u = chord_length(points);
+    let ends = Ends {
+        start: points[0],
+        end: points[m - 1],
+        start_derivative: None,
+        end_derivative: None,
+    };
+    let spline = smoothing_spline(points, &u, d, Target::exact(0.0), &ends).ok_or(
+        FairError::TooFewPoints {
+            count: m,
+            needed: d + 1,
+            degree: d,
+            dropped: 0,
+        },
+    )?;
+    let curve = NurbsCurve::try_new(d, spline.knots.clone(), spline.coefs.clone(), None)?;
+    Ok(elevate_fit(
+        PieceFit {
+            spline,
+            curve,
+            s: 0.0,
+            iterations: 0,
+            settled: true,
+        },
+        degree,
+    ))
+}
+
+/// Raise a single-span (Bézier) piece to `degree` (Piegl & Tiller eq. 5.36, repeated).
+fn elevate_fit(mut fit: PieceFit, degree: usize) -> PieceFit {
+    let sp = &mut fit.spline;
+    while sp.degree < degree && sp.knots.len() == 2 * (sp.degree + 1) {
+        let d = sp.degree;
+        let p = &sp.coefs;
+        let mut q = Vec::with_capacity(d + 2);
+        q.push(p[0]);
+        for i in 1..=d {
+            let a = i as f64 / (d + 1) as f64;
+            q.push(p[i - 1] * a + p[i] * (1.0 - a));
+        }
+        q.push(p[d]);
+        let (a, b) = (sp.knots[0], sp.knots[sp.knots.len() - 1]);
+        sp.knots = super::knots::clamped(d + 1, a, b, &[]);
+        sp.coefs = q;
+        sp.degree = d + 1;
+    }
+    if let Ok(curve) = NurbsCurve::try_new(sp.degree, sp.knots.clone(), sp.coefs.clone(), None) {
+        fit.curve = curve;
+    }
+    fit
+}
+
+/// Join pieces end to start into one clamped B-spline: each inner joint becomes a knot of
+/// multiplicity `degree` (C0, so a knuckle stays sharp), and each piece's parameter domain is
+/// shifted to follow the previous one. Returns the knots, control points and the joint
+/// parameters.
+pub(crate) fn join(pieces: &[PieceFit], degree: usize) -> (Vec<f64>, Vec<DVec3>, Vec<f64>) {
+    let k = degree;
+    let mut knots = Vec::new();
+    let mut coefs: Vec<DVec3> = Vec::new();
+    let mut joints = Vec::new();
+    let mut offset = 0.0;
+    for (i, piece) in pieces.iter().enumerate() {
+        let t = &piece.spline.knots;
+        let (a, b) = (t[0], t[t.len() - 1]);
+        let repeat = if i == 0 { k + 1 } else { k };
+        if i > 0 {
+            joints.push(offset);
+        }
+        knots.extend(std::iter::repeat_n(offset, repeat));
+        knots.extend(t[k + 1..t.len() - k - 1].iter().map(|&u| u - a + offset));
+        let skip = usize::from(i > 0);
+        coefs.extend_from_slice(&piece.spline.coefs[skip..]);
+        offset += b - a;
+    }
+    knots.extend(std::iter::repeat_n(offset, k + 1));
+    (knots, coefs, joints)
+}

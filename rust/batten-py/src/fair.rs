@@ -1,0 +1,128 @@
+//! Curve fairing: `fair_points` (Dierckx smoothing spline) and `fairness` metrics.
+
+use batten_core::{
+    fair_points as core_fair, fairness_metrics, FairOptions, FairnessMetrics, Smoothing, Tolerance,
+};
+use glam::DVec3;
+use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::curve::Curve;
+use crate::errors::{core_err, guard, msg_err, named_err};
+
+fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
+    d.set_item("inflections", m.inflections)?;
+    d.set_item("curvature_extrema", m.curvature_extrema)?;
+    d.set_item("fairness_energy", m.fairness_energy)?;
+    d.set_item("max_curvature", m.max_curvature)?;
+    d.set_item("plane_normal", m.plane_normal.to_array())?;
+    Ok(())
+}
+
+/// Fair the points (n, 3) into a smooth B-spline named `name` (H-rep paper §4, Dierckx's
+/// smoothing spline). Give at most one of `tolerance` (max deviation, m; default 1 mm),
+/// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). Returns `(Curve, report dict)`.
+#[pyfunction]
+#[pyo3(signature = (name, points, *, degree=3, tolerance=None, noise=None, smoothing_factor=None,
+    corners=None, corner_angle_deg=Some(45.0), start_tangent=None, end_tangent=None,
+    model_tolerance=1e-4, max_parameter_iterations=20, role="free"))]
+#[allow(clippy::too_many_arguments)]
+pub fn fair_points<'py>(
+    py: Python<'py>,
+    name: &str,
+    points: PyReadonlyArray2<'py, f64>,
+    degree: usize,
+    tolerance: Option<f64>,
+    noise: Option<f64>,
+    smoothing_factor: Option<f64>,
+    corners: Option<Vec<usize>>,
+    corner_angle_deg: Option<f64>,
+    start_tangent: Option<[f64; 3]>,
+    end_tangent: Option<[f64; 3]>,
+    model_tolerance: f64,
+    max_parameter_iterations: usize,
+    role: &str,
+) -> PyResult<(Curve, Bound<'py, PyDict>)> {
+    if points.shape()[1] != 3 {
+        return Err(msg_err(format!(
+            "curve '{name}': points must have shape (n, 3)"
+        )));
+    }
+    let pts: Vec<DVec3> = points
+        .as_array()
+        .rows()
+        .into_iter()
+        .map(|r| DVec3::new(r[0], r[1], r[2]))
+        .collect();
+    let smoothing = match (tolerance, noise, smoothing_factor) {
+        (t, None, None) => Smoothing::MaxDeviation(t.unwrap_or(1e-3)),
+        (None, Some(s), None) => Smoothing::Noise(s),
+        (None, None, Some(s)) => Smoothing::Factor(s),
+        _ => {
+            return Err(msg_err(format!(
+                "curve '{name}': give only one of tolerance, noise and smoothing_factor"
+            )))
+        }
+    };
+    let options = FairOptions {
+        degree,
+        smoothing,
+        corners: corners.unwrap_or_default(),
+        corner_angle: corner_angle_deg.map(f64::to_radians),
+        start_tangent: start_tangent.map(DVec3::from_array),
+        end_tangent: end_tangent.map(DVec3::from_array),
+        model_tolerance: Tolerance::try_new(model_tolerance).map_err(core_err)?,
+        max_parameter_iterations,
+    };
+    let faired = py.detach(|| {
+        guard(name, || {
+            core_fair(&pts, &options).map_err(|e| named_err(name, e))
+        })
+    })?;
+    let curve = Curve::from_parts(name, role, faired.curve)?;
+    let r = &faired.report;
+    let d = PyDict::new(py);
+    d.set_item("control_points", r.control_points)?;
+    d.set_item("knots", r.knots.clone())?;
+    d.set_item(
+        "interior_knots",
+        r.pieces.iter().map(|p| p.interior_knots).sum::<usize>(),
+    )?;
+    d.set_item("max_deviation", r.max_deviation)?;
+    d.set_item("max_deviation_index", r.max_deviation_index)?;
+    d.set_item("rms_deviation", r.rms_deviation)?;
+    metrics_into(&d, &r.metrics)?;
+    d.set_item("smoothing_factor", r.smoothing_factor)?;
+    d.set_item("dropped_duplicates", r.dropped_duplicates)?;
+    d.set_item("corners", r.corners.clone())?;
+    d.set_item("corner_parameters", r.corner_parameters.clone())?;
+    let pieces = r
+        .pieces
+        .iter()
+        .map(|p| {
+            let pd = PyDict::new(py);
+            pd.set_item("points", p.points)?;
+            pd.set_item("interior_knots", p.interior_knots)?;
+            pd.set_item("smoothing_factor", p.smoothing_factor)?;
+            pd.set_item("residual", p.residual)?;
+            pd.set_item("p", p.p)?;
+            pd.set_item("parameter_iterations", p.parameter_iterations)?;
+            pd.set_item("parameters_settled", p.parameters_settled)?;
+            Ok(pd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("pieces", pieces)?;
+    Ok((curve, d))
+}
+
+/// Fairness figures of a curve: inflections, curvature extrema, ∫κ² ds, max curvature.
+#[pyfunction]
+pub fn fairness<'py>(py: Python<'py>, curve: PyRef<'py, Curve>) -> PyResult<Bound<'py, PyDict>> {
+    let m = guard(&curve.inner.name, || {
+        Ok(fairness_metrics(&curve.inner.curve))
+    })?;
+    let d = PyDict::new(py);
+    metrics_into(&d, &m)?;
+    Ok(d)
+}
