@@ -55,6 +55,9 @@ fn points_of(
         .collect())
 }
 
+/// Two (n, 3) float arrays.
+type ArrayPair<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>);
+
 fn to_array2<'py>(
     py: Python<'py>,
     flat: Vec<f64>,
@@ -310,7 +313,7 @@ impl Curve {
         &self,
         py: Python<'py>,
         t: PyReadonlyArray1<'py, f64>,
-    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<ArrayPair<'py>> {
         let ts = t
             .as_slice()
             .map_err(|_| msg_err("t must be a contiguous 1-D float64 array"))?;
