@@ -18,19 +18,33 @@ from collections.abc import Iterable
 from pathlib import Path
 
 import bpy
-from batten_native import DEFAULT_TOLERANCE, ROLES, BattenError, Curve, network_from_json, network_to_json
+import numpy as np
+from batten_native import (
+    DEFAULT_TOLERANCE,
+    ROLES,
+    BattenError,
+    Curve,
+    fair_points,
+    fairness,
+    network_from_json,
+    network_to_json,
+)
 
-from .bridge import curves_in, curves_out
+from .bridge import curves_in, curves_out, sections_in
 
 __all__ = [
+    "read_network",
     "DEFAULT_TOLERANCE",
     "ROLES",
     "BattenError",
     "Curve",
+    "curvature_comb",
     "curve_objects",
     "export_network",
+    "fair_curve",
+    "fairness",
+    "import_sections",
     "load_network",
-    "read_network",
     "read_curves",
     "set_role",
 ]
@@ -154,3 +168,135 @@ def set_role(objects, role: str) -> None:
         raise BattenError(f"unknown role '{role}' (one of {', '.join(ROLES)})")
     for obj in curve_objects(objects):
         obj.batten.role = role
+
+
+#: Samples per knot span when a drawn (non-polyline) curve is refitted.
+FAIR_SAMPLES_PER_SPAN = 12
+#: At least this many samples for a drawn curve.
+FAIR_MIN_SAMPLES = 60
+
+
+def _fit_data(curve: Curve) -> tuple[np.ndarray, list[int]]:
+    """The points to fair a curve through, and the indices of its corners among them.
+
+    A polyline's vertices are the data (imported or digitised points). A drawn curve is
+    sampled: each smooth piece between its corners evenly in parameter, the corners exactly.
+    """
+    if curve.degree == 1:
+        return curve.control_points, []
+    a, b = curve.domain
+    knots = np.unique(curve.knots)
+    spans = int(np.count_nonzero((knots[:-1] >= a) & (knots[1:] <= b)))
+    breaks = [a, *curve.corners(), b]
+    total = max(FAIR_MIN_SAMPLES, FAIR_SAMPLES_PER_SPAN * spans)
+    params, corners = [a], []
+    for lo, hi in zip(breaks[:-1], breaks[1:], strict=True):
+        n = max(4, int(round(total * (hi - lo) / (b - a))))
+        params.extend(np.linspace(lo, hi, n + 1)[1:])
+        corners.append(len(params) - 1)
+    return curve.evaluate(np.asarray(params)), corners[:-1]
+
+
+def fair_curve(
+    obj,
+    *,
+    tolerance: float | None = 1e-3,
+    noise: float | None = None,
+    degree: int = 3,
+    corner_angle_deg: float | None = 45.0,
+) -> list[dict]:
+    """Refit every spline of the curve object ``obj`` in place as a fair NURBS spline
+    (Dierckx's smoothing spline, H-rep paper §4) and return one report per spline.
+
+    The data are a polyline's points, or samples of a drawn curve (its corners kept). Give a
+    ``tolerance`` (largest deviation, m) or a ``noise`` level σ (m). End points are kept
+    exactly, corners stay sharp (given ones, and turns sharper than ``corner_angle_deg`` for
+    polylines; None detects none). The object, its data-block, materials and modifiers stay;
+    on any error nothing changes. Report keys: control_points, knots, interior_knots,
+    max_deviation, rms_deviation, inflections, curvature_extrema, fairness_energy (∫κ² ds),
+    max_curvature, corners, dropped_duplicates, pieces.
+    """
+    if noise is not None:
+        tolerance = None
+    curves = curves_in.read_object(obj)
+    fitted, reports = [], []
+    for curve in curves:
+        points, corners = _fit_data(curve)
+        new, report = fair_points(
+            curve.name,
+            points,
+            degree=degree,
+            tolerance=tolerance,
+            noise=noise,
+            corners=corners,
+            corner_angle_deg=corner_angle_deg if curve.degree == 1 else None,
+            role=curve.role,
+        )
+        report["curve"] = curve.name
+        fitted.append(new)
+        reports.append(report)
+    curves_out.replace_splines(obj, fitted)
+    return reports
+
+
+def import_sections(
+    path,
+    *,
+    tolerance: float = 5e-3,
+    degree: int = 3,
+    corner_angle_deg: float | None = 45.0,
+    model_tolerance: float = 1e-3,
+    collection: str | None = None,
+):
+    """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets
+    table ``name, x, y, z``), fair every curve within ``tolerance`` (m) keeping its end points
+    and corners, and draw the curves as NURBS curve objects in a new collection, with roles
+    from the curve kinds. All curves are fitted before anything is created.
+
+    Returns ``(collection, reports)``, one report per curve (see :func:`fair_curve`).
+    """
+    name, sections = sections_in.read_sections(path)
+    if not sections:
+        raise BattenError(f"section file '{path}': no curves")
+    fitted, reports = [], []
+    for sec in sections:
+        curve, report = fair_points(
+            sec.name,
+            sec.points,
+            degree=degree,
+            tolerance=tolerance,
+            corner_angle_deg=corner_angle_deg,
+            model_tolerance=model_tolerance,
+            role=sec.role,
+        )
+        report["curve"] = sec.name
+        report["points"] = len(sec.points)
+        fitted.append(curve)
+        reports.append(report)
+    coll = bpy.data.collections.new(collection or name)
+    created = []
+    try:
+        for curve in fitted:
+            created.append(curves_out.new_curve_object(curve, coll))
+        bpy.context.scene.collection.children.link(coll)
+    except BaseException:
+        for obj in created:
+            data = obj.data
+            bpy.data.objects.remove(obj)
+            bpy.data.curves.remove(data)
+        bpy.data.collections.remove(coll)
+        raise
+    return coll, reports
+
+
+def curvature_comb(obj, *, samples: int = 200, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """The curvature comb (porcupine) of every spline of ``obj``: ``(bases, tips)`` arrays of
+    shape (n, 3) in world coordinates. Each tooth stands on the curve, away from the centre
+    of curvature, with length ``scale`` × κ (1/m)."""
+    bases, tips = [], []
+    for curve in curves_in.read_object(obj):
+        t = np.linspace(*curve.domain, max(2, samples))
+        points, kappa = curve.curvature(t)
+        bases.append(points)
+        tips.append(points - scale * kappa)
+    return np.concatenate(bases), np.concatenate(tips)

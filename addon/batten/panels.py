@@ -25,6 +25,13 @@ class VIEW3D_PT_batten(bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("batten.import_network", text="Import", icon="IMPORT")
         row.operator("batten.export_network", text="Export", icon="EXPORT")
+        box = layout.box()
+        box.label(text="Fairing", icon="SMOOTHCURVE")
+        box.prop(settings, "fair_tolerance")
+        box.operator("batten.fair_curves")
+        row = box.row(align=True)
+        row.prop(settings, "show_combs", toggle=True)
+        row.prop(settings, "comb_scale", text="Scale")
         obj = context.active_object
         if obj is not None and obj.type == "CURVE":
             box = layout.box()

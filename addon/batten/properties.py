@@ -66,6 +66,27 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         description="Mirror the drawn half hull about the centreplane (y = 0)",
         default=True,
     )
+    fair_tolerance: FloatProperty(
+        name="Fair tolerance",
+        description="Largest distance a faired curve may stray from its points",
+        default=1e-3,
+        min=1e-6,
+        max=1.0,
+        precision=4,
+        unit="LENGTH",
+    )
+    show_combs: BoolProperty(
+        name="Curvature combs",
+        description="Draw curvature combs (porcupines) on the selected curves",
+        default=False,
+    )
+    comb_scale: FloatProperty(
+        name="Comb scale",
+        description="Length of a comb tooth per unit curvature (m per 1/m)",
+        default=10.0,
+        min=0.0,
+        soft_max=10000.0,
+    )
 
 
 _CLASSES = (BattenCurveSettings, BattenSceneSettings)

@@ -1,0 +1,158 @@
+"""Fairing in Blender: fair_curve in place, section import of the real ships, combs, errors."""
+
+import math
+from pathlib import Path
+
+import batten.api as api
+import bpy
+import numpy as np
+import pytest
+from helpers import new_curve
+
+HULLS = Path(__file__).resolve().parents[2] / "shared" / "hulls"
+
+
+def noisy_arc(n=120, r=10.0, sigma=0.01, seed=4):
+    rng = np.random.default_rng(seed)
+    a = np.linspace(0.0, math.pi / 2, n)
+    pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(n)])
+    pts[1:-1, :2] += rng.normal(0.0, sigma, (n - 2, 2))
+    return pts
+
+
+def test_fair_curve_refits_a_polyline_in_place_within_tolerance():
+    pts = noisy_arc()
+    obj = new_curve("Station 9", "POLY", pts)
+    mat = bpy.data.materials.new("hull")
+    obj.data.materials.append(mat)
+    data = obj.data
+    (report,) = api.fair_curve(obj, tolerance=0.03)
+    assert obj.data is data and obj.data.materials[0] == mat, "same object, data-block, materials"
+    spline = obj.data.splines[0]
+    assert spline.type == "NURBS" and len(obj.data.splines) == 1
+    assert report["max_deviation"] <= 0.03
+    assert report["control_points"] < 20, "a fair arc needs few control points"
+    assert report["inflections"] == 0
+    (curve,) = api.read_curves(obj)
+    # End points kept exactly (up to Blender's float32 storage); the faired curve is near the arc.
+    ends = curve.evaluate(np.array(curve.domain))
+    np.testing.assert_allclose(ends, pts[[0, -1]], atol=1e-5)
+    radii = np.linalg.norm(curve.evaluate(np.linspace(*curve.domain, 400))[:, :2], axis=1)
+    assert np.abs(radii - 10.0).max() < 3 * 0.01 + 0.03
+
+
+def test_fair_curve_keeps_a_chine_sharp():
+    # A hard-chine section: bottom rising to the chine, then the topside; with a little noise.
+    bottom = np.column_stack([np.zeros(30), np.linspace(0, 4, 30), np.linspace(0, 0.8, 30)])
+    side = np.column_stack([np.zeros(30), np.linspace(4, 4.6, 30), np.linspace(0.8, 3.5, 30)])
+    pts = np.vstack([bottom, side[1:]])
+    pts[1:-1, 1:] += np.random.default_rng(2).normal(0, 0.002, (len(pts) - 2, 2))
+    obj = new_curve("chine section", "POLY", pts)
+    (report,) = api.fair_curve(obj, tolerance=0.01)
+    assert report["corners"] == [29], "the chine point is kept as a corner"
+    (curve,) = api.read_curves(obj)
+    assert len(curve.corners(1.0)) == 1, "and it is sharp in the faired curve"
+
+
+def test_fair_curve_failure_changes_nothing():
+    pts = noisy_arc(40)
+    rng = np.random.default_rng(0)
+    shuffled = pts[rng.permutation(len(pts))]
+    obj = new_curve("scrambled", "POLY", shuffled)
+    before = np.empty(4 * len(pts), dtype=np.float32)
+    obj.data.splines[0].points.foreach_get("co", before)
+    with pytest.raises(api.BattenError, match="curve 'scrambled': the points are not in order"):
+        api.fair_curve(obj)
+    after = np.empty_like(before)
+    assert obj.data.splines[0].type == "POLY"
+    obj.data.splines[0].points.foreach_get("co", after)
+    assert np.array_equal(before, after)
+    same = new_curve("dot", "POLY", np.ones((5, 3)))
+    with pytest.raises(api.BattenError, match="curve 'dot'"):
+        api.fair_curve(same)
+    with pytest.raises(api.BattenError, match="tolerance"):
+        api.fair_curve(new_curve("ok", "POLY", noisy_arc(20)), tolerance=-1.0)
+
+
+def test_fair_curve_on_a_drawn_nurbs_curve_keeps_its_shape():
+    pts = np.column_stack([np.linspace(0, 20, 9), np.sin(np.linspace(0, 3, 9)), np.zeros(9)])
+    obj = new_curve("sheer", "NURBS", pts, order=4, endpoint=True)
+    (original,) = api.read_curves(obj)
+    (report,) = api.fair_curve(obj, tolerance=1e-3)
+    (faired,) = api.read_curves(obj)
+    worst = max(faired.nearest(p.tolist())[1] for p in original.evaluate(np.linspace(*original.domain, 200)))
+    assert worst < 1.5e-3
+    assert report["max_deviation"] <= 1e-3
+
+
+def test_curvature_comb_of_a_circle_has_teeth_of_scale_over_radius(tmp_path):
+    import batten_native as bn
+
+    s = math.sqrt(0.5)
+    unit = [(1, 0), (1, 1), (0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (1, 0)]
+    pts = np.array([[3.0 * x, 3.0 * y, 1.0] for x, y in unit])
+    knots = np.array([0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4], dtype=float)
+    circle = bn.Curve("ring", 2, knots, pts, np.array([1, s, 1, s, 1, s, 1, s, 1]))
+    path = tmp_path / "ring.json"
+    path.write_text(bn.network_to_json("ring", [circle]))
+    obj = api.load_network(path).objects[0]  # exact rational circle of radius 3 in Blender
+    bases, tips = api.curvature_comb(obj, samples=50, scale=2.0)
+    np.testing.assert_allclose(np.linalg.norm(bases[:, :2], axis=1), 3.0, rtol=1e-6)
+    np.testing.assert_allclose(np.linalg.norm(tips - bases, axis=1), 2.0 / 3.0, rtol=1e-5)
+    np.testing.assert_allclose(np.linalg.norm(tips[:, :2], axis=1), 3.0 + 2.0 / 3.0, rtol=1e-5)
+
+
+def test_comb_overlay_lines_follow_the_selection():
+    from batten import overlay
+
+    obj = new_curve("arc", "POLY", noisy_arc(30, sigma=0.0))
+    api.fair_curve(obj, tolerance=1e-3)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    lines = overlay.comb_lines(bpy.context)
+    assert lines.shape == (2 * 200 + 2 * 199, 3) and lines.dtype == np.float32
+    obj.select_set(False)
+    assert len(overlay.comb_lines(bpy.context)) == 0
+
+
+@pytest.mark.parametrize("ship", ["kcs", "kvlcc2"])
+def test_real_ship_sections_import_within_5_mm(ship):
+    path = HULLS / ship / "network.json"
+    assert path.is_file(), f"{path} missing: CI keeps shared/ beside the repository"
+    coll, reports = api.import_sections(path)
+    assert len(coll.objects) == len(reports) > 40
+    worst = max(r["max_deviation"] for r in reports)
+    assert worst <= 0.005, f"{ship}: worst deviation {worst * 1e3:.2f} mm"
+    curves = {c.name: c for c in api.read_curves(coll)}
+    for r in reports:
+        c = curves[r["curve"]]
+        assert len(c.corners(1.0)) == len(r["corners"]), f"{r['curve']}: corners kept sharp in Blender"
+    roles = {o.batten.role for o in coll.objects}
+    assert {"keel", "deck", "free"} <= roles
+
+
+def test_csv_offsets_import(tmp_path):
+    rows = ["name,x,y,z"]
+    for name, x in (("st1", 10.0), ("st2", 20.0)):
+        for z in np.linspace(0, 5, 25):
+            rows.append(f"{name},{x},{3 * math.sin(z / 5 * math.pi / 2):.6f},{z:.6f}")
+    path = tmp_path / "offsets.csv"
+    path.write_text("\n".join(rows) + "\n")
+    coll, reports = api.import_sections(path, tolerance=1e-3)
+    assert sorted(o.name for o in coll.objects) == ["st1", "st2"]
+    assert all(r["max_deviation"] <= 1e-3 for r in reports)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("st1,1,2\n")
+    n = len(bpy.data.objects)
+    with pytest.raises(api.BattenError, match="line 1: expected name, x, y, z"):
+        api.import_sections(bad)
+    assert len(bpy.data.objects) == n
+
+
+def test_fair_operator_reports_through_bpy_ops():
+    obj = new_curve("wl", "POLY", noisy_arc(50))
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    bpy.context.scene.batten.fair_tolerance = 0.03
+    assert bpy.ops.batten.fair_curves() == {"FINISHED"}
+    assert obj.data.splines[0].type == "NURBS"
