@@ -62,6 +62,7 @@ bench: venv sysdeps
 	cargo bench -p batten-core
 	$(MAKE) --no-print-directory native PROFILE=release
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_curves.py
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_fairing.py
 
 clean:
 	rm -rf build $(OUT) target
