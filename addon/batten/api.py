@@ -146,7 +146,13 @@ def load_network(path, *, collection=None, resolution: int = 16):
     """
     name, curves = read_network(path)
     coll_name = collection if isinstance(collection, str) else (name or Path(path).stem)
-    coll = bpy.data.collections.new(coll_name)
+    return _draw_collection(coll_name, curves, resolution=resolution)
+
+
+def _draw_collection(name: str, curves: list[Curve], *, resolution: int = 16):
+    """Draw ``curves`` as curve objects in a new collection ``name`` linked to the scene:
+    all of them, or (if drawing fails midway) none, with everything created removed again."""
+    coll = bpy.data.collections.new(name)
     created = []
     try:
         for curve in curves:
@@ -273,20 +279,7 @@ def import_sections(
         report["points"] = len(sec.points)
         fitted.append(curve)
         reports.append(report)
-    coll = bpy.data.collections.new(collection or name)
-    created = []
-    try:
-        for curve in fitted:
-            created.append(curves_out.new_curve_object(curve, coll))
-        bpy.context.scene.collection.children.link(coll)
-    except BaseException:
-        for obj in created:
-            data = obj.data
-            bpy.data.objects.remove(obj)
-            bpy.data.curves.remove(data)
-        bpy.data.collections.remove(coll)
-        raise
-    return coll, reports
+    return _draw_collection(collection or name, fitted), reports
 
 
 def curvature_comb(obj, *, samples: int = 200, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
