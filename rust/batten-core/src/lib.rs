@@ -11,6 +11,7 @@ mod curve;
 mod error;
 mod fair;
 mod network;
+mod patch;
 mod tolerance;
 
 pub use curve::{
@@ -23,4 +24,9 @@ pub use fair::{
     MAX_FAIR_DEGREE,
 };
 pub use network::{Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION};
+pub use patch::{
+    gram_schmidt_cross_tangent, tessellate_patches, Domain, EdgeNormal, FaceBoundary, Patch,
+    PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
+    SideSegment, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
+};
 pub use tolerance::Tolerance;

@@ -1,0 +1,500 @@
+//! The topology-independent face description (sides made of designer-curve segments) and its
+//! validated, evaluation-ready form.
+//!
+//! A face is a loop of N ≥ 3 sides, counter-clockwise seen from outside (the H-rep paper's
+//! edge loops, §3.1). A side is one or more [`SideSegment`]s end to end: a composite side arises
+//! where a T-joint splits it (paper §5.2). Each side is parameterised by `s ∈ [0, 1]` from its
+//! start corner to its end corner; a composite side gives each segment an interval of `s` in
+//! proportion to its arc length (or its chord, [`SideParam`]), and within a segment `s` is
+//! mapped linearly onto the curve's own parameter, so the side is exactly the designer curve.
+
+use glam::{DVec3, DVec4};
+
+use super::error::PatchError;
+use crate::curve::{BezierDecomposition, NurbsCurve, MAX_ORDER};
+use crate::tolerance::Tolerance;
+
+/// A parameter interval `[t0, t1]` of one designer curve, traversed from `t0` to `t1`
+/// (`t0 > t1` traverses the curve backwards).
+///
+/// `start` and `end` are optional node positions supplied by the topology (the network node
+/// the segment starts/ends at). When given they are the exact corner positions the patch
+/// interpolates and the tessellation emits, so every face meeting at a node gets the same,
+/// bitwise identical vertex there; when absent the curve's own end points are used (and two
+/// segments meeting within tolerance are joined at their midpoint).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SideSegment {
+    /// The designer curve.
+    pub curve: NurbsCurve,
+    /// Parameter where the segment starts (in the face's traversal direction).
+    pub t0: f64,
+    /// Parameter where the segment ends.
+    pub t1: f64,
+    /// The designer curve's name, used in error messages (may be empty).
+    pub name: String,
+    /// Node position at `t0`, if the topology knows it.
+    pub start: Option<DVec3>,
+    /// Node position at `t1`, if the topology knows it.
+    pub end: Option<DVec3>,
+}
+
+impl SideSegment {
+    /// A segment of `curve` from `t0` to `t1`, unnamed and without node positions.
+    pub fn new(curve: NurbsCurve, t0: f64, t1: f64) -> SideSegment {
+        SideSegment {
+            curve,
+            t0,
+            t1,
+            name: String::new(),
+            start: None,
+            end: None,
+        }
+    }
+
+    /// The whole curve, in its own parameter direction.
+    pub fn whole(curve: NurbsCurve) -> SideSegment {
+        let (a, b) = curve.domain();
+        SideSegment::new(curve, a, b)
+    }
+
+    /// The same segment with a curve name for error messages.
+    pub fn named(mut self, name: impl Into<String>) -> SideSegment {
+        self.name = name.into();
+        self
+    }
+
+    /// The same segment with node positions at its two ends.
+    pub fn with_nodes(mut self, start: DVec3, end: DVec3) -> SideSegment {
+        self.start = Some(start);
+        self.end = Some(end);
+        self
+    }
+
+    /// The same segment traversed the other way (node positions swapped).
+    pub fn reversed(&self) -> SideSegment {
+        SideSegment {
+            curve: self.curve.clone(),
+            t0: self.t1,
+            t1: self.t0,
+            name: self.name.clone(),
+            start: self.end,
+            end: self.start,
+        }
+    }
+
+    /// The curve's parameters `t` of the tessellation samples of this segment, `resolution + 1`
+    /// of them, always in the curve's increasing parameter whatever the traversal direction.
+    ///
+    /// `t_j = lo + (hi − lo)·(j / resolution)` with the two ends set exactly to `lo` and `hi`:
+    /// the same segment used by two faces (in either direction) gives bitwise identical values.
+    pub fn sample_parameters(&self, resolution: usize) -> Vec<f64> {
+        let r = resolution.max(1);
+        (0..=r)
+            .map(|j| canonical_sample(self.t0, self.t1, r, j))
+            .collect()
+    }
+
+    fn label(&self) -> String {
+        if self.name.is_empty() {
+            "<unnamed>".to_string()
+        } else {
+            self.name.clone()
+        }
+    }
+}
+
+/// One side of a face: segments end to end, from the side's start corner to its end corner.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Side {
+    /// The segments in traversal order.
+    pub segments: Vec<SideSegment>,
+}
+
+impl Side {
+    /// A side made of the given segments.
+    pub fn new(segments: Vec<SideSegment>) -> Side {
+        Side { segments }
+    }
+
+    /// A side made of one segment.
+    pub fn single(segment: SideSegment) -> Side {
+        Side {
+            segments: vec![segment],
+        }
+    }
+
+    /// The same side traversed the other way, as the neighbouring face sees it.
+    pub fn reversed(&self) -> Side {
+        Side {
+            segments: self.segments.iter().rev().map(|s| s.reversed()).collect(),
+        }
+    }
+
+    fn curve_names(&self) -> String {
+        let names: Vec<String> = self.segments.iter().map(|s| s.label()).collect();
+        names.join(", ")
+    }
+}
+
+/// A face's boundary: N ≥ 3 sides, counter-clockwise seen from outside, side `i` ending where
+/// side `i + 1` starts (corner `i + 1`; corner `i` is the start of side `i`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceBoundary {
+    /// The sides in counter-clockwise order.
+    pub sides: Vec<Side>,
+}
+
+impl FaceBoundary {
+    /// A boundary from its sides.
+    pub fn new(sides: Vec<Side>) -> FaceBoundary {
+        FaceBoundary { sides }
+    }
+}
+
+/// How a composite side divides its parameter `s ∈ [0, 1]` among its segments.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SideParam {
+    /// In proportion to the segments' arc lengths (the default: the patch parameter then runs
+    /// at roughly uniform speed along the side).
+    #[default]
+    ArcLength,
+    /// In proportion to the segments' chords (cheaper; close to arc length for flat segments).
+    Chord,
+}
+
+/// Sample `j` of `r` of the interval between `t0` and `t1` in increasing parameter order, ends
+/// exact: the one formula every face uses, so a shared segment's samples are bitwise equal.
+#[inline]
+pub(crate) fn canonical_sample(t0: f64, t1: f64, r: usize, j: usize) -> f64 {
+    let (lo, hi) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+    match j {
+        0 => lo,
+        j if j >= r => hi,
+        j => lo + (hi - lo) * (j as f64 / r as f64),
+    }
+}
+
+/// A curve's Bézier pieces in homogeneous form, for fast evaluation of a point and its first
+/// derivative (rational de Casteljau; no basis-function derivatives, no allocation).
+#[derive(Clone, Debug)]
+pub(crate) struct FastCurve {
+    degree: usize,
+    /// Piece `k` spans `[breaks[k], breaks[k + 1]]`.
+    breaks: Vec<f64>,
+    /// `degree + 1` homogeneous control points per piece.
+    cw: Vec<DVec4>,
+}
+
+impl FastCurve {
+    pub(crate) fn new(curve: &NurbsCurve) -> FastCurve {
+        let dec = BezierDecomposition::new(curve);
+        let mut breaks = Vec::with_capacity(dec.pieces.len() + 1);
+        let mut cw = Vec::with_capacity(dec.pieces.len() * (curve.degree() + 1));
+        for piece in &dec.pieces {
+            breaks.push(piece.t0);
+            cw.extend_from_slice(&piece.cw);
+        }
+        breaks.push(dec.pieces.last().map_or(curve.domain().1, |p| p.t1));
+        FastCurve {
+            degree: curve.degree(),
+            breaks,
+            cw,
+        }
+    }
+
+    /// C(t) and C'(t) (t clamped into the domain).
+    #[inline]
+    pub(crate) fn eval_d1(&self, t: f64) -> (DVec3, DVec3) {
+        let m = self.breaks.len() - 1;
+        let k = (self.breaks[1..m].partition_point(|&b| b <= t)).min(m - 1);
+        let (a, b) = (self.breaks[k], self.breaks[k + 1]);
+        let x = ((t - a) / (b - a)).clamp(0.0, 1.0);
+        let p = self.degree;
+        let mut q = [DVec4::ZERO; MAX_ORDER];
+        q[..=p].copy_from_slice(&self.cw[k * (p + 1)..(k + 1) * (p + 1)]);
+        for level in 1..p {
+            for j in 0..=p - level {
+                q[j] = q[j] + (q[j + 1] - q[j]) * x;
+            }
+        }
+        let h = q[0] + (q[1] - q[0]) * x;
+        let dh = (q[1] - q[0]) * (p as f64 / (b - a));
+        let c = h.truncate() / h.w;
+        let dc = (dh.truncate() - c * dh.w) / h.w;
+        (c, dc)
+    }
+}
+
+/// One segment ready for evaluation: traversal parameters and the linear end corrections that
+/// make consecutive segments and sides meet exactly at the resolved node positions.
+#[derive(Clone, Debug)]
+pub(crate) struct PreparedSegment {
+    pub(crate) curve: NurbsCurve,
+    /// The same curve for fast point-and-derivative evaluation.
+    pub(crate) fast: FastCurve,
+    /// Curve parameter at the segment start (traversal order).
+    pub(crate) ta: f64,
+    /// Curve parameter at the segment end.
+    pub(crate) tb: f64,
+    /// Resolved start point minus the curve's start point.
+    pub(crate) d0: DVec3,
+    /// Resolved end point minus the curve's end point.
+    pub(crate) d1: DVec3,
+    /// Resolved start point (node position).
+    pub(crate) p0: DVec3,
+}
+
+/// A validated side: segments with corrections and the break parameters `U_0 = 0 < … < U_m = 1`.
+#[derive(Clone, Debug)]
+pub(crate) struct PreparedSide {
+    pub(crate) segs: Vec<PreparedSegment>,
+    pub(crate) breaks: Vec<f64>,
+    /// Resolved end point of the side (start of the next side).
+    pub(crate) end: DVec3,
+}
+
+impl PreparedSide {
+    /// Segment index and local parameter λ ∈ [0, 1] of side parameter `s` (clamped to [0, 1]).
+    #[inline]
+    pub(crate) fn locate(&self, s: f64) -> (usize, f64) {
+        let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
+        let m = self.segs.len();
+        let mut k = 0;
+        while k + 1 < m && s > self.breaks[k + 1] {
+            k += 1;
+        }
+        let (a, b) = (self.breaks[k], self.breaks[k + 1]);
+        let lam = ((s - a) / (b - a)).clamp(0.0, 1.0);
+        (k, lam)
+    }
+
+    /// Position and derivative d/ds of the (corrected) side at `s`.
+    #[inline]
+    pub(crate) fn eval(&self, s: f64) -> (DVec3, DVec3) {
+        let (k, lam) = self.locate(s);
+        let seg = &self.segs[k];
+        let dt = seg.tb - seg.ta;
+        let t = if lam >= 1.0 {
+            seg.tb
+        } else {
+            seg.ta + lam * dt
+        };
+        let (c, d1) = seg.fast.eval_d1(t);
+        let du = self.breaks[k + 1] - self.breaks[k];
+        let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
+        let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
+        (p, dp)
+    }
+
+    /// Position only.
+    #[inline]
+    pub(crate) fn point(&self, s: f64) -> DVec3 {
+        let (k, lam) = self.locate(s);
+        let seg = &self.segs[k];
+        let t = if lam >= 1.0 {
+            seg.tb
+        } else {
+            seg.ta + lam * (seg.tb - seg.ta)
+        };
+        seg.curve.point(t) + seg.d0 * (1.0 - lam) + seg.d1 * lam
+    }
+
+    /// Resolved start point (corner).
+    pub(crate) fn start(&self) -> DVec3 {
+        self.segs[0].p0
+    }
+}
+
+/// Validate a face boundary and resolve its corners and junctions (see [`SideSegment`]).
+pub(crate) fn prepare_boundary(
+    boundary: &FaceBoundary,
+    param: SideParam,
+    tol: Tolerance,
+    max_sides: usize,
+) -> Result<Vec<PreparedSide>, PatchError> {
+    let n = boundary.sides.len();
+    if n < 3 {
+        return Err(PatchError::TooFewSides { sides: n });
+    }
+    if n > max_sides {
+        return Err(PatchError::TooManySides {
+            sides: n,
+            max: max_sides,
+        });
+    }
+    let limit = tol.near_miss();
+    // Raw end points and lengths, after parameter validation.
+    let mut raw: Vec<Vec<(DVec3, DVec3, f64, f64)>> = Vec::with_capacity(n);
+    for (si, side) in boundary.sides.iter().enumerate() {
+        if side.segments.is_empty() {
+            return Err(PatchError::EmptySide { side: si });
+        }
+        let mut segs = Vec::with_capacity(side.segments.len());
+        let mut total = 0.0;
+        for (ki, seg) in side.segments.iter().enumerate() {
+            let (a, b) = seg.curve.domain();
+            for t in [seg.t0, seg.t1] {
+                let slack = 1e-12 * (b - a).abs().max(1.0);
+                if !t.is_finite() || t < a - slack || t > b + slack {
+                    return Err(PatchError::BadParameter {
+                        side: si,
+                        segment: ki,
+                        curve: seg.label(),
+                        t,
+                        start: a,
+                        end: b,
+                    });
+                }
+            }
+            for (p, which) in [(seg.start, "start"), (seg.end, "end")] {
+                if let Some(p) = p {
+                    if !p.is_finite() {
+                        return Err(PatchError::BadRibbonNode {
+                            curve: seg.label(),
+                            t: if which == "start" { seg.t0 } else { seg.t1 },
+                            reason: format!("{which} node position is not finite"),
+                        });
+                    }
+                }
+            }
+            let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
+            let length = if hi > lo {
+                seg.curve
+                    .arc_length_between(lo, hi, 0.1 * tol.get())
+                    .map_err(|source| PatchError::Curve {
+                        curve: seg.label(),
+                        source,
+                    })?
+            } else {
+                0.0
+            };
+            if length.is_nan() || length < tol.get() {
+                return Err(PatchError::ZeroLengthSide {
+                    side: si,
+                    curves: seg.label(),
+                    length,
+                    tolerance: tol.get(),
+                });
+            }
+            total += length;
+            let p0 = seg.curve.point(seg.t0);
+            let p1 = seg.curve.point(seg.t1);
+            let chord = (p1 - p0).length();
+            segs.push((p0, p1, length, chord));
+        }
+        if total.is_nan() || total < tol.get() {
+            return Err(PatchError::ZeroLengthSide {
+                side: si,
+                curves: side.curve_names(),
+                length: total,
+                tolerance: tol.get(),
+            });
+        }
+        raw.push(segs);
+    }
+
+    // Resolve the junction point between (side, segment) and the next segment (or next side).
+    let resolve = |a: &SideSegment, a_end: DVec3, b: &SideSegment, b_start: DVec3| -> DVec3 {
+        a.end.or(b.start).unwrap_or(if a_end == b_start {
+            a_end
+        } else {
+            (a_end + b_start) * 0.5
+        })
+    };
+
+    let mut out = Vec::with_capacity(n);
+    for (si, side) in boundary.sides.iter().enumerate() {
+        let m = side.segments.len();
+        // Start point of each segment and end point of the last.
+        let mut starts = Vec::with_capacity(m + 1);
+        // Corner at the start of this side: junction with the previous side's last segment.
+        let pi = (si + n - 1) % n;
+        let prev_side = &boundary.sides[pi];
+        let prev_seg = prev_side.segments.last().expect("sides are non-empty");
+        let prev_end = raw[pi].last().expect("sides are non-empty").1;
+        let first = &side.segments[0];
+        let first_start = raw[si][0].0;
+        let gap = (prev_end - first_start).length();
+        let corner = resolve(prev_seg, prev_end, first, first_start);
+        let worst = gap
+            .max((corner - prev_end).length())
+            .max((corner - first_start).length());
+        if worst.is_nan() || worst > limit {
+            return Err(PatchError::CornerGap {
+                corner: si,
+                prev: pi,
+                next: si,
+                prev_curves: prev_side.curve_names(),
+                next_curves: side.curve_names(),
+                gap: worst,
+                limit,
+            });
+        }
+        starts.push(corner);
+        for k in 0..m - 1 {
+            let (a, b) = (&side.segments[k], &side.segments[k + 1]);
+            let (a_end, b_start) = (raw[si][k].1, raw[si][k + 1].0);
+            let j = resolve(a, a_end, b, b_start);
+            let worst = (a_end - b_start)
+                .length()
+                .max((j - a_end).length())
+                .max((j - b_start).length());
+            if worst.is_nan() || worst > limit {
+                return Err(PatchError::SegmentGap {
+                    side: si,
+                    segment: k,
+                    next: k + 1,
+                    curve: a.label(),
+                    next_curve: b.label(),
+                    gap: worst,
+                    limit,
+                });
+            }
+            starts.push(j);
+        }
+        // End corner: resolved as the next side's start (same rule, same inputs).
+        let ni = (si + 1) % n;
+        let next_first = &boundary.sides[ni].segments[0];
+        let last = side.segments.last().expect("sides are non-empty");
+        let end = resolve(
+            last,
+            raw[si].last().expect("sides are non-empty").1,
+            next_first,
+            raw[ni][0].0,
+        );
+        starts.push(end);
+
+        // Break parameters.
+        let use_chord = param == SideParam::Chord && raw[si].iter().all(|r| r.3 >= tol.get());
+        let weights: Vec<f64> = raw[si]
+            .iter()
+            .map(|r| if use_chord { r.3 } else { r.2 })
+            .collect();
+        let total: f64 = weights.iter().sum();
+        let mut breaks = Vec::with_capacity(m + 1);
+        let mut acc = 0.0;
+        breaks.push(0.0);
+        for w in &weights[..m - 1] {
+            acc += w;
+            breaks.push(acc / total);
+        }
+        breaks.push(1.0);
+
+        let segs = side
+            .segments
+            .iter()
+            .enumerate()
+            .map(|(k, seg)| PreparedSegment {
+                curve: seg.curve.clone(),
+                fast: FastCurve::new(&seg.curve),
+                ta: seg.t0,
+                tb: seg.t1,
+                d0: starts[k] - raw[si][k].0,
+                d1: starts[k + 1] - raw[si][k].1,
+                p0: starts[k],
+            })
+            .collect();
+        out.push(PreparedSide { segs, breaks, end });
+    }
+    Ok(out)
+}

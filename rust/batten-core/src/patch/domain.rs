@@ -1,0 +1,133 @@
+//! The parameter domain of a patch: a convex polygon with one edge per face side.
+//!
+//! The Charrot–Gregory construction (H-rep paper §3.2.1, Fig. 7, eq. 1) works on a regular
+//! N-gon: for a domain point X, `d_i` is its perpendicular distance to domain side `i` and the
+//! side parameter is `s_i = d_{i−1} / (d_{i−1} + d_{i+1})` (eq. 1a; eq. 1b is `1 − s_{i−1}`).
+//! batten uses the regular N-gon of circumradius 1 with side 0 at the bottom, and for four
+//! sides the unit square `[0, 1]²`, on which `s_0 = u` and `s_1 = v` exactly, so the 4-sided
+//! Gregory patch and the 4-sided Charrot–Gregory patch share one domain.
+
+use glam::DVec2;
+
+/// The most sides a face may have: evaluation works in fixed-size stack arrays of this length
+/// (no allocation per sample).
+pub const MAX_SIDES: usize = 16;
+
+/// A convex, counter-clockwise domain polygon: the unit square for 4 sides, the regular N-gon
+/// (circumradius 1, side 0 horizontal at the bottom) otherwise.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Domain {
+    n: usize,
+    vertices: [DVec2; MAX_SIDES],
+    /// Inward unit normals of the sides.
+    normals: [DVec2; MAX_SIDES],
+}
+
+impl Domain {
+    /// The domain for an `n`-sided face, `3 <= n <= MAX_SIDES` (clamped into that range).
+    pub fn new(n: usize) -> Domain {
+        let n = n.clamp(3, MAX_SIDES);
+        let mut vertices = [DVec2::ZERO; MAX_SIDES];
+        if n == 4 {
+            vertices[..4].copy_from_slice(&[
+                DVec2::new(0.0, 0.0),
+                DVec2::new(1.0, 0.0),
+                DVec2::new(1.0, 1.0),
+                DVec2::new(0.0, 1.0),
+            ]);
+        } else {
+            let step = std::f64::consts::TAU / n as f64;
+            let start = -std::f64::consts::FRAC_PI_2 - 0.5 * step;
+            for (k, v) in vertices[..n].iter_mut().enumerate() {
+                let a = start + step * k as f64;
+                *v = DVec2::new(a.cos(), a.sin());
+            }
+        }
+        let mut normals = [DVec2::ZERO; MAX_SIDES];
+        for i in 0..n {
+            let e = vertices[(i + 1) % n] - vertices[i];
+            normals[i] = e.perp().normalize();
+        }
+        Domain {
+            n,
+            vertices,
+            normals,
+        }
+    }
+
+    /// Number of sides.
+    pub fn sides(&self) -> usize {
+        self.n
+    }
+
+    /// The polygon's vertices; vertex `i` is where domain side `i` starts.
+    pub fn vertices(&self) -> Vec<[f64; 2]> {
+        self.vertices[..self.n]
+            .iter()
+            .map(|v| v.to_array())
+            .collect()
+    }
+
+    /// The centroid of the vertices.
+    pub fn centre(&self) -> [f64; 2] {
+        self.centre_v().to_array()
+    }
+
+    pub(crate) fn centre_v(&self) -> DVec2 {
+        self.vertices[..self.n].iter().copied().sum::<DVec2>() / self.n as f64
+    }
+
+    pub(crate) fn vertex(&self, i: usize) -> DVec2 {
+        self.vertices[i % self.n]
+    }
+
+    /// The domain point at parameter `s ∈ [0, 1]` along side `i` (from vertex `i` to `i + 1`).
+    pub fn side_point(&self, i: usize, s: f64) -> [f64; 2] {
+        self.side_point_v(i, s).to_array()
+    }
+
+    pub(crate) fn side_point_v(&self, i: usize, s: f64) -> DVec2 {
+        let (a, b) = (self.vertex(i), self.vertex(i + 1));
+        if s >= 1.0 {
+            b
+        } else {
+            a + (b - a) * s
+        }
+    }
+
+    /// Signed distance of `x` to the line of side `i`, positive inside.
+    #[inline]
+    pub(crate) fn distance(&self, i: usize, x: DVec2) -> f64 {
+        (x - self.vertices[i]).dot(self.normals[i])
+    }
+
+    /// Whether `x` lies inside or on the polygon.
+    pub fn contains(&self, x: [f64; 2]) -> bool {
+        let x = DVec2::from(x);
+        (0..self.n).all(|i| self.distance(i, x) >= 0.0)
+    }
+
+    /// `x` if inside, else the nearest point of the polygon's boundary (NaN maps to the centre).
+    pub(crate) fn clamp(&self, x: DVec2) -> DVec2 {
+        if !x.is_finite() {
+            return self.centre_v();
+        }
+        if (0..self.n).all(|i| self.distance(i, x) >= 0.0) {
+            return x;
+        }
+        let mut best = x;
+        let mut best_d = f64::INFINITY;
+        for i in 0..self.n {
+            let (a, b) = (self.vertex(i), self.vertex(i + 1));
+            let e = b - a;
+            let t = ((x - a).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+            let p = a + e * t;
+            let d = (x - p).length_squared();
+            if d < best_d {
+                best_d = d;
+                best = p;
+            }
+        }
+        best
+    }
+}

@@ -1,0 +1,85 @@
+//! The 4-sided Gregory patch (Gregory 1974/1982; H-rep paper §3.2.1): a bicubically blended
+//! Coons patch `P1 + P2 − P12` whose corner twists are replaced by rational combinations of the
+//! two ribbons' derivatives along the sides, so incompatible twists at a corner are no obstacle.
+//!
+//! On the unit square, side 0 is `v = 0` (u increasing), side 1 is `u = 1` (v increasing),
+//! side 2 is `v = 1` (u decreasing) and side 3 is `u = 0` (v decreasing): the face's
+//! counter-clockwise order. With cubic Hermite functions `H0…H3`,
+//!
+//! `P1 = H0(u)·L(v) + H1(u)·L_u(v) + H2(u)·R(v) + H3(u)·R_u(v)` (left/right boundaries and
+//! their cross derivatives), `P2` the same in `v` for bottom/top, and `P12` the tensor-product
+//! Hermite interpolant of the corner positions, first derivatives and the rational twists, e.g.
+//! at (0,0): `F_uv = (u·∂L_u/∂v + v·∂B_v/∂u) / (u + v)`. The cross derivatives are the side
+//! ribbons `R_i` (see `ribbon`), signed for the square's axes.
+
+use glam::{DVec2, DVec3};
+
+use super::boundary::PreparedSide;
+use super::ribbon::PreparedRibbon;
+use super::CornerData;
+
+#[inline]
+fn hermite(x: f64) -> [f64; 4] {
+    let (x2, x3) = (x * x, x * x * x);
+    [
+        2.0 * x3 - 3.0 * x2 + 1.0,
+        x3 - 2.0 * x2 + x,
+        -2.0 * x3 + 3.0 * x2,
+        x3 - x2,
+    ]
+}
+
+/// Corner `i`'s rational twist in its local parameters (`u` along side `i`, `v` along side
+/// `i − 1` from the corner).
+#[inline]
+fn twist(c: &CornerData, u: f64, v: f64) -> DVec3 {
+    let uv = u + v;
+    if uv > 0.0 {
+        (c.x * u + c.y * v) / uv
+    } else {
+        (c.x + c.y) * 0.5
+    }
+}
+
+/// Evaluate the Gregory patch at `(u, v)` (clamped into the unit square).
+#[inline]
+pub(crate) fn eval(
+    sides: &[PreparedSide],
+    ribbons: &[PreparedRibbon],
+    corners: &[CornerData],
+    x: DVec2,
+) -> DVec3 {
+    let u = if x.x.is_nan() {
+        0.5
+    } else {
+        x.x.clamp(0.0, 1.0)
+    };
+    let v = if x.y.is_nan() {
+        0.5
+    } else {
+        x.y.clamp(0.0, 1.0)
+    };
+    let (b, bv) = ribbons[0].eval(&sides[0], u);
+    let (r, r1) = ribbons[1].eval(&sides[1], v);
+    let (t, t2) = ribbons[2].eval(&sides[2], 1.0 - u);
+    let (l, lu) = ribbons[3].eval(&sides[3], 1.0 - v);
+    let (ru, tv) = (-r1, -t2);
+    let hu = hermite(u);
+    let hv = hermite(v);
+    let p1 = l * hu[0] + lu * hu[1] + r * hu[2] + ru * hu[3];
+    let p2 = b * hv[0] + bv * hv[1] + t * hv[2] + tv * hv[3];
+    let [c0, c1, c2, c3] = [&corners[0], &corners[1], &corners[2], &corners[3]];
+    // Corner data (position, ∂u, ∂v, twist) in the square's axes.
+    let k00 = (c0.p, c0.a, c0.b, twist(c0, u, v));
+    let k10 = (c1.p, -c1.b, c1.a, -twist(c1, v, 1.0 - u));
+    let k11 = (c2.p, -c2.a, -c2.b, twist(c2, 1.0 - u, 1.0 - v));
+    let k01 = (c3.p, c3.b, -c3.a, -twist(c3, 1.0 - v, u));
+    let term = |k: (DVec3, DVec3, DVec3, DVec3), pu: f64, du: f64, pv: f64, dv: f64| {
+        k.0 * (pu * pv) + k.1 * (du * pv) + k.2 * (pu * dv) + k.3 * (du * dv)
+    };
+    let p12 = term(k00, hu[0], hu[1], hv[0], hv[1])
+        + term(k10, hu[2], hu[3], hv[0], hv[1])
+        + term(k11, hu[2], hu[3], hv[2], hv[3])
+        + term(k01, hu[0], hu[1], hv[2], hv[3]);
+    p1 + p2 - p12
+}

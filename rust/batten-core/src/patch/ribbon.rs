@@ -1,0 +1,498 @@
+//! Tangent ribbons: cross-boundary derivatives along each side of a face (H-rep paper §3.2.2).
+//!
+//! The paper builds the ribbon of a curve `C` from the tangents of the curves `D` crossing it:
+//! at each crossing, `T = D' − (D'·C')/(C'·C') C'` (eq. 8, Gram–Schmidt), normalised, and
+//! ignored when `D'` is within 15° of `C'`. batten keeps that construction but stores its
+//! result as a **surface normal along the edge**, `n = Ĉ' × T̂`, blended between the crossing
+//! nodes ([`EdgeNormal`]). Both faces sharing a smooth edge evaluate the same `n(t)` at the same
+//! curve parameter and take their cross tangent in the plane perpendicular to it, pointing into
+//! their own face; their tangent planes along the edge are therefore the same plane, which is
+//! the G1 (GC¹) condition of §3.2.2, along the whole edge and not only at the nodes. A knuckle
+//! (G0) edge simply gives each face its own [`EdgeNormal`], built from the crossing tangents on
+//! its own side only.
+//!
+//! The ribbon of side `i` of a face is then
+//! `R_i(s) = α(s)·ĉ(s) + β(s)·T̂(s)`, with `ĉ` the unit side tangent, `T̂ = n̂⊥ × ĉ` the unit
+//! cross tangent (`n̂⊥` the normal made perpendicular to `ĉ` once more by Gram–Schmidt) and
+//! `α`, `β` linear in `s` between the corner values that make `R_i` equal the neighbouring
+//! sides' tangents at the two corners (projected into the tangent plane). That corner
+//! condition is what the Gregory and Charrot–Gregory corner interpolants (eqs. 2–4) need to
+//! reproduce both boundary curves and their cross derivatives.
+//!
+//! A segment without crossing curves gets the face's default ribbon: the normal at each end
+//! corner is `ĉ × a` with `a` the neighbouring side's tangent there (the face's own corner),
+//! blended linearly and normalised along the side.
+
+use glam::DVec3;
+
+use super::boundary::{PreparedSide, SideSegment};
+use super::error::{PatchError, PatchWarning};
+
+/// The paper's minimum angle between a side and a crossing curve (§3.2.2): crossing tangents
+/// closer than this to the side tangent are ignored, because eq. 8 then amplifies noise.
+pub const MIN_CROSSING_ANGLE_DEGREES: f64 = 15.0;
+
+/// Corners sharper than this, or flatter than 180° minus this, are degenerate: the ribbon there
+/// is turned to this angle and a [`PatchWarning::CornerAngle`] is recorded.
+pub const MIN_CORNER_ANGLE_DEGREES: f64 = 2.0;
+
+/// Below this length (relative to the vectors involved) a cross product or Gram–Schmidt
+/// remainder is treated as zero: directions that close are parallel for every purpose here.
+const PARALLEL: f64 = 1e-9;
+
+/// The crossing information at one node on a side segment: the curve parameter of the node on
+/// the segment's curve and the tangents of the other curves through it (any orientation, any
+/// length; the adjacent sides' tangents at a corner count too).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RibbonNode {
+    /// Parameter of the node on the segment's curve.
+    pub t: f64,
+    /// Tangents of the crossing curves at the node.
+    pub tangents: Vec<DVec3>,
+}
+
+/// The cross-boundary tangent of eq. 8 (paper §3.2.2): `cross` made perpendicular to
+/// `side_tangent` by Gram–Schmidt and normalised, or `None` when the angle between the two is
+/// below `min_angle_degrees` (the 15° rule), or either vector is zero or not finite.
+pub fn gram_schmidt_cross_tangent(
+    cross: DVec3,
+    side_tangent: DVec3,
+    min_angle_degrees: f64,
+) -> Option<DVec3> {
+    if !cross.is_finite() || !side_tangent.is_finite() {
+        return None;
+    }
+    let (lc, ls) = (cross.length(), side_tangent.length());
+    if lc <= 0.0 || ls <= 0.0 {
+        return None;
+    }
+    let cos = (cross.dot(side_tangent) / (lc * ls)).abs().min(1.0);
+    if cos.acos() < min_angle_degrees.to_radians() {
+        return None;
+    }
+    let t = cross - side_tangent * (cross.dot(side_tangent) / side_tangent.dot(side_tangent));
+    let l = t.length();
+    (l > PARALLEL * lc).then(|| t / l)
+}
+
+/// The surface normal along one side segment (one topological edge), blended between nodes:
+/// the shared-plane form of the paper's tangent ribbon (§3.2.2, eq. 8). See the module docs.
+///
+/// Nodes are keyed by the curve's own parameter, so the two faces sharing the segment (which
+/// traverse it in opposite directions) evaluate the same normal at the same point. Between
+/// nodes the unit normals are blended by a cubic Hermite (Catmull–Rom slopes) in `t` and
+/// normalised; outside the first and last node the end normals are held. The sign is
+/// arbitrary; each face orients it outwards.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeNormal {
+    ts: Vec<f64>,
+    normals: Vec<DVec3>,
+    slopes: Vec<DVec3>,
+}
+
+impl EdgeNormal {
+    /// Build from the crossing curves at nodes along `segment` (eq. 8 with the 15° rule at each
+    /// node; several crossing tangents at one node are averaged). Returns `Ok(None)` when no
+    /// crossing tangent survives the angle rule: the face's default ribbon then applies.
+    ///
+    /// Errors when a node parameter is not finite or outside the segment's interval, or a
+    /// tangent is not finite.
+    pub fn from_crossings(
+        segment: &SideSegment,
+        nodes: &[RibbonNode],
+        min_angle_degrees: f64,
+    ) -> Result<Option<EdgeNormal>, PatchError> {
+        let mut pairs = Vec::with_capacity(nodes.len());
+        for node in nodes {
+            check_node_t(segment, node.t)?;
+            if let Some(bad) = node.tangents.iter().find(|v| !v.is_finite()) {
+                return Err(PatchError::BadRibbonNode {
+                    curve: segment_label(segment),
+                    t: node.t,
+                    reason: format!("crossing tangent {bad} is not finite"),
+                });
+            }
+            let d = segment.curve.derivs(node.t);
+            let c = if d.d1.length() > 0.0 { d.d1 } else { d.d2 };
+            let Some(c_hat) = c.try_normalize() else {
+                continue;
+            };
+            let mut acc = DVec3::ZERO;
+            let mut first: Option<DVec3> = None;
+            for &v in &node.tangents {
+                if let Some(t_hat) = gram_schmidt_cross_tangent(v, c_hat, min_angle_degrees) {
+                    let n = c_hat.cross(t_hat);
+                    let n = match first {
+                        None => {
+                            first = Some(n);
+                            n
+                        }
+                        Some(f) if f.dot(n) < 0.0 => -n,
+                        Some(_) => n,
+                    };
+                    acc += n;
+                }
+            }
+            if let Some(n) = acc.try_normalize() {
+                pairs.push((node.t, n));
+            }
+        }
+        if pairs.is_empty() {
+            return Ok(None);
+        }
+        Ok(Some(EdgeNormal::from_pairs(pairs)))
+    }
+
+    /// Build from given unit (or any non-zero) normals at curve parameters along `segment`,
+    /// e.g. from a known surface. Zero normals are rejected.
+    pub fn from_normals(
+        segment: &SideSegment,
+        nodes: &[(f64, DVec3)],
+    ) -> Result<EdgeNormal, PatchError> {
+        let mut pairs = Vec::with_capacity(nodes.len());
+        for &(t, n) in nodes {
+            check_node_t(segment, t)?;
+            let Some(n) = n.is_finite().then(|| n.try_normalize()).flatten() else {
+                return Err(PatchError::BadRibbonNode {
+                    curve: segment_label(segment),
+                    t,
+                    reason: format!("normal {n} is zero or not finite"),
+                });
+            };
+            pairs.push((t, n));
+        }
+        if pairs.is_empty() {
+            return Err(PatchError::BadRibbonNode {
+                curve: segment_label(segment),
+                t: segment.t0,
+                reason: "no normals given".to_string(),
+            });
+        }
+        Ok(EdgeNormal::from_pairs(pairs))
+    }
+
+    fn from_pairs(mut pairs: Vec<(f64, DVec3)>) -> EdgeNormal {
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // Merge nodes at the same parameter; align signs along the curve.
+        let mut ts: Vec<f64> = Vec::with_capacity(pairs.len());
+        let mut normals: Vec<DVec3> = Vec::with_capacity(pairs.len());
+        for (t, mut n) in pairs {
+            if let Some(prev) = normals.last() {
+                if prev.dot(n) < 0.0 {
+                    n = -n;
+                }
+            }
+            if ts.last() == Some(&t) {
+                let last = normals.last_mut().expect("same length as ts");
+                *last = (*last + n).try_normalize().unwrap_or(*last);
+            } else {
+                ts.push(t);
+                normals.push(n);
+            }
+        }
+        let k = ts.len();
+        let slopes = (0..k)
+            .map(|i| {
+                if k < 3 {
+                    // One node: constant; two nodes: the Hermite below with chord slopes
+                    // is the straight blend.
+                    if k == 2 {
+                        (normals[1] - normals[0]) / (ts[1] - ts[0])
+                    } else {
+                        DVec3::ZERO
+                    }
+                } else {
+                    let (a, b) = (i.saturating_sub(1), (i + 1).min(k - 1));
+                    (normals[b] - normals[a]) / (ts[b] - ts[a])
+                }
+            })
+            .collect();
+        EdgeNormal {
+            ts,
+            normals,
+            slopes,
+        }
+    }
+
+    /// The unit normal at curve parameter `t` (not yet made perpendicular to the curve).
+    #[inline]
+    pub fn normal(&self, t: f64) -> DVec3 {
+        let k = self.ts.len();
+        if k == 1 || t.is_nan() || t <= self.ts[0] {
+            return self.normals[0];
+        }
+        if t >= self.ts[k - 1] {
+            return self.normals[k - 1];
+        }
+        let i = self.ts.partition_point(|&x| x <= t) - 1;
+        let (t0, t1) = (self.ts[i], self.ts[i + 1]);
+        let h = t1 - t0;
+        let x = (t - t0) / h;
+        let (x2, x3) = (x * x, x * x * x);
+        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
+        let h10 = x3 - 2.0 * x2 + x;
+        let h01 = -2.0 * x3 + 3.0 * x2;
+        let h11 = x3 - x2;
+        let v = self.normals[i] * h00
+            + self.slopes[i] * (h10 * h)
+            + self.normals[i + 1] * h01
+            + self.slopes[i + 1] * (h11 * h);
+        // Aligned unit normals never blend to zero unless opposite; fall back to the nearer.
+        v.try_normalize().unwrap_or(if x < 0.5 {
+            self.normals[i]
+        } else {
+            self.normals[i + 1]
+        })
+    }
+
+    /// The node parameters.
+    pub fn parameters(&self) -> &[f64] {
+        &self.ts
+    }
+}
+
+fn segment_label(segment: &SideSegment) -> String {
+    if segment.name.is_empty() {
+        "<unnamed>".to_string()
+    } else {
+        segment.name.clone()
+    }
+}
+
+fn check_node_t(segment: &SideSegment, t: f64) -> Result<(), PatchError> {
+    let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
+    let slack = 1e-9 * (hi - lo).abs().max(1.0);
+    if !t.is_finite() || t < lo - slack || t > hi + slack {
+        return Err(PatchError::BadRibbonNode {
+            curve: segment_label(segment),
+            t,
+            reason: format!("parameter outside the segment [{lo}, {hi}]"),
+        });
+    }
+    Ok(())
+}
+
+/// The ribbon specification of one face side: one optional [`EdgeNormal`] per segment
+/// (`None`: that segment uses the face's default ribbon).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SideRibbon {
+    /// Per segment of the side, in the side's segment order.
+    pub segments: Vec<Option<EdgeNormal>>,
+}
+
+impl SideRibbon {
+    /// The default ribbon for a side of `segments` segments.
+    pub fn default_for(segments: usize) -> SideRibbon {
+        SideRibbon {
+            segments: vec![None; segments],
+        }
+    }
+
+    /// A one-segment side with the given normal field.
+    pub fn single(normal: EdgeNormal) -> SideRibbon {
+        SideRibbon {
+            segments: vec![Some(normal)],
+        }
+    }
+}
+
+/// A side ribbon ready for evaluation: oriented normal fields, default end normals and the
+/// corner coefficients α, β.
+#[derive(Clone, Debug)]
+pub(crate) struct PreparedRibbon {
+    /// Per segment: the edge normal field and the sign orienting it outwards for this face.
+    normals: Vec<Option<(EdgeNormal, f64)>>,
+    /// Default (outward) normals at the side's start and end corner.
+    n0: DVec3,
+    n1: DVec3,
+    /// The face's overall normal, last fallback.
+    face_normal: DVec3,
+    alpha: [f64; 2],
+    beta: [f64; 2],
+}
+
+/// Position, unit tangent and unit inward cross tangent of a side at `s`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SideSample {
+    pub(crate) p: DVec3,
+    pub(crate) c: DVec3,
+    pub(crate) cross: DVec3,
+}
+
+impl PreparedRibbon {
+    #[inline]
+    fn default_normal(&self, s: f64) -> DVec3 {
+        (self.n0 * (1.0 - s) + self.n1 * s)
+            .try_normalize()
+            .unwrap_or(self.face_normal)
+    }
+
+    /// The side's frame at `s`: point, unit tangent and unit inward cross tangent.
+    #[inline]
+    pub(crate) fn frame(&self, side: &PreparedSide, s: f64) -> SideSample {
+        let (k, lam) = side.locate(s);
+        let seg = &side.segs[k];
+        let dt = seg.tb - seg.ta;
+        let t = if lam >= 1.0 {
+            seg.tb
+        } else {
+            seg.ta + lam * dt
+        };
+        let (point, d1) = seg.fast.eval_d1(t);
+        let du = side.breaks[k + 1] - side.breaks[k];
+        let p = point + seg.d0 * (1.0 - lam) + seg.d1 * lam;
+        let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
+        // A zero derivative (coincident control points) has no direction: use the chord.
+        let c = dp
+            .try_normalize()
+            .unwrap_or_else(|| (side.end - side.start()).normalize_or(DVec3::X));
+        let n = match &self.normals[k] {
+            Some((en, sign)) => en.normal(t) * *sign,
+            None => self.default_normal(s),
+        };
+        let cross = in_plane_cross(n, c)
+            .or_else(|| in_plane_cross(self.default_normal(s), c))
+            .or_else(|| in_plane_cross(self.face_normal, c))
+            .unwrap_or_else(|| c.any_orthonormal_vector());
+        SideSample { p, c, cross }
+    }
+
+    /// Position and ribbon vector `R(s) = α(s)ĉ + β(s)T̂` at `s`.
+    #[inline]
+    pub(crate) fn eval(&self, side: &PreparedSide, s: f64) -> (DVec3, DVec3) {
+        let f = self.frame(side, s);
+        let s = s.clamp(0.0, 1.0);
+        let a = self.alpha[0] + (self.alpha[1] - self.alpha[0]) * s;
+        let b = self.beta[0] + (self.beta[1] - self.beta[0]) * s;
+        (f.p, f.c * a + f.cross * b)
+    }
+}
+
+/// `T̂ = n̂⊥ × ĉ`: the unit vector perpendicular to `c` in the plane perpendicular to `n`
+/// (Gram–Schmidt of `n` against `c` first), or `None` when `n` is (nearly) parallel to `c`.
+#[inline]
+fn in_plane_cross(n: DVec3, c: DVec3) -> Option<DVec3> {
+    let m = n - c * n.dot(c);
+    let l = m.length();
+    (l > PARALLEL).then(|| (m / l).cross(c))
+}
+
+/// Build the prepared ribbons of a face from its prepared sides and ribbon specifications.
+pub(crate) fn prepare_ribbons(
+    sides: &[PreparedSide],
+    specs: &[SideRibbon],
+    warnings: &mut Vec<PatchWarning>,
+) -> Vec<PreparedRibbon> {
+    let n = sides.len();
+    let ends: Vec<((DVec3, DVec3), (DVec3, DVec3))> =
+        sides.iter().map(|s| (s.eval(0.0), s.eval(1.0))).collect();
+    // Newell normal of the boundary polygon (8 samples per side): the face's overall
+    // orientation, used only where local information is degenerate.
+    let mut poly = Vec::with_capacity(8 * n);
+    for s in sides {
+        for j in 0..8 {
+            poly.push(s.point(j as f64 / 8.0));
+        }
+    }
+    let mut newell = DVec3::ZERO;
+    for (i, a) in poly.iter().enumerate() {
+        newell += a.cross(poly[(i + 1) % poly.len()]);
+    }
+    let face_normal = newell.try_normalize().unwrap_or(DVec3::Z);
+
+    let unit = |v: DVec3| v.try_normalize();
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let (prev, next) = ((i + n - 1) % n, (i + 1) % n);
+        let ((_, d_start), (_, d_end)) = ends[i];
+        // Tangents of the neighbouring sides leaving the two corners, into the face.
+        let a0 = -(ends[prev].1).1;
+        let a1 = (ends[next].0).1;
+        let c0 = unit(d_start).unwrap_or(DVec3::X);
+        let c1 = unit(d_end).unwrap_or(c0);
+        let corner_normal = |c: DVec3, a: DVec3| -> DVec3 {
+            let x = c.cross(a);
+            if x.length() > PARALLEL * a.length().max(f64::MIN_POSITIVE) && x.length() > 0.0 {
+                x.normalize()
+            } else {
+                let m = face_normal - c * face_normal.dot(c);
+                m.try_normalize().unwrap_or(face_normal)
+            }
+        };
+        let n0 = corner_normal(c0, a0);
+        let n1 = corner_normal(c1, a1);
+        let mut rib = PreparedRibbon {
+            normals: Vec::new(),
+            n0,
+            n1,
+            face_normal,
+            alpha: [0.0; 2],
+            beta: [0.0; 2],
+        };
+        let side = &sides[i];
+        let spec = specs.get(i);
+        rib.normals = (0..side.segs.len())
+            .map(|k| {
+                let en = spec
+                    .and_then(|sp| sp.segments.get(k))
+                    .and_then(|e| e.clone())?;
+                // Orient outwards: agree with the default normal at the segment's middle.
+                let seg = &side.segs[k];
+                let tm = 0.5 * (seg.ta + seg.tb);
+                let sm = 0.5 * (side.breaks[k] + side.breaks[k + 1]);
+                let dot = en.normal(tm).dot(rib.default_normal(sm));
+                let dot = if dot.abs() > PARALLEL {
+                    dot
+                } else {
+                    en.normal(tm).dot(face_normal)
+                };
+                Some((en, if dot < 0.0 { -1.0 } else { 1.0 }))
+            })
+            .collect();
+        // Corner coefficients: R(0) = a0 and R(1) = a1, projected into the tangent plane.
+        for (end, (s, a, corner)) in [(0.0, a0, i), (1.0, a1, next)].into_iter().enumerate() {
+            let f = rib.frame(side, s);
+            let normal = f.c.cross(f.cross);
+            let ap = a - normal * a.dot(normal);
+            let mut mag = ap.length();
+            if mag.is_nan() || mag <= 0.0 {
+                mag = a.length();
+            }
+            if mag.is_nan() || mag <= 0.0 {
+                // The neighbouring side has a zero derivative at the corner: use its chord.
+                let other = if end == 0 { &sides[prev] } else { &sides[next] };
+                mag = (other.end - other.start()).length();
+            }
+            let mut phi = ap.dot(f.cross).atan2(ap.dot(f.c));
+            let lo = MIN_CORNER_ANGLE_DEGREES.to_radians();
+            let hi = std::f64::consts::PI - lo;
+            if !(phi >= lo && phi <= hi) {
+                let used = if phi.is_nan() || phi.abs() < std::f64::consts::FRAC_PI_2 {
+                    lo
+                } else {
+                    hi
+                };
+                // The corner's interior angle is φ at the start corner and 180° − φ at the end.
+                let interior = |x: f64| {
+                    if end == 0 {
+                        x.to_degrees()
+                    } else {
+                        180.0 - x.to_degrees()
+                    }
+                };
+                warnings.push(PatchWarning::CornerAngle {
+                    corner,
+                    degrees: if phi.is_nan() { 0.0 } else { interior(phi) },
+                    used_degrees: interior(used),
+                });
+                phi = used;
+            }
+            // At the end corner the ribbon's own tangent component is measured along the side's
+            // direction at s = 1, same as at the start: R = α ĉ + β T̂ in both cases.
+            rib.alpha[end] = mag * phi.cos();
+            rib.beta[end] = mag * phi.sin();
+        }
+        out.push(rib);
+    }
+    out
+}

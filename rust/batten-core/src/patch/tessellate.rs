@@ -1,0 +1,282 @@
+//! Tessellation of patches into one welded mesh of quads and triangles.
+//!
+//! Every side is sampled from its designer curve itself: segment `k` of a side gets
+//! `resolution` intervals at the curve parameters of [`crate::SideSegment::sample_parameters`]
+//! (always computed in the curve's increasing parameter and reversed when the face traverses
+//! the segment backwards), and its ends are the resolved node positions. Two faces sharing a
+//! segment therefore emit bitwise identical boundary vertices whichever direction they see it
+//! in, and [`tessellate_patches`] welds them by exact equality, never by a distance.
+//!
+//! Interiors: a 4-sided face whose opposite sides have equal sample counts is a grid of quads
+//! (domain points by a discrete Coons interpolation of the boundary samples); any other face is
+//! triangulated on concentric rings of its domain polygon (ring `r` has `K − r` intervals per
+//! side, `K` the mean boundary count; a zipper joins the boundary to the first ring), which has
+//! no slivers for regular counts. Faces are counter-clockwise in the domain, so their normals
+//! point outwards for a counter-clockwise (seen from outside) face.
+
+use std::collections::HashMap;
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use super::boundary::canonical_sample;
+use super::error::PatchError;
+use super::Patch;
+
+/// A polygon mesh in plain arrays, as the Blender bridge wants it.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SurfaceMesh {
+    /// Vertex positions.
+    pub positions: Vec<[f64; 3]>,
+    /// Vertex indices of all faces, face after face (3 or 4 per face).
+    pub face_vertices: Vec<u32>,
+    /// Number of vertices of each face (3 or 4).
+    pub face_sizes: Vec<u8>,
+    /// Index of the patch each face belongs to (its position in the input slice).
+    pub face_patch: Vec<u32>,
+}
+
+impl SurfaceMesh {
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_sizes.len()
+    }
+
+    /// The vertex indices of every face, as slices (in face order).
+    pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        let mut start = 0;
+        self.face_sizes.iter().map(move |&k| {
+            let f = &self.face_vertices[start..start + k as usize];
+            start += k as usize;
+            f
+        })
+    }
+}
+
+/// One face's mesh before welding: the first `boundary` vertices lie on the face boundary.
+struct FaceMesh {
+    positions: Vec<DVec3>,
+    boundary: usize,
+    faces: Vec<u32>,
+    sizes: Vec<u8>,
+}
+
+impl Patch {
+    /// Tessellate this patch alone with `resolution` intervals per side segment.
+    pub fn tessellate(&self, resolution: usize) -> Result<SurfaceMesh, PatchError> {
+        tessellate_patches(std::slice::from_ref(self), resolution)
+    }
+
+    /// The boundary samples of the face in counter-clockwise order starting at corner 0 (each
+    /// corner once), with their domain points.
+    fn boundary_ring(&self, r: usize) -> (Vec<DVec3>, Vec<DVec2>, Vec<usize>, Vec<f64>) {
+        let n = self.sides.len();
+        let mut pts = Vec::new();
+        let mut dom = Vec::new();
+        let mut starts = Vec::with_capacity(n + 1);
+        let mut lambdas = Vec::new();
+        for (i, side) in self.sides.iter().enumerate() {
+            starts.push(pts.len());
+            for (k, seg) in side.segs.iter().enumerate() {
+                let (u0, u1) = (side.breaks[k], side.breaks[k + 1]);
+                pts.push(seg.p0);
+                dom.push(self.domain.side_point_v(i, u0));
+                lambdas.push(u0);
+                for q in 1..r {
+                    let j = if seg.ta <= seg.tb { q } else { r - q };
+                    let t = canonical_sample(seg.ta, seg.tb, r, j);
+                    let s = u0 + (u1 - u0) * (q as f64 / r as f64);
+                    pts.push(seg.curve.point(t));
+                    dom.push(self.domain.side_point_v(i, s));
+                    lambdas.push(s);
+                }
+            }
+        }
+        starts.push(pts.len());
+        (pts, dom, starts, lambdas)
+    }
+
+    fn face_mesh(&self, r: usize) -> FaceMesh {
+        let n = self.sides.len();
+        let (mut positions, dom, starts, lambdas) = self.boundary_ring(r);
+        let b = positions.len();
+        let counts: Vec<usize> = (0..n).map(|i| starts[i + 1] - starts[i]).collect();
+        let mut faces = Vec::new();
+        let mut sizes = Vec::new();
+        let wrap = |q: usize| (q % b) as u32;
+        if n == 4 && counts[0] == counts[2] && counts[1] == counts[3] {
+            let (nu, nv) = (counts[0], counts[1]);
+            let bidx = |a: usize, c: usize| -> Option<usize> {
+                if c == 0 {
+                    Some(a)
+                } else if a == nu {
+                    Some(nu + c)
+                } else if c == nv {
+                    Some(nu + nv + (nu - a))
+                } else if a == 0 {
+                    Some((2 * nu + nv + (nv - c)) % b)
+                } else {
+                    None
+                }
+            };
+            let idx = |a: usize, c: usize| -> u32 {
+                bidx(a, c).map_or_else(|| (b + (c - 1) * (nu - 1) + (a - 1)) as u32, |q| q as u32)
+            };
+            let bd = |a: usize, c: usize| dom[bidx(a, c).expect("on the boundary")];
+            let (p00, p10, p11, p01) = (bd(0, 0), bd(nu, 0), bd(nu, nv), bd(0, nv));
+            positions.reserve((nu - 1) * (nv - 1));
+            for c in 1..nv {
+                let v = c as f64 / nv as f64;
+                for a in 1..nu {
+                    let u = a as f64 / nu as f64;
+                    let x =
+                        bd(a, 0) * (1.0 - v) + bd(a, nv) * v + bd(0, c) * (1.0 - u) + bd(nu, c) * u
+                            - (p00 * ((1.0 - u) * (1.0 - v))
+                                + p10 * (u * (1.0 - v))
+                                + p11 * (u * v)
+                                + p01 * ((1.0 - u) * v));
+                    positions.push(self.eval_v(x));
+                }
+            }
+            for c in 0..nv {
+                for a in 0..nu {
+                    faces.extend([idx(a, c), idx(a + 1, c), idx(a + 1, c + 1), idx(a, c + 1)]);
+                    sizes.push(4);
+                }
+            }
+        } else {
+            let total: usize = counts.iter().sum();
+            let k = ((total as f64 / n as f64).round() as usize).max(1);
+            let centre = self.domain.centre_v();
+            // Ring r ≥ 1: (k − r) intervals per side, starting index base[r].
+            let mut base = vec![0usize; k];
+            let mut next = b;
+            for (rr, bs) in base.iter_mut().enumerate().skip(1) {
+                *bs = next;
+                let scale = 1.0 - rr as f64 / k as f64;
+                let m = k - rr;
+                for i in 0..n {
+                    let a = centre + (self.domain.vertex(i) - centre) * scale;
+                    let c = centre + (self.domain.vertex(i + 1) - centre) * scale;
+                    for j in 0..m {
+                        positions.push(self.eval_v(a + (c - a) * (j as f64 / m as f64)));
+                    }
+                }
+                next += n * m;
+            }
+            let centre_idx = next as u32;
+            positions.push(self.eval_v(centre));
+            let ring_side = |rr: usize, i: usize| -> Vec<(u32, f64)> {
+                let m = k - rr;
+                (0..=m)
+                    .map(|j| {
+                        let (ii, jj) = if j == m { ((i + 1) % n, 0) } else { (i, j) };
+                        ((base[rr] + ii * m + jj) as u32, j as f64 / m as f64)
+                    })
+                    .collect()
+            };
+            for i in 0..n {
+                let outer: Vec<(u32, f64)> = (starts[i]..=starts[i + 1])
+                    .map(|q| {
+                        let lam = if q == starts[i + 1] { 1.0 } else { lambdas[q] };
+                        (wrap(q), lam)
+                    })
+                    .collect();
+                if k == 1 {
+                    fan(&outer, centre_idx, &mut faces, &mut sizes);
+                } else {
+                    zipper(&outer, &ring_side(1, i), &mut faces, &mut sizes);
+                }
+                for rr in 1..k {
+                    let o = ring_side(rr, i);
+                    if rr + 1 < k {
+                        zipper(&o, &ring_side(rr + 1, i), &mut faces, &mut sizes);
+                    } else {
+                        fan(&o, centre_idx, &mut faces, &mut sizes);
+                    }
+                }
+            }
+        }
+        FaceMesh {
+            positions,
+            boundary: b,
+            faces,
+            sizes,
+        }
+    }
+}
+
+/// Triangles from a polyline to one point (counter-clockwise when the point lies to the left).
+fn fan(outer: &[(u32, f64)], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
+    for w in outer.windows(2) {
+        faces.extend([w[0].0, w[1].0, c]);
+        sizes.push(3);
+    }
+}
+
+/// Triangulate the strip between two polylines running the same way (`inner` to the left),
+/// each point carrying its relative position along the strip; advance the side whose next
+/// interval has the smaller midpoint.
+fn zipper(outer: &[(u32, f64)], inner: &[(u32, f64)], faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
+    let (mut a, mut b) = (0, 0);
+    while a + 1 < outer.len() || b + 1 < inner.len() {
+        let take_outer = if a + 1 >= outer.len() {
+            false
+        } else if b + 1 >= inner.len() {
+            true
+        } else {
+            outer[a].1 + outer[a + 1].1 <= inner[b].1 + inner[b + 1].1
+        };
+        if take_outer {
+            faces.extend([outer[a].0, outer[a + 1].0, inner[b].0]);
+            a += 1;
+        } else {
+            faces.extend([outer[a].0, inner[b + 1].0, inner[b].0]);
+            b += 1;
+        }
+        sizes.push(3);
+    }
+}
+
+/// Tessellate several patches (in parallel) into one mesh, `resolution` intervals per side
+/// segment, welding boundary vertices that are bitwise identical (shared segments and shared
+/// node positions). `face_patch` holds each face's index into `patches`.
+pub fn tessellate_patches(patches: &[Patch], resolution: usize) -> Result<SurfaceMesh, PatchError> {
+    if resolution == 0 {
+        return Err(PatchError::Resolution(resolution));
+    }
+    let meshes: Vec<FaceMesh> = patches
+        .par_iter()
+        .map(|p| p.face_mesh(resolution))
+        .collect();
+    let total: usize = meshes.iter().map(|m| m.positions.len()).sum();
+    if total >= u32::MAX as usize {
+        return Err(PatchError::MeshTooLarge(total));
+    }
+    let mut out = SurfaceMesh::default();
+    out.positions.reserve(total);
+    let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut local = Vec::new();
+    for (pid, m) in meshes.iter().enumerate() {
+        local.clear();
+        for (q, p) in m.positions.iter().enumerate() {
+            let key = p.to_array().map(f64::to_bits);
+            let idx = if q < m.boundary {
+                *welded.entry(key).or_insert_with(|| {
+                    out.positions.push(p.to_array());
+                    (out.positions.len() - 1) as u32
+                })
+            } else {
+                out.positions.push(p.to_array());
+                (out.positions.len() - 1) as u32
+            };
+            local.push(idx);
+        }
+        out.face_vertices
+            .extend(m.faces.iter().map(|&v| local[v as usize]));
+        out.face_sizes.extend_from_slice(&m.sizes);
+        out.face_patch
+            .extend(std::iter::repeat_n(pid as u32, m.sizes.len()));
+    }
+    Ok(out)
+}

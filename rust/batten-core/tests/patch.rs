@@ -1,0 +1,841 @@
+//! Analytic tests of the patch module: planes stay planes, boundaries and ribbons are
+//! interpolated, a sphere octant converges under refinement, shared sides weld bitwise and
+//! are GC¹, degenerate input gives errors or finite fallbacks.
+
+mod common;
+
+use batten_core::{
+    gram_schmidt_cross_tangent, tessellate_patches, EdgeNormal, FaceBoundary, NurbsCurve, Patch,
+    PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideRibbon, SideSegment,
+    Tolerance, MIN_CROSSING_ANGLE_DEGREES,
+};
+use glam::DVec3;
+
+fn bezier(pts: &[DVec3]) -> NurbsCurve {
+    let p = pts.len() - 1;
+    let mut knots = vec![0.0; p + 1];
+    knots.extend(vec![1.0; p + 1]);
+    NurbsCurve::try_new(p, knots, pts.to_vec(), None).expect("valid Bezier")
+}
+
+/// Exact great-circle arc of the unit sphere from `a` to `b` (rational quadratic).
+fn arc(a: DVec3, b: DVec3) -> NurbsCurve {
+    let half = 0.5 * a.dot(b).clamp(-1.0, 1.0).acos();
+    let m = (a + b).normalize() / half.cos();
+    NurbsCurve::try_new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+        vec![a, m, b],
+        Some(vec![1.0, half.cos(), 1.0]),
+    )
+    .expect("valid arc")
+}
+
+fn single_sides(curves: &[NurbsCurve]) -> FaceBoundary {
+    FaceBoundary::new(
+        curves
+            .iter()
+            .enumerate()
+            .map(|(i, c)| Side::single(SideSegment::whole(c.clone()).named(format!("c{i}"))))
+            .collect(),
+    )
+}
+
+/// Domain sample points: all tessellation-like points plus a scatter inside.
+fn domain_samples(p: &Patch, per_side: usize) -> Vec<[f64; 2]> {
+    let d = p.domain();
+    let c = d.centre();
+    let mut xs = Vec::new();
+    for i in 0..p.sides() {
+        for a in 0..=per_side {
+            let b = d.side_point(i, a as f64 / per_side as f64);
+            for r in 0..=per_side {
+                let f = r as f64 / per_side as f64;
+                xs.push([c[0] + (b[0] - c[0]) * f, c[1] + (b[1] - c[1]) * f]);
+            }
+        }
+    }
+    xs
+}
+
+// ---------------------------------------------------------------------------------------
+// Plane
+
+fn plane_z(x: f64, y: f64) -> f64 {
+    0.3 * x - 0.2 * y + 1.0
+}
+
+fn plane_normal() -> DVec3 {
+    DVec3::new(-0.3, 0.2, 1.0).normalize()
+}
+
+/// A convex N-gon with bulging cubic sides, lifted into the plane.
+fn planar_face(n: usize) -> Vec<NurbsCurve> {
+    let lift = |x: f64, y: f64| DVec3::new(x, y, plane_z(x, y));
+    let corners: Vec<(f64, f64)> = (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64 + 0.1;
+            let r = 2.0 + 0.3 * (3.0 * k as f64).sin();
+            (r * a.cos(), r * a.sin())
+        })
+        .collect();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (corners[k], corners[(k + 1) % n]);
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let (ox, oy) = (0.12 * dy, -0.12 * dx); // outward for a CCW polygon
+            bezier(&[
+                lift(a.0, a.1),
+                lift(a.0 + dx / 3.0 + ox, a.1 + dy / 3.0 + oy),
+                lift(
+                    a.0 + 2.0 * dx / 3.0 + 0.5 * ox,
+                    a.1 + 2.0 * dy / 3.0 + 0.5 * oy,
+                ),
+                lift(b.0, b.1),
+            ])
+        })
+        .collect()
+}
+
+#[test]
+fn planar_boundaries_and_ribbons_give_a_planar_patch() {
+    let origin = DVec3::new(0.0, 0.0, 1.0);
+    for n in 3..=6 {
+        let curves = planar_face(n);
+        let boundary = single_sides(&curves);
+        // Ribbons from in-plane crossing curves at three nodes per side.
+        let ribbons: Vec<SideRibbon> = curves
+            .iter()
+            .map(|c| {
+                let seg = SideSegment::whole(c.clone());
+                let nodes: Vec<RibbonNode> = [0.0, 0.4, 1.0]
+                    .iter()
+                    .map(|&t| RibbonNode {
+                        t,
+                        tangents: vec![DVec3::new(0.4, 1.0, plane_z(0.4, 1.0) - 1.0)],
+                    })
+                    .collect();
+                let en = EdgeNormal::from_crossings(&seg, &nodes, MIN_CROSSING_ANGLE_DEGREES)
+                    .expect("valid nodes");
+                SideRibbon { segments: vec![en] }
+            })
+            .collect();
+        let kinds: &[PatchKind] = if n == 4 {
+            &[PatchKind::Gregory, PatchKind::CharrotGregory]
+        } else {
+            &[PatchKind::CharrotGregory]
+        };
+        for &kind in kinds {
+            for rib in [&ribbons[..], &[][..]] {
+                let opts = PatchOptions {
+                    kind,
+                    ..PatchOptions::default()
+                };
+                let p = Patch::try_new(&boundary, rib, &opts).expect("planar patch");
+                let mut worst: f64 = 0.0;
+                for x in domain_samples(&p, 12) {
+                    let q = p.eval(x);
+                    worst = worst.max((q - origin).dot(plane_normal()).abs());
+                }
+                let mesh = p.tessellate(10).expect("mesh");
+                for q in &mesh.positions {
+                    worst = worst.max((DVec3::from(*q) - origin).dot(plane_normal()).abs());
+                }
+                println!(
+                    "plane N={n} {kind:?} ribbons={}: max distance {worst:.2e}",
+                    if rib.is_empty() {
+                        "default"
+                    } else {
+                        "crossing"
+                    }
+                );
+                assert!(worst <= 1e-9, "N={n} {kind:?}: off the plane by {worst:e}");
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Boundary and ribbon interpolation on a non-planar face
+
+fn saddle(x: f64, y: f64) -> DVec3 {
+    DVec3::new(x, y, 0.3 * (x * x - y * y) + 0.1 * x * y)
+}
+
+fn saddle_face(n: usize) -> Vec<NurbsCurve> {
+    let corners: Vec<(f64, f64)> = (0..n)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / n as f64 + 0.3;
+            (1.5 * a.cos(), 1.2 * a.sin())
+        })
+        .collect();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (corners[k], corners[(k + 1) % n]);
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            let m1 = saddle(a.0 + dx / 3.0 + 0.1 * dy, a.1 + dy / 3.0 - 0.1 * dx);
+            let m2 = saddle(a.0 + 2.0 * dx / 3.0, a.1 + 2.0 * dy / 3.0) + DVec3::Z * 0.1;
+            bezier(&[saddle(a.0, a.1), m1, m2, saddle(b.0, b.1)])
+        })
+        .collect()
+}
+
+#[test]
+fn patch_interpolates_boundary_curves_and_ribbon_planes() {
+    for n in 3..=6 {
+        let curves = saddle_face(n);
+        let boundary = single_sides(&curves);
+        let kinds: &[PatchKind] = if n == 4 {
+            &[PatchKind::Gregory, PatchKind::CharrotGregory]
+        } else {
+            &[PatchKind::CharrotGregory]
+        };
+        for &kind in kinds {
+            let opts = PatchOptions {
+                kind,
+                ..PatchOptions::default()
+            };
+            let p = Patch::try_new(&boundary, &[], &opts).expect("patch");
+            assert!(p.warnings().is_empty(), "no repairs: {:?}", p.warnings());
+            let mut pos_err: f64 = 0.0;
+            let mut angle: f64 = 0.0;
+            for (i, c) in curves.iter().enumerate() {
+                for k in 0..=40 {
+                    let s = k as f64 / 40.0;
+                    let x = p.domain().side_point(i, s);
+                    pos_err = pos_err.max((p.eval(x) - c.point(s)).length());
+                    if (1..40).contains(&k) {
+                        // The surface normal must be perpendicular to the ribbon and to the
+                        // side tangent: the cross-boundary derivative lies along the ribbon.
+                        let nrm = p.normal(x);
+                        let rib = p.ribbon(i, s).normalize();
+                        let tan = c.derivs(s).d1.normalize();
+                        let ribbon_normal = tan.cross(rib).normalize();
+                        angle = angle.max(nrm.angle_between(ribbon_normal).to_degrees());
+                    }
+                }
+            }
+            println!("saddle N={n} {kind:?}: boundary error {pos_err:.2e}, normal vs ribbon plane {angle:.2e}°");
+            assert!(
+                pos_err <= 1e-12,
+                "N={n} {kind:?}: edge off curve by {pos_err:e}"
+            );
+            assert!(
+                angle <= 1e-3,
+                "N={n} {kind:?}: normal off ribbon plane by {angle}°"
+            );
+        }
+    }
+}
+
+#[test]
+fn four_sided_charrot_gregory_is_close_to_gregory() {
+    let curves = saddle_face(4);
+    let boundary = single_sides(&curves);
+    let g = Patch::try_new(&boundary, &[], &PatchOptions::default()).expect("Gregory");
+    let cg = Patch::try_new(
+        &boundary,
+        &[],
+        &PatchOptions {
+            kind: PatchKind::CharrotGregory,
+            ..PatchOptions::default()
+        },
+    )
+    .expect("Charrot-Gregory");
+    assert_eq!(
+        g.kind(),
+        PatchKind::Gregory,
+        "Auto picks Gregory for 4 sides"
+    );
+    let mut diff: f64 = 0.0;
+    let mut size: f64 = 0.0;
+    for a in 0..=20 {
+        for b in 0..=20 {
+            let x = [a as f64 / 20.0, b as f64 / 20.0];
+            diff = diff.max((g.eval(x) - cg.eval(x)).length());
+            size = size.max((g.eval(x) - g.eval([0.0, 0.0])).length());
+        }
+    }
+    println!(
+        "4-sided Gregory vs Charrot-Gregory: max difference {diff:.3e} on a face of size {size:.2}"
+    );
+    assert!(
+        diff < 0.05 * size,
+        "the two schemes differ by {diff} on size {size}"
+    );
+    assert!(diff > 0.0, "the two schemes are different interpolants");
+}
+
+// ---------------------------------------------------------------------------------------
+// Sphere octant
+
+/// A spherical polygon face (great-circle sides) with ribbons from the sphere's tangent
+/// planes: crossing tangents at both end nodes of every side (as the topology would give).
+fn sphere_patch(corners: &[DVec3], kind: PatchKind) -> Patch {
+    let n = corners.len();
+    let mut sides = Vec::new();
+    let mut ribbons = Vec::new();
+    for i in 0..n {
+        let c = arc(corners[i], corners[(i + 1) % n]);
+        let seg = SideSegment::whole(c.clone());
+        let nodes: Vec<RibbonNode> = [0.0, 1.0]
+            .iter()
+            .map(|&t| {
+                let d = c.derivs(t);
+                let normal = d.point.normalize();
+                // A crossing curve tangent in the sphere's tangent plane, not perpendicular.
+                let cross = normal.cross(d.d1.normalize()) + d.d1.normalize() * 0.4;
+                RibbonNode {
+                    t,
+                    tangents: vec![cross, -cross],
+                }
+            })
+            .collect();
+        let en = EdgeNormal::from_crossings(&seg, &nodes, MIN_CROSSING_ANGLE_DEGREES)
+            .expect("nodes")
+            .expect("crossings survive the 15 degree rule");
+        sides.push(Side::single(seg));
+        ribbons.push(SideRibbon::single(en));
+    }
+    Patch::try_new(
+        &FaceBoundary::new(sides),
+        &ribbons,
+        &PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        },
+    )
+    .expect("sphere patch")
+}
+
+fn split_quad(q: [DVec3; 4]) -> Vec<[DVec3; 4]> {
+    let mid = |a: DVec3, b: DVec3| (a + b).normalize();
+    let c = (q[0] + q[1] + q[2] + q[3]).normalize();
+    let m: Vec<DVec3> = (0..4).map(|i| mid(q[i], q[(i + 1) % 4])).collect();
+    (0..4).map(|i| [q[i], m[i], c, m[(i + 3) % 4]]).collect()
+}
+
+fn sphere_deviation(patches: &[Patch]) -> f64 {
+    let mut worst: f64 = 0.0;
+    for p in patches {
+        for x in domain_samples(p, 16) {
+            worst = worst.max((p.eval(x).length() - 1.0).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn sphere_octant_converges_under_refinement() {
+    let (a, b, c) = (DVec3::X, DVec3::Y, DVec3::Z);
+    let level0 = vec![sphere_patch(&[a, b, c], PatchKind::Auto)];
+    // Level 1: three quads around the octant's centre.
+    let centre = (a + b + c).normalize();
+    let mid = |p: DVec3, q: DVec3| (p + q).normalize();
+    let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+    let mut quads = vec![
+        [a, ab, centre, ca],
+        [b, bc, centre, ab],
+        [c, ca, centre, bc],
+    ];
+    let mut devs = vec![sphere_deviation(&level0)];
+    let mut devs_cg = vec![devs[0]];
+    for level in 1..=3 {
+        let g: Vec<Patch> = quads
+            .iter()
+            .map(|q| sphere_patch(q, PatchKind::Gregory))
+            .collect();
+        let cg: Vec<Patch> = quads
+            .iter()
+            .map(|q| sphere_patch(q, PatchKind::CharrotGregory))
+            .collect();
+        devs.push(sphere_deviation(&g));
+        devs_cg.push(sphere_deviation(&cg));
+        println!(
+            "sphere level {level}: {} quads, max |r - 1| Gregory {:.3e}, Charrot-Gregory {:.3e}",
+            quads.len(),
+            devs[level],
+            devs_cg[level]
+        );
+        quads = quads.into_iter().flat_map(split_quad).collect();
+    }
+    println!("sphere level 0: 1 triangle, max |r - 1| {:.3e}", devs[0]);
+    for l in 1..devs.len() {
+        assert!(
+            devs[l] < devs[l - 1],
+            "Gregory deviation must shrink: {devs:?}"
+        );
+        assert!(
+            devs_cg[l] < devs_cg[l - 1],
+            "CG deviation must shrink: {devs_cg:?}"
+        );
+    }
+    assert!(
+        devs[0] < 0.06,
+        "octant triangle within 6% of the radius: {}",
+        devs[0]
+    );
+    assert!(devs[3] < 1e-4, "48 quads within 1e-4: {}", devs[3]);
+}
+
+// ---------------------------------------------------------------------------------------
+// Shared sides
+
+fn smooth_surface(x: f64, y: f64) -> DVec3 {
+    DVec3::new(x, y, 0.3 * (1.3 * x).sin() * (0.9 * y).cos() + 0.1 * x * x)
+}
+
+fn surface_normal(x: f64, y: f64) -> DVec3 {
+    let h = 1e-6;
+    let du = (smooth_surface(x + h, y) - smooth_surface(x - h, y)) / (2.0 * h);
+    let dv = (smooth_surface(x, y + h) - smooth_surface(x, y - h)) / (2.0 * h);
+    du.cross(dv).normalize()
+}
+
+/// Cubic through four surface points at x or y = const (a curve near the surface).
+fn surface_curve(p: (f64, f64), q: (f64, f64)) -> NurbsCurve {
+    let pts: Vec<DVec3> = (0..4)
+        .map(|k| {
+            let f = k as f64 / 3.0;
+            smooth_surface(p.0 + (q.0 - p.0) * f, p.1 + (q.1 - p.1) * f)
+        })
+        .collect();
+    bezier(&pts)
+}
+
+/// The shared curve x ≈ 1 from the middle of the bottom curve to the middle of the top curve.
+fn shared_curve() -> NurbsCurve {
+    let bottom = surface_curve((0.0, 0.0), (2.0, 0.0));
+    let top = surface_curve((0.0, 1.0), (2.0, 1.0));
+    bezier(&[
+        bottom.point(0.5),
+        smooth_surface(1.0, 1.0 / 3.0),
+        smooth_surface(1.0, 2.0 / 3.0),
+        top.point(0.5),
+    ])
+}
+
+/// Normal field for the shared segment x = 1: at its end nodes the crossing curves are the
+/// network's curves y = 0 and y = 1 (as the topology would pass them), at its middle node a
+/// crossing curve along the surface.
+fn surface_edge_normal(curve: &NurbsCurve) -> EdgeNormal {
+    let seg = SideSegment::whole(curve.clone());
+    let bottom = surface_curve((0.0, 0.0), (2.0, 0.0));
+    let top = surface_curve((0.0, 1.0), (2.0, 1.0));
+    let mid = curve.point(0.5);
+    let n = surface_normal(mid.x, mid.y);
+    let nodes = vec![
+        RibbonNode {
+            t: 0.0,
+            tangents: vec![bottom.derivs(0.5).d1],
+        },
+        RibbonNode {
+            t: 0.5,
+            tangents: vec![n.cross(curve.derivs(0.5).d1)],
+        },
+        RibbonNode {
+            t: 1.0,
+            tangents: vec![top.derivs(0.5).d1],
+        },
+    ];
+    EdgeNormal::from_crossings(&seg, &nodes, MIN_CROSSING_ANGLE_DEGREES)
+        .expect("nodes")
+        .expect("a crossing")
+}
+
+struct TwoFaces {
+    a: Patch,
+    b: Patch,
+}
+
+/// Faces A = [0,1]x[0,1] and B = [1,2]x[0,1]; the shared side x = 1 is A's side 1 and B's
+/// side 3 (reversed). `shared` gives the shared edge's normal field to A and/or B.
+fn two_faces(shared_a: bool, shared_b: bool) -> TwoFaces {
+    let shared = shared_curve();
+    let en = surface_edge_normal(&shared);
+    let rib = |use_shared: bool| {
+        if use_shared {
+            SideRibbon::single(en.clone())
+        } else {
+            SideRibbon::default_for(1)
+        }
+    };
+    let side = |c: NurbsCurve| Side::single(SideSegment::whole(c));
+    // Bottom and top are single network curves through both faces (split at x = 1).
+    let bottom = surface_curve((0.0, 0.0), (2.0, 0.0));
+    let top = surface_curve((0.0, 1.0), (2.0, 1.0));
+    let seg = |c: &NurbsCurve, t0: f64, t1: f64| Side::single(SideSegment::new(c.clone(), t0, t1));
+    let a = FaceBoundary::new(vec![
+        seg(&bottom, 0.0, 0.5),
+        side(shared.clone()),
+        seg(&top, 0.5, 0.0),
+        side(surface_curve((0.0, 1.0), (0.0, 0.0))),
+    ]);
+    let shared_rev = SideSegment::new(shared.clone(), 1.0, 0.0);
+    let b = FaceBoundary::new(vec![
+        seg(&bottom, 0.5, 1.0),
+        side(surface_curve((2.0, 0.0), (2.0, 1.0))),
+        seg(&top, 1.0, 0.5),
+        Side::single(shared_rev),
+    ]);
+    let d = || SideRibbon::default_for(1);
+    let ra = vec![d(), rib(shared_a), d(), d()];
+    let rb = vec![d(), d(), d(), rib(shared_b)];
+    TwoFaces {
+        a: Patch::try_new(&a, &ra, &PatchOptions::default()).expect("A"),
+        b: Patch::try_new(&b, &rb, &PatchOptions::default()).expect("B"),
+    }
+}
+
+fn max_normal_angle(f: &TwoFaces) -> f64 {
+    let mut worst: f64 = 0.0;
+    for k in 0..=100 {
+        let s = k as f64 / 100.0;
+        let xa = f.a.domain().side_point(1, s);
+        let xb = f.b.domain().side_point(3, 1.0 - s);
+        let (pa, pb) = (f.a.eval(xa), f.b.eval(xb));
+        assert!(
+            (pa - pb).length() < 1e-12,
+            "shared edge points agree at s={s}"
+        );
+        let ang = f.a.normal(xa).angle_between(f.b.normal(xb)).to_degrees();
+        worst = worst.max(ang);
+    }
+    worst
+}
+
+#[test]
+fn shared_edge_normals_agree_and_vertices_weld_bitwise() {
+    let f = two_faces(true, true);
+    let worst = max_normal_angle(&f);
+    println!("shared-plane ribbons: max normal angle across the shared edge {worst:.2e}°");
+    assert!(
+        worst <= 0.01,
+        "normals across the shared edge differ by {worst}°"
+    );
+
+    // Sensitivity: only A knows the crossing curve at the edge's middle node.
+    let g = two_faces(true, false);
+    let worst_g = max_normal_angle(&g);
+    println!("one face with default ribbon: max normal angle {worst_g:.2e}°");
+    assert!(
+        worst_g > 0.01,
+        "the check detects unshared ribbons ({worst_g}°)"
+    );
+
+    // Bitwise welding: the shared side's samples are the same f64s in both faces.
+    let r = 12;
+    let (ma, mb) = (f.a.tessellate(r).expect("A"), f.b.tessellate(r).expect("B"));
+    let bits = |p: &[f64; 3]| p.map(f64::to_bits);
+    let sa: std::collections::HashSet<_> = ma.positions.iter().map(bits).collect();
+    let shared_in_b = mb
+        .positions
+        .iter()
+        .filter(|p| sa.contains(&bits(p)))
+        .count();
+    assert_eq!(
+        shared_in_b,
+        r + 1,
+        "exactly the shared side's samples coincide"
+    );
+    let both = tessellate_patches(&[f.a.clone(), f.b.clone()], r).expect("mesh");
+    assert_eq!(
+        both.positions.len(),
+        2 * (r + 1) * (r + 1) - (r + 1),
+        "welded vertex count"
+    );
+    assert_eq!(both.face_count(), 2 * r * r, "quads");
+    assert!(
+        both.face_sizes.iter().all(|&k| k == 4),
+        "4-sided faces are quad grids"
+    );
+    // Orientation: every quad's normal agrees with the surface's upward normal.
+    for face in both.faces() {
+        let p: Vec<DVec3> = face
+            .iter()
+            .map(|&v| DVec3::from(both.positions[v as usize]))
+            .collect();
+        let nrm = (p[2] - p[0]).cross(p[3] - p[1]);
+        assert!(nrm.z > 0.0, "face normal points up (CCW seen from above)");
+    }
+}
+
+#[test]
+fn composite_side_welds_with_its_pieces() {
+    // Face A's right side is split at a T-joint into two segments; B1 and B2 use one each.
+    let shared = surface_curve((1.0, 0.0), (1.0, 1.0));
+    let (lo, hi) = shared.split(0.4).expect("split");
+    let side = |c: NurbsCurve| Side::single(SideSegment::whole(c));
+    let a = FaceBoundary::new(vec![
+        side(surface_curve((0.0, 0.0), (1.0, 0.0))),
+        Side::new(vec![
+            SideSegment::whole(lo.clone()),
+            SideSegment::whole(hi.clone()),
+        ]),
+        side(surface_curve((1.0, 1.0), (0.0, 1.0))),
+        side(surface_curve((0.0, 1.0), (0.0, 0.0))),
+    ]);
+    let pm = lo.point(lo.domain().1);
+    let (mx, my) = (pm.x, pm.y);
+    let b1 = FaceBoundary::new(vec![
+        side(surface_curve((1.0, 0.0), (2.0, 0.0))),
+        side(surface_curve((2.0, 0.0), (2.0, my))),
+        side(bezier(&[smooth_surface(2.0, my), pm])),
+        Side::single(SideSegment::whole(lo.clone()).reversed()),
+    ]);
+    let b2 = FaceBoundary::new(vec![
+        side(bezier(&[pm, smooth_surface(2.0, my)])),
+        side(surface_curve((2.0, my), (2.0, 1.0))),
+        side(surface_curve((2.0, 1.0), (1.0, 1.0))),
+        Side::single(SideSegment::whole(hi.clone()).reversed()),
+    ]);
+    let _ = mx;
+    let opts = PatchOptions {
+        tolerance: Tolerance::try_new(1e-3).expect("tol"),
+        ..PatchOptions::default()
+    };
+    let pa = Patch::try_new(&a, &[], &opts).expect("A");
+    let p1 = Patch::try_new(&b1, &[], &opts).expect("B1");
+    let p2 = Patch::try_new(&b2, &[], &opts).expect("B2");
+    let r = 8;
+    let ma = pa.tessellate(r).expect("A");
+    let bits = |p: &[f64; 3]| p.map(f64::to_bits);
+    let sa: std::collections::HashSet<_> = ma.positions.iter().map(bits).collect();
+    for (p, name) in [(&p1, "B1"), (&p2, "B2")] {
+        let m = p.tessellate(r).expect("mesh");
+        let common = m.positions.iter().filter(|q| sa.contains(&bits(q))).count();
+        assert_eq!(common, r + 1, "{name} shares its whole left side with A");
+    }
+    let all = tessellate_patches(&[pa, p1, p2], r).expect("mesh");
+    assert!(
+        all.face_sizes.contains(&3),
+        "A (counts 8,16,8,8) is triangulated"
+    );
+    for q in &all.positions {
+        assert!(q.iter().all(|v| v.is_finite()), "finite vertices");
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Ribbons
+
+#[test]
+fn gram_schmidt_follows_eq_8_and_the_15_degree_rule() {
+    let c = DVec3::new(2.0, 0.0, 0.0);
+    let at = |deg: f64| DVec3::new(deg.to_radians().cos(), deg.to_radians().sin(), 0.0) * 3.0;
+    assert_eq!(
+        gram_schmidt_cross_tangent(at(10.0), c, 15.0),
+        None,
+        "10 degrees ignored"
+    );
+    assert_eq!(
+        gram_schmidt_cross_tangent(at(170.0), c, 15.0),
+        None,
+        "170 degrees ignored"
+    );
+    let t = gram_schmidt_cross_tangent(at(20.0), c, 15.0).expect("20 degrees kept");
+    assert!(
+        (t - DVec3::Y).length() < 1e-15,
+        "normalised, perpendicular: {t}"
+    );
+    assert_eq!(
+        gram_schmidt_cross_tangent(DVec3::NAN, c, 15.0),
+        None,
+        "NaN ignored"
+    );
+
+    let seg = SideSegment::whole(bezier(&[DVec3::ZERO, DVec3::X])).named("keel");
+    let shallow = RibbonNode {
+        t: 0.5,
+        tangents: vec![at(5.0)],
+    };
+    assert_eq!(
+        EdgeNormal::from_crossings(&seg, &[shallow], 15.0).expect("valid"),
+        None,
+        "only shallow crossings: default ribbon"
+    );
+    let bad = RibbonNode {
+        t: 2.0,
+        tangents: vec![DVec3::Y],
+    };
+    let err = EdgeNormal::from_crossings(&seg, &[bad], 15.0).expect_err("t outside");
+    assert!(err.to_string().contains("keel"), "names the curve: {err}");
+}
+
+// ---------------------------------------------------------------------------------------
+// Degenerate input
+
+fn square_curves() -> Vec<NurbsCurve> {
+    let p = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.2),
+        DVec3::new(0.0, 1.0, 0.0),
+    ];
+    (0..4).map(|i| bezier(&[p[i], p[(i + 1) % 4]])).collect()
+}
+
+fn all_finite(p: &Patch) -> bool {
+    let mesh = p.tessellate(8).expect("mesh");
+    mesh.positions
+        .iter()
+        .all(|q| q.iter().all(|v| v.is_finite()))
+        && domain_samples(p, 10).iter().all(|x| p.eval(*x).is_finite())
+        && p.eval([f64::NAN, 0.3]).is_finite()
+        && p.eval([5.0, -7.0]).is_finite()
+}
+
+#[test]
+fn degenerate_input_errors_or_falls_back_without_nan() {
+    let opts = PatchOptions::default();
+    let c = square_curves();
+
+    // Too few / too many sides.
+    let two = single_sides(&c[..2]);
+    assert!(
+        matches!(
+            Patch::try_new(&two, &[], &opts),
+            Err(PatchError::TooFewSides { sides: 2 })
+        ),
+        "2 sides refused"
+    );
+    let many: Vec<NurbsCurve> = (0..17)
+        .map(|k| {
+            let a = |k: usize| {
+                let t = std::f64::consts::TAU * k as f64 / 17.0;
+                DVec3::new(t.cos(), t.sin(), 0.0)
+            };
+            bezier(&[a(k), a(k + 1)])
+        })
+        .collect();
+    assert!(
+        matches!(
+            Patch::try_new(&single_sides(&many), &[], &opts),
+            Err(PatchError::TooManySides { .. })
+        ),
+        "17 sides refused"
+    );
+
+    // Zero-length side: an empty parameter interval, and a curve shorter than the tolerance.
+    let mut b = single_sides(&c);
+    b.sides[2] = Side::single(SideSegment::new(c[2].clone(), 0.5, 0.5).named("deck"));
+    let err = Patch::try_new(&b, &[], &opts).expect_err("zero length");
+    assert!(
+        matches!(err, PatchError::ZeroLengthSide { side: 2, .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("deck"), "names the curve: {err}");
+    let tiny = bezier(&[DVec3::new(1.0, 1.0, 0.2), DVec3::new(1.0, 1.0, 0.2 + 1e-6)]);
+    let tri = single_sides(&[
+        bezier(&[DVec3::ZERO, DVec3::new(1.0, 1.0, 0.2)]),
+        tiny,
+        bezier(&[DVec3::new(1.0, 1.0, 0.2 + 1e-6), DVec3::ZERO]),
+    ]);
+    assert!(
+        matches!(
+            Patch::try_new(&tri, &[], &opts),
+            Err(PatchError::ZeroLengthSide { side: 1, .. })
+        ),
+        "tiny side refused"
+    );
+
+    // NaN parameter.
+    let mut b = single_sides(&c);
+    b.sides[1] = Side::single(SideSegment::new(c[1].clone(), f64::NAN, 1.0));
+    assert!(
+        matches!(
+            Patch::try_new(&b, &[], &opts),
+            Err(PatchError::BadParameter { side: 1, .. })
+        ),
+        "NaN parameter refused"
+    );
+
+    // A gap of 1 cm at a corner with a 0.1 mm tolerance.
+    let mut moved = c.clone();
+    moved[1] = bezier(&[DVec3::new(1.01, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.2)]);
+    let mut b = single_sides(&moved);
+    b.sides[1].segments[0].name = "stem".into();
+    let err = Patch::try_new(&b, &[], &opts).expect_err("gap");
+    assert!(
+        matches!(err, PatchError::CornerGap { corner: 1, .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("stem"), "names the curve: {err}");
+    // A gap below 10x the tolerance is closed: the corner is shared exactly.
+    moved[1] = bezier(&[DVec3::new(1.0 + 3e-4, 0.0, 0.0), DVec3::new(1.0, 1.0, 0.2)]);
+    let p = Patch::try_new(&single_sides(&moved), &[], &opts).expect("small gap closed");
+    assert!(
+        (p.eval([1.0, 0.0]) - DVec3::new(1.0 + 1.5e-4, 0.0, 0.0)).length() < 1e-12,
+        "corner at the midpoint"
+    );
+    assert!(all_finite(&p), "finite");
+
+    // Gregory on a triangle.
+    let t3 = single_sides(&planar_face(3));
+    assert!(
+        matches!(
+            Patch::try_new(
+                &t3,
+                &[],
+                &PatchOptions {
+                    kind: PatchKind::Gregory,
+                    ..opts
+                }
+            ),
+            Err(PatchError::GregoryNeedsFourSides { sides: 3 })
+        ),
+        "Gregory needs 4 sides"
+    );
+
+    // Resolution 0.
+    let p = Patch::try_new(&single_sides(&c), &[], &opts).expect("square");
+    assert!(
+        matches!(p.tessellate(0), Err(PatchError::Resolution(0))),
+        "resolution 0 refused"
+    );
+
+    // Corner angle near 0: two sides leave a corner 0.5 degrees apart.
+    let e = 0.5f64.to_radians();
+    let sliver = single_sides(&[
+        bezier(&[DVec3::ZERO, DVec3::new(1.0, 0.0, 0.0)]),
+        bezier(&[DVec3::new(1.0, 0.0, 0.0), DVec3::new(e.cos(), e.sin(), 0.0)]),
+        bezier(&[DVec3::new(e.cos(), e.sin(), 0.0), DVec3::ZERO]),
+    ]);
+    let p = Patch::try_new(&sliver, &[], &opts).expect("sliver repaired");
+    assert!(
+        p.warnings().iter().any(|w| matches!(w, PatchWarning::CornerAngle { corner: 0, degrees, .. } if (*degrees - 0.5).abs() < 1e-6)),
+        "corner 0 reported: {:?}",
+        p.warnings()
+    );
+    assert!(all_finite(&p), "sliver patch finite");
+
+    // Corner angle of 180 degrees: a pentagon with a straight-through corner.
+    let pts = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(0.5, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(1.0, 1.0, 0.3),
+        DVec3::new(0.0, 1.0, 0.0),
+    ];
+    let flat: Vec<NurbsCurve> = (0..5)
+        .map(|i| bezier(&[pts[i], pts[(i + 1) % 5]]))
+        .collect();
+    let p = Patch::try_new(&single_sides(&flat), &[], &opts).expect("flat corner repaired");
+    assert!(
+        p.warnings()
+            .iter()
+            .any(|w| matches!(w, PatchWarning::CornerAngle { corner: 1, .. })),
+        "corner 1 reported: {:?}",
+        p.warnings()
+    );
+    assert!(all_finite(&p), "flat-corner patch finite");
+    // Its boundary is still interpolated.
+    for k in 0..=10 {
+        let s = k as f64 / 10.0;
+        let x = p.domain().side_point(0, s);
+        assert!(
+            (p.eval(x) - flat[0].point(s)).length() < 1e-12,
+            "edge kept at s={s}"
+        );
+    }
+}
