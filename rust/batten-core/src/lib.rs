@@ -13,6 +13,7 @@ mod fair;
 mod network;
 mod patch;
 mod tolerance;
+mod topo;
 
 pub use curve::{
     Aabb, BezierDecomposition, CurveDerivs, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
@@ -23,10 +24,18 @@ pub use fair::{
     FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
     MAX_FAIR_DEGREE,
 };
-pub use network::{Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION};
+pub use network::{
+    Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,
+};
 pub use patch::{
     gram_schmidt_cross_tangent, tessellate_patches, Domain, EdgeNormal, FaceBoundary, Patch,
     PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
     SideSegment, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
 };
 pub use tolerance::Tolerance;
+pub use topo::{
+    BoundaryLoop, Brep, Diagnostic, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId,
+    FaceSide, HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, Shell, ShellId, TopoFace,
+    Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
+    CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
+};

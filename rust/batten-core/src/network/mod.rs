@@ -1,7 +1,9 @@
 //! Curve networks: the designer's named curves with their roles, and their versioned JSON file
 //! format.
 
+mod approach;
 mod format;
+mod nodes;
 
 use std::collections::HashSet;
 
@@ -11,7 +13,9 @@ use crate::curve::NurbsCurve;
 use crate::error::{CurveError, Error};
 use crate::tolerance::Tolerance;
 
+pub(crate) use approach::PieceCurve;
 pub use format::{NETWORK_FORMAT, NETWORK_VERSION};
+pub use nodes::{Incidence, Junction, Junctions};
 
 /// What a curve is to the hull. `Knuckle` makes the surface G0 (a chine) across the curve; the
 /// boundary roles (keel, stem, transom, deck, midship, FOS, FOB) mark the form topology that

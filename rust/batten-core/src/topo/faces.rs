@@ -1,0 +1,178 @@
+//! Faces of the rotation system: loops traced by the "next edge is the one immediately
+//! clockwise" rule, sorted into faces and boundary loops, and each face's true corners and
+//! sides (H-rep paper §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
+
+use glam::DVec3;
+
+use super::brep::{Brep, HalfEdgeId, LoopId};
+use crate::network::PieceCurve;
+
+/// The boundary of a face runs on smoothly through a node (no corner) when its direction turns
+/// by less than this (15°, the H-rep paper's minimum angle between tangents, §3.2.2).
+pub const CORNER_ANGLE_DEGREES: f64 = 15.0;
+
+/// Samples per loop for its vector area, at least (a loop of one or two curved edges needs
+/// points inside its edges to have an area at all)…
+const AREA_SAMPLES_PER_LOOP: usize = 8;
+/// …and per edge.
+const AREA_SAMPLES_PER_EDGE: usize = 2;
+
+/// One side of a face: the edges between two true corners, and the designer curves along it
+/// (H-rep paper §5.2: the system resolves "the number of edges bounding a patch").
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceSide {
+    /// The edges of the side, in loop order.
+    pub edges: Vec<super::brep::EdgeId>,
+    /// The designer curves along the side (indices into the network), in order, without
+    /// consecutive repeats.
+    pub curves: Vec<usize>,
+}
+
+/// The unit direction in which half-edge `h` leaves its origin.
+pub(crate) fn leaving(brep: &Brep, dirs: &[DVec3], h: HalfEdgeId) -> DVec3 {
+    debug_assert!(h.index() < brep.half_edges.len(), "half-edge in range");
+    dirs[h.index()]
+}
+
+/// Angle (radians) by which a loop turns at the vertex between `h_in` and `h_out`.
+pub(crate) fn turn_angle(brep: &Brep, dirs: &[DVec3], h_in: HalfEdgeId, h_out: HalfEdgeId) -> f64 {
+    let arriving = -leaving(brep, dirs, brep.half_edge(h_in).twin);
+    let out = leaving(brep, dirs, h_out);
+    arriving.angle_between(out)
+}
+
+/// Corners and sides of a loop: a vertex is a corner when the boundary turns there by at least
+/// [`CORNER_ANGLE_DEGREES`]; a T-joint seen from the through-curve's side, or a node where
+/// one curve is split, is not a corner, so that side is a composite of several edges.
+pub(crate) fn corners_and_sides(
+    brep: &Brep,
+    dirs: &[DVec3],
+    half_edges: &[HalfEdgeId],
+) -> (usize, Vec<FaceSide>) {
+    let n = half_edges.len();
+    let limit = CORNER_ANGLE_DEGREES.to_radians();
+    // corner[i]: the vertex where half_edges[i] starts is a corner.
+    let corner: Vec<bool> = (0..n)
+        .map(|i| turn_angle(brep, dirs, half_edges[(i + n - 1) % n], half_edges[i]) >= limit)
+        .collect();
+    let count = corner.iter().filter(|&&c| c).count();
+    let start = corner.iter().position(|&c| c).unwrap_or(0);
+    let mut sides: Vec<FaceSide> = Vec::new();
+    for k in 0..n {
+        let i = (start + k) % n;
+        if k == 0 || corner[i] {
+            sides.push(FaceSide {
+                edges: Vec::new(),
+                curves: Vec::new(),
+            });
+        }
+        let side = sides.last_mut().expect("a side was opened");
+        let edge = brep.half_edge(half_edges[i]).edge;
+        side.edges.push(edge);
+        let curve = brep.edges[edge.index()].curve;
+        if side.curves.last() != Some(&curve) {
+            side.curves.push(curve);
+        }
+    }
+    (count, sides)
+}
+
+/// Vector area `½ ∮ p × dp` of a loop, from points sampled along its edges, and the sum of its
+/// vertices' normals. Their dot product is positive for a face (counter-clockwise about the
+/// normals) and negative for a boundary loop traced round the outside.
+pub(crate) fn orientation(
+    brep: &Brep,
+    curves: &[PieceCurve],
+    normals: &[DVec3],
+    l: LoopId,
+) -> (DVec3, DVec3) {
+    let hs = brep.loop_half_edges(l);
+    let origin = brep.vertices[brep.half_edge(hs[0]).origin.index()].position;
+    let mut area = DVec3::ZERO;
+    let mut normal = DVec3::ZERO;
+    let mut prev: Option<DVec3> = None;
+    let samples = AREA_SAMPLES_PER_EDGE.max(AREA_SAMPLES_PER_LOOP.div_ceil(hs.len()));
+    for &h in &hs {
+        let he = brep.half_edge(h);
+        normal += normals[he.origin.index()];
+        let e = &brep.edges[he.edge.index()];
+        let curve = &curves[e.curve];
+        let (a, b) = if brep.is_forward(h) {
+            (e.t0, e.t1)
+        } else {
+            (e.t1, e.t0)
+        };
+        for k in 0..samples {
+            let t = a + (b - a) * k as f64 / samples as f64;
+            let p = curve.point(t) - origin;
+            if let Some(q) = prev {
+                area += 0.5 * q.cross(p);
+            }
+            prev = Some(p);
+        }
+    }
+    if let Some(q) = prev {
+        area += 0.5 * q.cross(DVec3::ZERO);
+    }
+    (area, normal)
+}
+
+/// Each edge's share `½ ∫ p × dp` of the vector area of any loop along it (forward
+/// direction), from the polyline through its end vertices and its middle point; zero for edges
+/// without half-edges. Shares of the edges of a loop add up to the loop's vector area, because
+/// the polylines of consecutive edges meet at the shared vertex.
+pub(crate) fn edge_areas(brep: &Brep, curves: &[PieceCurve]) -> Vec<DVec3> {
+    brep.edges
+        .iter()
+        .map(|e| {
+            if e.half_edges.is_none() {
+                return DVec3::ZERO;
+            }
+            let a = brep.vertices[e.start.index()].position;
+            let b = brep.vertices[e.end.index()].position;
+            let m = curves[e.curve].point(0.5 * (e.t0 + e.t1));
+            0.5 * (a.cross(m) + m.cross(b))
+        })
+        .collect()
+}
+
+/// Vector area and normal sum of a loop from the edge shares of [`edge_areas`]; loops of one
+/// or two edges (whose three-point polylines may enclose nothing) are sampled more finely.
+pub(crate) fn loop_orientation(
+    brep: &Brep,
+    curves: &[PieceCurve],
+    areas: &[DVec3],
+    normals: &[DVec3],
+    l: LoopId,
+    half_edges: &[HalfEdgeId],
+) -> (DVec3, DVec3) {
+    if half_edges.len() <= 2 {
+        return orientation(brep, curves, normals, l);
+    }
+    let mut area = DVec3::ZERO;
+    let mut normal = DVec3::ZERO;
+    for &h in half_edges {
+        let he = brep.half_edge(h);
+        normal += normals[he.origin.index()];
+        let share = areas[he.edge.index()];
+        area += if brep.is_forward(h) { share } else { -share };
+    }
+    (area, normal)
+}
+
+/// True when a loop runs along some edge on both sides (it then bounds no disk). `stamp` is a
+/// scratch array over the edges, `mark` a value not yet used in it.
+pub(crate) fn has_bridge(
+    brep: &Brep,
+    half_edges: &[HalfEdgeId],
+    stamp: &mut [u32],
+    mark: u32,
+) -> bool {
+    let mut bridge = false;
+    for &h in half_edges {
+        let e = brep.half_edge(h).edge.index();
+        bridge |= stamp[e] == mark;
+        stamp[e] = mark;
+    }
+    bridge
+}

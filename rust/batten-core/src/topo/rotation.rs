@@ -1,0 +1,267 @@
+//! The rotation system of a curve network on a curved surface: at every node, a surface normal
+//! estimated from the incident tangents, oriented consistently over each connected part, and
+//! the incident edges sorted counter-clockwise about it (H-rep paper §5.2: "the number of edges
+//! bounding a patch … is resolved by the system").
+
+use std::collections::VecDeque;
+
+use glam::DVec3;
+
+use crate::network::PieceCurve;
+
+/// Below this sine of the angle between two tangents they are taken as parallel, so they do
+/// not define a plane (about 0.06°).
+const PARALLEL_SINE: f64 = 1e-3;
+
+/// Unit direction in which a stretch `[t_from → t_to]` of a curve leaves `t_from`: the
+/// one-sided derivative on the stretch's side, or the chord to a nearby point where the
+/// derivative vanishes.
+pub(crate) fn leaving_direction(curve: &PieceCurve, t_from: f64, t_to: f64) -> DVec3 {
+    let forward = t_to > t_from;
+    let (p0, d1, _) = curve.eval_side(t_from, forward);
+    let d = if forward { d1 } else { -d1 };
+    let step = (t_to - t_from).abs();
+    if d.length() * step > 1e-9 * (1.0 + p0.length()) {
+        return d.normalize();
+    }
+    (curve.point(t_from + 1e-3 * (t_to - t_from)) - p0).normalize_or_zero()
+}
+
+/// The surface normal at a node from the unit tangents of its edges (unoriented), or `None`
+/// when all tangents are parallel.
+///
+/// With three or more tangents: the normal of the least-squares plane through their tips
+/// (the tips of tangents in a tangent plane lie in it; at a cone-like node, such as the corner
+/// of a box, the plane through the tips is perpendicular to the cone's axis). The normal is the
+/// row of the tips' covariance cofactors with the largest determinant (exact for coplanar
+/// tips). With two tangents, or when the tips are collinear: their cross products, each signed
+/// to agree with the largest one, summed.
+pub(crate) fn raw_normal(tangents: &[DVec3]) -> Option<DVec3> {
+    if tangents.len() >= 3 {
+        if let Some(n) = plane_normal(tangents) {
+            return Some(n);
+        }
+    }
+    let mut best = DVec3::ZERO;
+    for (i, a) in tangents.iter().enumerate() {
+        for b in &tangents[i + 1..] {
+            let c = a.cross(*b);
+            if c.length_squared() > best.length_squared() {
+                best = c;
+            }
+        }
+    }
+    if best.length() < PARALLEL_SINE {
+        return None;
+    }
+    let mut sum = DVec3::ZERO;
+    for (i, a) in tangents.iter().enumerate() {
+        for b in &tangents[i + 1..] {
+            let c = a.cross(*b);
+            sum += if c.dot(best) >= 0.0 { c } else { -c };
+        }
+    }
+    Some(sum.normalize())
+}
+
+/// Largest distance of a tangent tip from the least-squares plane through the tips (the plane
+/// of [`raw_normal`]); 0 for fewer than four tangents, whose tips always fit a plane. Tips of
+/// tangents in one smooth surface lie near that plane; a large value means several surface
+/// sheets meet at the node.
+pub(crate) fn off_plane(tangents: &[DVec3]) -> f64 {
+    if tangents.len() < 4 {
+        return 0.0;
+    }
+    let Some(n) = plane_normal(tangents) else {
+        return 0.0;
+    };
+    let c = tangents.iter().copied().sum::<DVec3>() / tangents.len() as f64;
+    tangents
+        .iter()
+        .map(|t| (*t - c).dot(n).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Normal of the least-squares plane through points (here: tangent tips), `None` when they are
+/// (nearly) collinear.
+fn plane_normal(points: &[DVec3]) -> Option<DVec3> {
+    let c = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+    let (mut xx, mut xy, mut xz, mut yy, mut yz, mut zz) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for p in points {
+        let r = *p - c;
+        xx += r.x * r.x;
+        xy += r.x * r.y;
+        xz += r.x * r.z;
+        yy += r.y * r.y;
+        yz += r.y * r.z;
+        zz += r.z * r.z;
+    }
+    let det_x = yy * zz - yz * yz;
+    let det_y = xx * zz - xz * xz;
+    let det_z = xx * yy - xy * xy;
+    let det_max = det_x.max(det_y).max(det_z);
+    let scale = (xx + yy + zz) * (xx + yy + zz);
+    if det_max.is_nan() || det_max <= PARALLEL_SINE * PARALLEL_SINE * scale {
+        return None;
+    }
+    let n = if det_max == det_x {
+        DVec3::new(det_x, xz * yz - xy * zz, xy * yz - xz * yy)
+    } else if det_max == det_y {
+        DVec3::new(xz * yz - xy * zz, det_y, xy * xz - yz * xx)
+    } else {
+        DVec3::new(xy * yz - xz * yy, xy * xz - yz * xx, det_z)
+    };
+    n.try_normalize()
+}
+
+/// Orient the raw normals consistently over each connected part of the graph by breadth-first
+/// propagation from the vertex with the best-defined normal: a neighbour's normal is flipped
+/// when it points against the normal it is reached from. Vertices without a normal (all
+/// tangents parallel) take the normal they are reached from. Returns one unit normal per vertex
+/// (zero for vertices without edges).
+pub(crate) fn orient_normals(
+    raw: &[Option<(DVec3, f64)>],
+    neighbours: &[Vec<usize>],
+) -> Vec<DVec3> {
+    let n = raw.len();
+    let mut out = vec![DVec3::ZERO; n];
+    let mut seen = vec![false; n];
+    let mut order: Vec<usize> = (0..n).filter(|&v| !neighbours[v].is_empty()).collect();
+    // Start each part at its most confident normal.
+    order.sort_by(|&a, &b| {
+        let ca = raw[a].map_or(0.0, |r| r.1);
+        let cb = raw[b].map_or(0.0, |r| r.1);
+        cb.total_cmp(&ca).then(a.cmp(&b))
+    });
+    let mut queue = VecDeque::new();
+    for start in order {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        out[start] = raw[start].map_or(DVec3::Z, |r| r.0);
+        queue.push_back(start);
+        while let Some(u) = queue.pop_front() {
+            for &v in &neighbours[u] {
+                if seen[v] {
+                    continue;
+                }
+                seen[v] = true;
+                out[v] = match raw[v] {
+                    Some((nv, _)) if nv.dot(out[u]) < 0.0 => -nv,
+                    Some((nv, _)) => nv,
+                    None => out[u],
+                };
+                queue.push_back(v);
+            }
+        }
+    }
+    out
+}
+
+/// Tangent angles (radians) closer than this are a tie, broken further along the edges.
+const TANGENT_TIE: f64 = 1e-6;
+
+/// Sort directions counter-clockwise about `normal`; returns the permutation. `fallback(i)`
+/// gives a second direction for entry `i` (further along the edge) that breaks ties between
+/// edges leaving with the same tangent; it is only called for such ties.
+pub(crate) fn ccw_order(
+    normal: DVec3,
+    dirs: &[DVec3],
+    fallback: &dyn Fn(usize) -> DVec3,
+) -> Vec<usize> {
+    let project = |d: DVec3| d - normal * d.dot(normal);
+    let e1 = dirs
+        .iter()
+        .map(|d| project(*d))
+        .find(|p| p.length() > PARALLEL_SINE)
+        .map_or_else(|| normal.any_orthonormal_vector(), DVec3::normalize);
+    let e2 = normal.cross(e1);
+    let angle = |d: DVec3| {
+        let p = project(d);
+        p.dot(e2).atan2(p.dot(e1))
+    };
+    let keys: Vec<f64> = dirs.iter().map(|d| angle(*d)).collect();
+    let mut idx: Vec<usize> = (0..dirs.len()).collect();
+    idx.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]));
+    // Runs of (nearly) equal tangent angles are ordered by the direction further along.
+    let mut start = 0;
+    while start < idx.len() {
+        let mut end = start + 1;
+        while end < idx.len() && keys[idx[end]] - keys[idx[end - 1]] < TANGENT_TIE {
+            end += 1;
+        }
+        if end - start > 1 {
+            let base = keys[idx[start]];
+            let rel = |i: usize| {
+                let d = angle(fallback(i)) - base;
+                (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
+            };
+            let mut run: Vec<(f64, usize)> = idx[start..end].iter().map(|&i| (rel(i), i)).collect();
+            run.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            for (k, (_, i)) in run.into_iter().enumerate() {
+                idx[start + k] = i;
+            }
+        }
+        start = end;
+    }
+    idx
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ccw_order_of_a_plus_sign() {
+        let dirs = [DVec3::Y, DVec3::NEG_X, DVec3::X, DVec3::NEG_Y];
+        let order = ccw_order(DVec3::Z, &dirs, &|i| dirs[i]);
+        // Starting from +Y (the first direction): -X, -Y, +X counter-clockwise about +Z.
+        let pos = |i: usize| order.iter().position(|&k| k == i).expect("present");
+        let cyc = |a: usize, b: usize| (pos(b) + 4 - pos(a)) % 4;
+        assert_eq!(cyc(0, 1), 1, "-X follows +Y");
+        assert_eq!(cyc(0, 3), 2, "-Y opposite +Y");
+        assert_eq!(cyc(0, 2), 3, "+X last");
+    }
+
+    #[test]
+    fn equal_tangents_are_ordered_further_along() {
+        // Two edges leave along +X; one bends to +Y, the other to -Y. Counter-clockwise about
+        // +Z: the one bending to -Y comes first, then the one bending to +Y, then -X.
+        let dirs = [DVec3::X, DVec3::NEG_X, DVec3::X];
+        let further = [
+            DVec3::new(1.0, 0.1, 0.0),
+            DVec3::NEG_X,
+            DVec3::new(1.0, -0.1, 0.0),
+        ];
+        let order = ccw_order(DVec3::Z, &dirs, &|i| further[i]);
+        let pos = |i: usize| order.iter().position(|&k| k == i).expect("present");
+        assert_eq!(
+            (pos(0) + 3 - pos(2)) % 3,
+            1,
+            "+Y bender right after the -Y bender"
+        );
+    }
+
+    #[test]
+    fn raw_normal_of_a_box_corner_is_its_diagonal() {
+        let n = raw_normal(&[DVec3::X, DVec3::Y, DVec3::Z]).expect("a plane");
+        assert!(
+            n.cross(DVec3::ONE).length() < 1e-12,
+            "normal along (1,1,1), got {n}"
+        );
+    }
+
+    #[test]
+    fn raw_normal_of_a_t_joint_is_the_plane_normal() {
+        let n = raw_normal(&[DVec3::X, DVec3::NEG_X, DVec3::Y]).expect("a plane");
+        assert!(
+            n.cross(DVec3::Z).length() < 1e-12,
+            "normal along z, got {n}"
+        );
+        assert!(
+            raw_normal(&[DVec3::X, DVec3::NEG_X]).is_none(),
+            "collinear: no plane"
+        );
+    }
+}

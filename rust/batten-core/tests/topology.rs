@@ -1,0 +1,966 @@
+//! Topology of curve networks (H-rep paper §3.1, §5.2): node, edge and face counts of hull
+//! networks drawn on a Wigley-like hull surface, corner counts with T-joints, the frigate-like
+//! network of the paper, invariance under curve order, direction and jitter, and bad input.
+//!
+//! Every network here lies exactly on the surface `y = B/2 (1 − u²)(1 − w²)` with
+//! `u = (x − 5)/6`, `w = z/T`: a curve that is straight in the (x, z) plane lifts to a degree-4
+//! polynomial curve (the product of four linear factors), written exactly as a Bézier spline by
+//! its blossom. So curves that cross in the (x, z) plane meet exactly in 3D, and the networks are
+//! genuinely curved.
+
+mod common;
+
+use std::collections::BTreeMap;
+
+use batten_core::{Diagnostic, Network, NetworkCurve, NurbsCurve, Role, Tolerance, Topology};
+use glam::DVec3;
+use proptest::prelude::*;
+
+const HALF_BEAM: f64 = 0.6;
+const DRAFT: f64 = 1.0;
+
+/// The four linear factors of the surface height along a straight (x, z) segment, as values at
+/// the segment's start and end.
+fn factors(p: (f64, f64), q: (f64, f64)) -> [(f64, f64); 4] {
+    let u = |x: f64| (x - 5.0) / 6.0;
+    let w = |z: f64| z / DRAFT;
+    [
+        (1.0 - u(p.0), 1.0 - u(q.0)),
+        (1.0 + u(p.0), 1.0 + u(q.0)),
+        (1.0 - w(p.1), 1.0 - w(q.1)),
+        (1.0 + w(p.1), 1.0 + w(q.1)),
+    ]
+}
+
+/// Bézier ordinates of `y(t) = B/2 Π ℓ_i(t)` on a segment: `c_k` is the blossom at k ones and
+/// 4 − k zeros, the mean over the ways to pick which k factors take their end value.
+fn lifted_ordinates(p: (f64, f64), q: (f64, f64)) -> [f64; 5] {
+    let f = factors(p, q);
+    let mut c = [0.0; 5];
+    let mut count = [0usize; 5];
+    for mask in 0u32..16 {
+        let k = mask.count_ones() as usize;
+        let prod: f64 = (0..4)
+            .map(|i| if mask & (1 << i) != 0 { f[i].1 } else { f[i].0 })
+            .product();
+        c[k] += prod;
+        count[k] += 1;
+    }
+    for k in 0..5 {
+        c[k] *= HALF_BEAM / count[k] as f64;
+    }
+    c
+}
+
+/// The height of the hull surface at (x, z).
+fn surface_y(x: f64, z: f64) -> f64 {
+    let f = factors((x, z), (x, z));
+    HALF_BEAM * f.iter().map(|v| v.0).product::<f64>()
+}
+
+/// A designer curve that is the (x, z) polyline `pts` lifted onto the hull surface: a degree-4
+/// B-spline, one Bézier piece per polyline segment, exact.
+fn lifted(name: &str, role: Role, pts: &[(f64, f64)]) -> NetworkCurve {
+    let mut points = Vec::new();
+    let mut knots = vec![0.0; 5];
+    for (s, w) in pts.windows(2).enumerate() {
+        let (p, q) = (w[0], w[1]);
+        let ys = lifted_ordinates(p, q);
+        let first = if s == 0 { 0 } else { 1 };
+        for (k, y) in ys.iter().enumerate().skip(first) {
+            let f = k as f64 / 4.0;
+            points.push(DVec3::new(p.0 + f * (q.0 - p.0), *y, p.1 + f * (q.1 - p.1)));
+        }
+        let reps = if s + 2 == pts.len() { 5 } else { 4 };
+        knots.extend(std::iter::repeat_n((s + 1) as f64, reps));
+    }
+    let curve = NurbsCurve::try_new(4, knots, points, None).expect("a valid lifted curve");
+    NetworkCurve {
+        name: name.to_owned(),
+        role,
+        curve,
+    }
+}
+
+fn network(curves: Vec<NetworkCurve>) -> Network {
+    Network::try_new("test", curves).expect("unique names")
+}
+
+fn build(net: &Network) -> Topology {
+    Topology::build(net, Tolerance::DEFAULT).expect("topology builds")
+}
+
+/// Keel, deck, transom (x = 0), a vertical stem (x = 10), `m` stations and `n` waterlines.
+fn grid_curves(m: usize, n: usize) -> Vec<NetworkCurve> {
+    let (xa, xb) = (0.0, 10.0);
+    let mut c = vec![
+        lifted("keel", Role::Keel, &[(xa, -DRAFT), (xb, -DRAFT)]),
+        lifted("deck", Role::Deck, &[(xa, 0.0), (xb, 0.0)]),
+        lifted("transom", Role::Transom, &[(xa, -DRAFT), (xa, 0.0)]),
+        lifted("stem", Role::Stem, &[(xb, -DRAFT), (xb, 0.0)]),
+    ];
+    for i in 1..=m {
+        let x = xa + (xb - xa) * i as f64 / (m + 1) as f64;
+        c.push(lifted(
+            &format!("st{i}"),
+            Role::Free,
+            &[(x, -DRAFT), (x, 0.0)],
+        ));
+    }
+    for j in 1..=n {
+        let z = -DRAFT + DRAFT * j as f64 / (n + 1) as f64;
+        c.push(lifted(&format!("wl{j}"), Role::Free, &[(xa, z), (xb, z)]));
+    }
+    c
+}
+
+fn corner_histogram(t: &Topology) -> BTreeMap<usize, usize> {
+    t.faces_by_corners()
+}
+
+/// Each face as (corners, sorted curve names), sorted: the face list up to numbering.
+fn face_list(t: &Topology) -> Vec<(usize, Vec<String>)> {
+    let mut v: Vec<(usize, Vec<String>)> = t
+        .faces
+        .iter()
+        .map(|f| (f.corners, sorted_names(t, &f.curves)))
+        .collect();
+    v.sort();
+    v
+}
+
+/// The sorted names of curves given by index.
+fn sorted_names(t: &Topology, curves: &[usize]) -> Vec<String> {
+    let mut v: Vec<String> = t.names(curves).into_iter().map(str::to_owned).collect();
+    v.sort();
+    v
+}
+
+fn face(corners: usize, names: &[&str]) -> (usize, Vec<String>) {
+    let mut n: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+    n.sort();
+    (corners, n)
+}
+
+#[test]
+fn lifted_curves_lie_on_the_hull_surface() {
+    let c = lifted("d", Role::Free, &[(1.0, -0.9), (7.0, -0.1), (9.0, -0.6)]);
+    let (a, b) = c.curve.domain();
+    for i in 0..=50 {
+        let p = c.curve.point(a + (b - a) * i as f64 / 50.0);
+        assert_near!(p.y, surface_y(p.x, p.z), 1e-12, "on the surface at {p}");
+    }
+}
+
+#[test]
+fn grids_have_the_counted_nodes_edges_and_faces() {
+    // m stations × n waterlines inside keel, deck, transom and stem:
+    // V = mn (crossings) + 2m (stations on keel and deck) + 2n (waterlines on transom and
+    // stem) + 4 (corners); E = m(n+1) + n(m+1) + 2(m+1) + 2(n+1); F = (m+1)(n+1) quads;
+    // V − E + F = 1 (a disk: one boundary loop).
+    for (m, n) in [(0, 0), (1, 1), (3, 2), (7, 4), (12, 6)] {
+        let t = build(&network(grid_curves(m, n)));
+        assert_eq!(
+            t.node_count(),
+            m * n + 2 * m + 2 * n + 4,
+            "nodes of {m}x{n}"
+        );
+        assert_eq!(
+            t.edge_count(),
+            2 * m * n + 3 * m + 3 * n + 4,
+            "edges of {m}x{n}"
+        );
+        let mut expected = BTreeMap::new();
+        expected.insert(4, (m + 1) * (n + 1));
+        assert_eq!(corner_histogram(&t), expected, "faces of {m}x{n}");
+        assert_eq!(t.boundary_loops.len(), 1, "one boundary loop for {m}x{n}");
+        let outer = sorted_names(&t, &t.boundary_loops[0].curves);
+        assert_eq!(
+            outer,
+            ["deck", "keel", "stem", "transom"],
+            "outer boundary of {m}x{n}"
+        );
+        assert!(t.diagnostics.is_empty(), "{m}x{n}: {:?}", t.diagnostics);
+        assert_eq!(t.brep.validate(), vec![], "valid B-rep for {m}x{n}");
+    }
+}
+
+#[test]
+fn grid_faces_name_their_four_curves() {
+    let t = build(&network(grid_curves(1, 1)));
+    let faces = face_list(&t);
+    assert_eq!(
+        faces,
+        vec![
+            face(4, &["deck", "st1", "stem", "wl1"]),
+            face(4, &["deck", "st1", "transom", "wl1"]),
+            face(4, &["keel", "st1", "stem", "wl1"]),
+            face(4, &["keel", "st1", "transom", "wl1"]),
+        ]
+    );
+    for f in &t.faces {
+        assert_eq!(f.sides.len(), 4, "four sides");
+        assert!(
+            f.sides.iter().all(|s| s.curves.len() == 1),
+            "one curve per side"
+        );
+    }
+}
+
+/// A 1 × 1 grid with a diagonal from the keel–transom corner through the station–waterline
+/// crossing to the deck–stem corner: three curves meet at three nodes.
+fn diagonal_curves() -> Vec<NetworkCurve> {
+    let mut c = grid_curves(1, 1);
+    c.push(lifted("diag", Role::Free, &[(0.0, -DRAFT), (10.0, 0.0)]));
+    c
+}
+
+#[test]
+fn three_curves_through_one_point_make_one_node() {
+    let t = build(&network(diagonal_curves()));
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    assert_eq!(t.node_count(), 9, "the diagonal adds no node");
+    assert_eq!(t.edge_count(), 14, "12 grid edges and 2 diagonal edges");
+    let centre = t
+        .brep
+        .vertices
+        .iter()
+        .find(|v| v.curves.len() == 3 && t.names(&v.curves).contains(&"st1"))
+        .expect("the centre node");
+    assert_eq!(
+        t.names(&centre.curves),
+        ["st1", "wl1", "diag"],
+        "curves through the centre"
+    );
+    assert_eq!(
+        face_list(&t),
+        vec![
+            face(3, &["deck", "diag", "st1"]),
+            face(3, &["diag", "keel", "st1"]),
+            face(3, &["diag", "stem", "wl1"]),
+            face(3, &["diag", "transom", "wl1"]),
+            face(4, &["deck", "st1", "transom", "wl1"]),
+            face(4, &["keel", "st1", "stem", "wl1"]),
+        ]
+    );
+}
+
+/// A bow whose keel drags (runs deeper forward, to the forefoot at x = 8), a raked stem, and a
+/// waterline that starts on the keel: below the waterline keel, stem and waterline bound a
+/// triangle. Above it, the waterline runs on into the keel within 15°, so waterline and keel
+/// make one side of a 4-cornered face.
+fn bow_curves() -> Vec<NetworkCurve> {
+    vec![
+        lifted("keel", Role::Keel, &[(0.0, -0.8), (8.0, -1.2)]),
+        lifted("stem", Role::Stem, &[(8.0, -1.2), (10.0, 0.0)]),
+        lifted("deck", Role::Deck, &[(0.0, 0.0), (10.0, 0.0)]),
+        lifted("transom", Role::Transom, &[(0.0, -0.8), (0.0, 0.0)]),
+        lifted("st1", Role::Free, &[(1.0, -0.85), (1.0, 0.0)]),
+        lifted("wl1", Role::Free, &[(2.0, -0.9), (8.5, -0.9)]),
+    ]
+}
+
+#[test]
+fn bow_keel_stem_and_waterline_make_a_triangle() {
+    let t = build(&network(bow_curves()));
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    assert_eq!(t.node_count(), 8, "nodes");
+    assert_eq!(t.edge_count(), 10, "edges");
+    assert_eq!(
+        face_list(&t),
+        vec![
+            face(3, &["keel", "stem", "wl1"]),
+            face(4, &["deck", "keel", "st1", "stem", "wl1"]),
+            face(4, &["deck", "keel", "st1", "transom"]),
+        ]
+    );
+    let big = t
+        .faces
+        .iter()
+        .find(|f| f.curves.len() == 5)
+        .expect("the face above the waterline");
+    assert_eq!(big.edges.len(), 5, "five edges");
+    let composite: Vec<Vec<String>> = big
+        .sides
+        .iter()
+        .filter(|s| s.curves.len() > 1)
+        .map(|s| sorted_names(&t, &s.curves))
+        .collect();
+    assert_eq!(
+        composite,
+        [["keel", "wl1"]],
+        "the waterline runs on into the keel"
+    );
+}
+
+/// A grid with a partial station from the deck down to the waterline: a T-joint.
+fn t_joint_curves() -> Vec<NetworkCurve> {
+    let mut c = vec![
+        lifted("keel", Role::Keel, &[(0.0, -DRAFT), (10.0, -DRAFT)]),
+        lifted("deck", Role::Deck, &[(0.0, 0.0), (10.0, 0.0)]),
+        lifted("transom", Role::Transom, &[(0.0, -DRAFT), (0.0, 0.0)]),
+        lifted("stem", Role::Stem, &[(10.0, -DRAFT), (10.0, 0.0)]),
+        lifted("wl", Role::Free, &[(0.0, -0.5), (10.0, -0.5)]),
+        lifted("st5", Role::Free, &[(5.0, -DRAFT), (5.0, 0.0)]),
+    ];
+    c.push(lifted("partial", Role::Free, &[(2.5, -0.5), (2.5, 0.0)]));
+    c
+}
+
+#[test]
+fn a_t_joint_side_is_one_side_of_two_edges() {
+    let t = build(&network(t_joint_curves()));
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    assert_eq!(
+        t.node_count(),
+        4 + 2 + 2 + 1 + 2,
+        "corners, wl ends, st5 ends, crossing, partial"
+    );
+    assert_eq!(
+        face_list(&t),
+        vec![
+            face(4, &["deck", "partial", "st5", "wl"]),
+            face(4, &["deck", "partial", "transom", "wl"]),
+            face(4, &["deck", "st5", "stem", "wl"]),
+            face(4, &["keel", "st5", "stem", "wl"]),
+            face(4, &["keel", "st5", "transom", "wl"]),
+        ]
+    );
+    let under = t
+        .faces
+        .iter()
+        .find(|f| sorted_names(&t, &f.curves) == ["keel", "st5", "transom", "wl"])
+        .expect("the face under the T-joint");
+    assert_eq!(under.edges.len(), 5, "the waterline side has two edges");
+    assert_eq!(under.corners, 4, "the T-joint is no corner");
+    let wl_side = under
+        .sides
+        .iter()
+        .find(|s| t.names(&s.curves) == ["wl"])
+        .expect("a waterline side");
+    assert_eq!(wl_side.edges.len(), 2, "composite side");
+}
+
+/// The frigate-like network of the H-rep paper (§5.2, Fig. 13): 13 curves with a fore-ship
+/// knuckle ending on an ordinate (T-joint), an aft partial waterline ending on an ordinate
+/// (T-joint), and a stem-rounding transition curve from the CWL to the stem between CWL and
+/// knuckle, which makes a five-sided face (CWL, stem, rounding, knuckle, foremost ordinate).
+fn frigate() -> Network {
+    let stem_x = |z: f64| 9.4 + 0.6 * (z + 1.0);
+    let mut c = vec![
+        lifted("keel", Role::Keel, &[(0.0, -1.0), (9.4, -1.0)]),
+        lifted("stem", Role::Stem, &[(9.4, -1.0), (10.0, 0.0)]),
+        lifted("deck", Role::Deck, &[(0.0, 0.0), (10.0, 0.0)]),
+        lifted("transom", Role::Transom, &[(0.0, -1.0), (0.0, 0.0)]),
+        lifted("cwl", Role::Free, &[(0.0, -0.4), (stem_x(-0.4), -0.4)]),
+        lifted(
+            "knuckle",
+            Role::Knuckle,
+            &[(6.0, -0.2), (stem_x(-0.2), -0.2)],
+        ),
+        lifted("wl_aft", Role::Free, &[(0.0, -0.7), (2.0, -0.7)]),
+        lifted(
+            "rounding",
+            Role::Free,
+            &[(9.6, -0.4), (stem_x(-0.25), -0.25)],
+        ),
+    ];
+    for x in [1.0, 2.0, 4.0, 6.0, 8.0] {
+        c.push(lifted(
+            &format!("st{x}"),
+            Role::Free,
+            &[(x, -1.0), (x, 0.0)],
+        ));
+    }
+    Network::try_new("frigate", c).expect("unique names")
+}
+
+fn frigate_faces() -> Vec<(usize, Vec<String>)> {
+    let mut v = vec![
+        face(4, &["keel", "st1", "transom", "wl_aft"]),
+        face(4, &["cwl", "st1", "transom", "wl_aft"]),
+        face(4, &["cwl", "deck", "st1", "transom"]),
+        face(4, &["keel", "st1", "st2", "wl_aft"]),
+        face(4, &["cwl", "st1", "st2", "wl_aft"]),
+        face(4, &["cwl", "deck", "st1", "st2"]),
+        face(4, &["cwl", "keel", "st2", "st4"]),
+        face(4, &["cwl", "deck", "st2", "st4"]),
+        face(4, &["cwl", "keel", "st4", "st6"]),
+        face(4, &["cwl", "deck", "st4", "st6"]),
+        face(4, &["cwl", "keel", "st6", "st8"]),
+        face(4, &["cwl", "knuckle", "st6", "st8"]),
+        face(4, &["deck", "knuckle", "st6", "st8"]),
+        face(4, &["cwl", "keel", "st8", "stem"]),
+        face(3, &["cwl", "rounding", "stem"]),
+        face(5, &["cwl", "knuckle", "rounding", "st8", "stem"]),
+        face(4, &["deck", "knuckle", "st8", "stem"]),
+    ];
+    v.sort();
+    v
+}
+
+#[test]
+fn frigate_network_has_the_paper_faces() {
+    let net = frigate();
+    assert_eq!(net.curves().len(), 13, "13 curves as in Fig. 13");
+    let t = build(&net);
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    assert_eq!(t.node_count(), 29, "nodes");
+    assert_eq!(t.edge_count(), 45, "edges");
+    assert_eq!(face_list(&t), frigate_faces(), "face list");
+    assert_eq!(t.boundary_loops.len(), 1, "one boundary");
+    assert_eq!(t.brep.shells.len(), 1, "one shell");
+    assert_eq!(t.brep.shells[0].genus, 0, "a disk");
+    // T-joints: the faces beside the ordinates where wl_aft and the knuckle end have five
+    // edges but four corners.
+    for names in [["cwl", "keel", "st2", "st4"], ["cwl", "deck", "st4", "st6"]] {
+        let f = t
+            .faces
+            .iter()
+            .find(|f| sorted_names(&t, &f.curves) == names)
+            .expect("face beside a T-joint");
+        assert_eq!((f.edges.len(), f.corners), (5, 4), "T-joint face {names:?}");
+    }
+    let five = t
+        .faces
+        .iter()
+        .find(|f| f.corners == 5)
+        .expect("five-sided face");
+    let mut sides: Vec<String> = five
+        .sides
+        .iter()
+        .map(|s| t.names(&s.curves).join("+"))
+        .collect();
+    sides.sort();
+    assert_eq!(
+        sides,
+        ["cwl", "knuckle", "rounding", "st8", "stem"],
+        "one curve per side"
+    );
+}
+
+#[test]
+fn frigate_faces_do_not_depend_on_the_tolerance() {
+    let net = frigate();
+    for tol in [1e-6, 1e-5, 1e-3] {
+        let t = Topology::build(&net, Tolerance::try_new(tol).expect("valid")).expect("builds");
+        assert!(
+            t.diagnostics.is_empty(),
+            "tolerance {tol}: {:?}",
+            t.diagnostics
+        );
+        assert_eq!(face_list(&t), frigate_faces(), "tolerance {tol}");
+    }
+}
+
+#[test]
+fn frigate_example_file_matches_the_network() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/frigate_network.json"
+    );
+    let json = frigate().to_json();
+    if std::env::var_os("BATTEN_WRITE_EXAMPLES").is_some() {
+        std::fs::write(path, &json).expect("write the example");
+    }
+    let text = std::fs::read_to_string(path)
+        .expect("examples/frigate_network.json exists (BATTEN_WRITE_EXAMPLES=1 writes it)");
+    assert_eq!(text, json, "the example file is the frigate network");
+    let read = Network::from_json(&text).expect("the example reads");
+    assert_eq!(
+        face_list(&build(&read)),
+        frigate_faces(),
+        "faces of the file"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Invariance
+
+/// Nodes, edges, face list, boundary loops, diagnostics.
+type Summary = (usize, usize, Vec<(usize, Vec<String>)>, usize, usize);
+
+/// A summary that must not change with curve order, direction or sub-tolerance jitter.
+fn summary(t: &Topology) -> Summary {
+    (
+        t.node_count(),
+        t.edge_count(),
+        face_list(t),
+        t.boundary_loops.len(),
+        t.diagnostics.len(),
+    )
+}
+
+fn perturbed(net: &Network, order: &[usize], flips: &[bool], jitter: &[f64]) -> Network {
+    let tol = Tolerance::DEFAULT.get();
+    let mut j = jitter.iter().cycle();
+    let curves = order
+        .iter()
+        .map(|&i| {
+            let c = &net.curves()[i];
+            let mut curve = if flips[i] {
+                c.curve.reversed()
+            } else {
+                c.curve.clone()
+            };
+            let pts: Vec<DVec3> = curve
+                .control_points()
+                .iter()
+                .map(|p| {
+                    let d = DVec3::new(
+                        *j.next().expect("cycle"),
+                        *j.next().expect("cycle"),
+                        *j.next().expect("cycle"),
+                    );
+                    *p + d * (0.2 * tol)
+                })
+                .collect();
+            curve = NurbsCurve::try_new(curve.degree(), curve.knots().to_vec(), pts, None)
+                .expect("jittered curve");
+            NetworkCurve {
+                name: c.name.clone(),
+                role: c.role,
+                curve,
+            }
+        })
+        .collect();
+    Network::try_new("perturbed", curves).expect("unique names")
+}
+
+fn invariance_case(
+    net: Network,
+) -> impl Strategy<Value = (Network, Vec<usize>, Vec<bool>, Vec<f64>)> {
+    let n = net.curves().len();
+    (
+        Just((0..n).collect::<Vec<usize>>()).prop_shuffle(),
+        proptest::collection::vec(any::<bool>(), n),
+        proptest::collection::vec(-1.0f64..1.0, 1..64),
+    )
+        .prop_map(move |(o, f, j)| (net.clone(), o, f, j))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn frigate_topology_is_invariant((net, order, flips, jitter) in invariance_case(frigate())) {
+        let reference = summary(&build(&net));
+        let t = build(&perturbed(&net, &order, &flips, &jitter));
+        prop_assert_eq!(summary(&t), reference, "{:?}", t.diagnostics);
+    }
+
+    #[test]
+    fn diagonal_topology_is_invariant(
+        (net, order, flips, jitter) in invariance_case(network(diagonal_curves()))
+    ) {
+        let reference = summary(&build(&net));
+        let t = build(&perturbed(&net, &order, &flips, &jitter));
+        prop_assert_eq!(summary(&t), reference, "{:?}", t.diagnostics);
+    }
+
+    #[test]
+    fn grid_topology_is_invariant(
+        (net, order, flips, jitter) in invariance_case(network(grid_curves(5, 3)))
+    ) {
+        let reference = summary(&build(&net));
+        let t = build(&perturbed(&net, &order, &flips, &jitter));
+        prop_assert_eq!(summary(&t), reference, "{:?}", t.diagnostics);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: clear diagnostics, no panic.
+
+fn grid_line(i: usize, a: (u8, u8), b: (u8, u8)) -> NetworkCurve {
+    let p = |q: (u8, u8)| DVec3::new(f64::from(q.0), f64::from(q.1), 0.0);
+    let curve =
+        NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![p(a), p(b)], None).expect("line");
+    NetworkCurve {
+        name: format!("line{i}"),
+        role: Role::Free,
+        curve,
+    }
+}
+
+/// Found by `random_segment_networks_give_valid_breps`: a segment lying along part of another
+/// once gave two coincident edges and a twisted rotation (genus 1). The shared stretch is now
+/// kept once, on the curve whose name sorts first.
+#[test]
+fn a_segment_along_part_of_another_is_kept_once() {
+    let segs = [
+        ((3, 1), (0, 4)),
+        ((2, 4), (0, 4)),
+        ((2, 4), (1, 4)),
+        ((0, 0), (2, 4)),
+    ];
+    let curves = segs
+        .iter()
+        .enumerate()
+        .map(|(i, &(a, b))| grid_line(i, a, b))
+        .collect();
+    let t = build(&network(curves));
+    assert_eq!(t.brep.validate(), vec![], "valid B-rep");
+    assert_eq!(
+        face_list(&t),
+        vec![face(3, &["line0", "line1", "line3"])],
+        "one triangle"
+    );
+    let overlaps = t.diagnostics_of("overlap");
+    assert_eq!(overlaps.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(overlaps[0].curves(), ["line1", "line2"], "both named");
+    assert!(t.diagnostics_of("genus").is_empty(), "{:?}", t.diagnostics);
+    assert!(
+        t.brep
+            .edges
+            .iter()
+            .all(|e| t.curve_names[e.curve] != "line2"),
+        "line2 left out"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// Random segments between points of a 5 × 5 grid: crossings, T-joints, shared ends,
+    /// collinear overlaps, duplicates and zero-length segments in every mix. The builder never
+    /// panics and its B-rep always passes every check.
+    #[test]
+    fn random_segment_networks_give_valid_breps(
+        segs in proptest::collection::vec(((0u8..5, 0u8..5), (0u8..5, 0u8..5)), 1..12)
+    ) {
+        let curves = segs.iter().enumerate().map(|(i, &(a, b))| grid_line(i, a, b)).collect();
+        let t = build(&network(curves));
+        prop_assert_eq!(t.brep.validate(), vec![]);
+        prop_assert!(t.diagnostics_of("invalid_topology").is_empty(), "{:?}", t.diagnostics);
+        prop_assert!(t.diagnostics_of("genus").is_empty(), "{:?}", t.diagnostics);
+    }
+
+    /// The same on the curved hull surface: segments between points of a 5 × 5 grid in the
+    /// (x, z) plane, lifted onto the surface.
+    #[test]
+    fn random_curved_networks_give_valid_breps(
+        segs in proptest::collection::vec(((0u8..5, 0u8..5), (0u8..5, 0u8..5)), 1..12)
+    ) {
+        let at = |q: (u8, u8)| (2.5 * f64::from(q.0), -0.25 * f64::from(q.1));
+        let curves = segs
+            .iter()
+            .enumerate()
+            .map(|(i, &(a, b))| lifted(&format!("c{i}"), Role::Free, &[at(a), at(b)]))
+            .collect();
+        let t = build(&network(curves));
+        prop_assert_eq!(t.brep.validate(), vec![]);
+        prop_assert!(t.diagnostics_of("invalid_topology").is_empty(), "{:?}", t.diagnostics);
+        prop_assert!(t.diagnostics_of("genus").is_empty(), "{:?}", t.diagnostics);
+    }
+}
+
+fn with(mut base: Vec<NetworkCurve>, extra: Vec<NetworkCurve>) -> Network {
+    base.extend(extra);
+    network(base)
+}
+
+#[test]
+fn a_near_miss_is_reported_and_not_joined() {
+    let tol = Tolerance::DEFAULT.get();
+    let mut curves = grid_curves(2, 1);
+    // wl1 stops 5 tolerances short of the stem.
+    let gap = 5.0 * tol;
+    let z = -0.5;
+    let i = curves.iter().position(|c| c.name == "wl1").expect("wl1");
+    curves[i] = lifted("wl1", Role::Free, &[(0.0, z), (10.0 - gap, z)]);
+    let t = build(&network(curves));
+    let misses = t.diagnostics_of("near_miss");
+    assert_eq!(misses.len(), 1, "{:?}", t.diagnostics);
+    let Diagnostic::NearMiss {
+        curves,
+        location,
+        gap: found,
+    } = misses[0]
+    else {
+        unreachable!("kind is near_miss")
+    };
+    assert_eq!(curves, &["stem".to_owned(), "wl1".to_owned()], "both names");
+    // The closest approach from the end is a little under the x-gap (the stem is curved).
+    assert!(*found > tol && *found <= gap * 1.01, "gap {found}");
+    assert_near!(location.x, 10.0, gap, "at the stem");
+    assert_near!(location.z, z, gap, "at the waterline");
+    let dangling = t.diagnostics_of("dangling_end");
+    assert_eq!(
+        dangling.len(),
+        1,
+        "the short end dangles: {:?}",
+        t.diagnostics
+    );
+    assert_eq!(dangling[0].curves(), ["wl1"], "named");
+    // Not joined: the last stretch of wl1 bounds no face, so the two faces next to the stem
+    // merge into one.
+    assert_eq!(t.faces.len(), 5, "faces: {:?}", face_list(&t));
+}
+
+#[test]
+fn a_curve_ending_in_the_air_dangles() {
+    let net = with(
+        grid_curves(1, 1),
+        vec![lifted("stub", Role::Free, &[(7.0, 0.0), (7.0, -0.3)])],
+    );
+    let t = build(&net);
+    let d = t.diagnostics_of("dangling_end");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(d[0].curves(), ["stub"], "named");
+    assert_near!(
+        d[0].location().expect("located").z,
+        -0.3,
+        1e-9,
+        "at the free end"
+    );
+    assert_eq!(
+        t.diagnostics_of("unused_edges").len(),
+        1,
+        "its edge bounds no face"
+    );
+    assert_eq!(t.faces.len(), 4, "faces unchanged");
+}
+
+#[test]
+fn a_curve_meeting_nothing_is_isolated() {
+    let net = with(
+        grid_curves(1, 1),
+        vec![lifted("lost", Role::Free, &[(20.0, -0.5), (22.0, -0.5)])],
+    );
+    let t = build(&net);
+    let d = t.diagnostics_of("isolated_curve");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(d[0].curves(), ["lost"], "named");
+    assert_eq!(t.faces.len(), 4, "faces unchanged");
+}
+
+#[test]
+fn a_duplicate_curve_is_reported_and_left_out() {
+    let mut dup = lifted("st1_copy", Role::Free, &[(5.0, 0.0), (5.0, -DRAFT)]);
+    dup.curve = dup.curve.reversed();
+    let net = with(grid_curves(1, 1), vec![dup]);
+    let t = build(&net);
+    let d = t.diagnostics_of("duplicate_curve");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(d[0].curves(), ["st1", "st1_copy"], "both named");
+    assert_eq!(
+        summary(&t).2,
+        summary(&build(&network(grid_curves(1, 1)))).2,
+        "faces"
+    );
+}
+
+#[test]
+fn an_overlapping_curve_is_reported() {
+    let net = with(
+        grid_curves(1, 1),
+        vec![lifted(
+            "batten",
+            Role::Free,
+            &[(1.0, -DRAFT), (3.0, -DRAFT), (3.0, -0.2)],
+        )],
+    );
+    let t = build(&net);
+    let d = t.diagnostics_of("overlap");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(d[0].curves(), ["batten", "keel"], "both named");
+    let Diagnostic::Overlap { from, to, .. } = d[0] else {
+        unreachable!("kind is overlap")
+    };
+    let (lo, hi) = if from.x < to.x {
+        (from, to)
+    } else {
+        (to, from)
+    };
+    assert_near!(lo.x, 1.0, 1e-3, "stretch starts at x = 1");
+    assert_near!(hi.x, 3.0, 1e-3, "stretch ends at x = 3");
+}
+
+#[test]
+fn a_self_intersecting_curve_is_reported() {
+    let net = with(
+        grid_curves(1, 1),
+        vec![lifted(
+            "bow_tie",
+            Role::Free,
+            &[(1.0, -0.2), (3.0, -0.4), (3.0, -0.2), (1.0, -0.4)],
+        )],
+    );
+    let t = build(&net);
+    let d = t.diagnostics_of("self_intersection");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(d[0].curves(), ["bow_tie"], "named");
+    let p = d[0].location().expect("located");
+    assert_near!(
+        DVec3::new(p.x, 0.0, p.z),
+        DVec3::new(2.0, 0.0, -0.3),
+        1e-6,
+        "crossing"
+    );
+    assert_near!(p.y, surface_y(2.0, -0.3), 1e-6, "on the surface");
+}
+
+#[test]
+fn a_zero_length_curve_is_reported_and_left_out() {
+    let p = DVec3::new(3.0, surface_y(3.0, -0.5), -0.5);
+    let dot = NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![p, p], None).expect("valid");
+    let net = with(
+        grid_curves(1, 1),
+        vec![NetworkCurve {
+            name: "dot".into(),
+            role: Role::Free,
+            curve: dot,
+        }],
+    );
+    let t = build(&net);
+    assert_eq!(t.diagnostics.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(
+        t.diagnostics_of("zero_length")[0].curves(),
+        ["dot"],
+        "named"
+    );
+    assert_eq!(
+        summary(&t).2,
+        summary(&build(&network(grid_curves(1, 1)))).2,
+        "faces"
+    );
+}
+
+#[test]
+fn a_lone_closed_curve_bounds_one_face_without_corners() {
+    // A circle upright in the xz plane: its one node has two parallel tangents, so the normal
+    // comes from the loop itself.
+    let c = common::circle(0.5);
+    let pts: Vec<DVec3> = c
+        .control_points()
+        .iter()
+        .map(|p| DVec3::new(p.x + 3.0, 0.2, p.y - 0.5))
+        .collect();
+    let curve = NurbsCurve::try_new(2, c.knots().to_vec(), pts, c.weights()).expect("circle");
+    let net = network(vec![NetworkCurve {
+        name: "porthole".into(),
+        role: Role::Free,
+        curve,
+    }]);
+    let t = build(&net);
+    assert_eq!(
+        (t.node_count(), t.edge_count()),
+        (1, 1),
+        "one node, one edge"
+    );
+    assert_eq!(
+        face_list(&t),
+        vec![face(0, &["porthole"])],
+        "one face, no corners"
+    );
+    assert_eq!(t.boundary_loops.len(), 1, "and its outside");
+    let kinds: Vec<&str> = t.diagnostics.iter().map(Diagnostic::kind).collect();
+    assert_eq!(
+        kinds,
+        ["isolated_curve", "unusual_face"],
+        "{:?}",
+        t.diagnostics
+    );
+}
+
+#[test]
+fn a_closed_box_network_has_six_faces_and_no_boundary() {
+    // The twelve edges of a box as separate straight curves: a closed surface (V − E + F = 2).
+    let corner = |i: usize| {
+        DVec3::new(
+            if i & 1 != 0 { 4.0 } else { 0.0 },
+            if i & 2 != 0 { 2.0 } else { 0.0 },
+            if i & 4 != 0 { 1.0 } else { 0.0 },
+        )
+    };
+    let mut curves = Vec::new();
+    for i in 0..8usize {
+        for bit in [1usize, 2, 4] {
+            if i & bit == 0 {
+                let (a, b) = (corner(i), corner(i | bit));
+                let curve = NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![a, b], None)
+                    .expect("a line");
+                curves.push(NetworkCurve {
+                    name: format!("e{i}_{}", i | bit),
+                    role: Role::Free,
+                    curve,
+                });
+            }
+        }
+    }
+    let t = build(&network(curves));
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    assert_eq!(
+        (t.node_count(), t.edge_count()),
+        (8, 12),
+        "box nodes and edges"
+    );
+    assert_eq!(t.faces_by_corners(), BTreeMap::from([(4, 6)]), "six quads");
+    assert!(t.boundary_loops.is_empty(), "closed");
+    assert_eq!(t.brep.shells[0].genus, 0, "a sphere");
+}
+
+#[test]
+fn three_sheets_branching_off_one_curve_are_reported() {
+    // A spine along x with three fins at 120° round it (like a bulkhead meeting the hull):
+    // at both spine ends four tangents leave, one far out of the best plane of the others.
+    let line = |name: String, a: DVec3, b: DVec3| NetworkCurve {
+        name,
+        role: Role::Free,
+        curve: NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![a, b], None).expect("line"),
+    };
+    let (p0, p1) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
+    let mut curves = vec![line("spine".into(), p0, p1)];
+    for k in 0..3 {
+        let phi = std::f64::consts::TAU * k as f64 / 3.0;
+        let d = DVec3::new(0.0, phi.cos(), phi.sin());
+        curves.push(line(format!("rib{k}a"), p0, p0 + d));
+        curves.push(line(format!("rib{k}b"), p1, p1 + d));
+        curves.push(line(format!("fin{k}"), p0 + d, p1 + d));
+    }
+    let t = build(&network(curves));
+    let d = t.diagnostics_of("non_manifold_node");
+    assert_eq!(d.len(), 2, "both spine ends: {:?}", t.diagnostics);
+    for n in d {
+        assert_eq!(n.curves().len(), 4, "spine and three ribs named: {n}");
+        assert!(n.curves().contains(&"spine"), "the spine is named: {n}");
+    }
+    assert_eq!(t.brep.validate(), vec![], "still a consistent B-rep");
+}
+
+#[test]
+fn an_empty_network_builds_an_empty_topology() {
+    let t = build(&network(Vec::new()));
+    assert_eq!(
+        (t.node_count(), t.edge_count(), t.faces.len()),
+        (0, 0, 0),
+        "empty"
+    );
+    assert!(t.diagnostics.is_empty(), "nothing to report");
+}
+
+#[test]
+fn a_face_with_many_corners_is_flagged() {
+    // A zig-zag top side drawn as eight separate curves: its nine nodes are all corners, so
+    // with the two bottom corners the face has 11.
+    let zig: Vec<(f64, f64)> = (0..=8)
+        .map(|i| (1.0 + i as f64, if i % 2 == 0 { -0.2 } else { -0.4 }))
+        .collect();
+    let mut curves = vec![
+        lifted("bottom", Role::Keel, &[(1.0, -0.8), (9.0, -0.8)]),
+        lifted("aft", Role::Free, &[(1.0, -0.8), (1.0, -0.2)]),
+        lifted("fore", Role::Free, &[(9.0, -0.8), (9.0, -0.2)]),
+    ];
+    for (i, w) in zig.windows(2).enumerate() {
+        curves.push(lifted(&format!("zig{i}"), Role::Free, w));
+    }
+    let t = build(&network(curves));
+    assert_eq!(t.faces.len(), 1, "one face");
+    assert_eq!(
+        t.faces[0].corners, 11,
+        "corners: 2 below, 9 along the zig-zag"
+    );
+    let d = t.diagnostics_of("unusual_face");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(d[0].curves().len(), 11, "names every curve of the face");
+}
