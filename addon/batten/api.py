@@ -29,6 +29,7 @@ from batten_native import (
     network_from_json,
     network_to_json,
 )
+from batten_native import topology as _topology
 
 from .bridge import curves_in, curves_out, sections_in
 
@@ -47,6 +48,7 @@ __all__ = [
     "load_network",
     "read_curves",
     "set_role",
+    "topology",
 ]
 
 
@@ -293,3 +295,17 @@ def curvature_comb(obj, *, samples: int = 200, scale: float = 1.0) -> tuple[np.n
         bases.append(points)
         tips.append(points - scale * kappa)
     return np.concatenate(bases), np.concatenate(tips)
+
+
+def topology(source, *, tolerance: float = DEFAULT_TOLERANCE) -> dict:
+    """The topology of the hull network in ``source`` (H-rep paper §3.1, §5.2): where the
+    curves meet (nodes), the curve stretches between nodes (edges), the faces found
+    automatically with their true corner counts and sides, the open boundary loops, and
+    diagnostics naming the curves and locations (dangling ends, near misses, curves meeting
+    nothing, regions that could not be closed, duplicates, overlaps, self-intersections).
+
+    Returns a dict: ``nodes``, ``edges``, ``node_positions``, ``faces`` (each ``curves``,
+    ``corners``, ``sides``, ``edges``), ``faces_by_corners``, ``boundary_loops``,
+    ``diagnostics`` (each ``kind``, ``message``, ``curves``, ``location``).
+    """
+    return _topology(read_curves(source), tolerance)

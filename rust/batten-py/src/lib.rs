@@ -8,6 +8,7 @@ mod curve;
 mod errors;
 mod fair;
 mod network;
+mod topology;
 
 use pyo3::prelude::*;
 
@@ -26,5 +27,6 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
+    m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     Ok(())
 }

@@ -15,6 +15,7 @@ from ._native import (
     fairness,
     network_from_json,
     network_to_json,
+    topology,
 )
 
 __all__ = [
@@ -28,4 +29,5 @@ __all__ = [
     "fairness",
     "network_from_json",
     "network_to_json",
+    "topology",
 ]

@@ -1,0 +1,84 @@
+//! Network topology as plain Python data: counts, faces, boundary loops, diagnostics.
+
+use batten_core::{Network, Tolerance, Topology};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::curve::Curve;
+use crate::errors::{core_err, guard};
+
+/// The topology of the network of `curves` at `tolerance` (H-rep paper §3.1, §5.2): a dict
+/// with `nodes`, `edges` (counts), `node_positions` (list of [x, y, z]), `faces` (each:
+/// `curves` (names), `corners`, `sides` (list of curve-name lists, one per side between true
+/// corners), `edges` (edge count)), `faces_by_corners` ({corners: count}), `boundary_loops`
+/// (each: `curves`, `edges`), and `diagnostics` (each: `kind`, `message`, `curves`,
+/// `location` or None).
+#[pyfunction]
+#[pyo3(signature = (curves, tolerance=1e-4))]
+pub fn topology<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    tolerance: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let tol = Tolerance::try_new(tolerance).map_err(core_err)?;
+    let network =
+        Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)?;
+    let topo = py.detach(|| {
+        guard("building the topology", || {
+            Topology::build(&network, tol).map_err(core_err)
+        })
+    })?;
+    let names = |idx: &[usize]| -> Vec<String> {
+        idx.iter().map(|&i| topo.curve_names[i].clone()).collect()
+    };
+    let d = PyDict::new(py);
+    d.set_item("nodes", topo.node_count())?;
+    d.set_item("edges", topo.edge_count())?;
+    let positions: Vec<[f64; 3]> = topo
+        .brep
+        .vertices
+        .iter()
+        .map(|v| v.position.to_array())
+        .collect();
+    d.set_item("node_positions", positions)?;
+    let faces = topo
+        .faces
+        .iter()
+        .map(|f| {
+            let fd = PyDict::new(py);
+            fd.set_item("curves", names(&f.curves))?;
+            fd.set_item("corners", f.corners)?;
+            let sides: Vec<Vec<String>> = f.sides.iter().map(|s| names(&s.curves)).collect();
+            fd.set_item("sides", sides)?;
+            fd.set_item("edges", f.edges.len())?;
+            Ok(fd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("faces", faces)?;
+    d.set_item("faces_by_corners", topo.faces_by_corners())?;
+    let loops = topo
+        .boundary_loops
+        .iter()
+        .map(|l| {
+            let ld = PyDict::new(py);
+            ld.set_item("curves", names(&l.curves))?;
+            ld.set_item("edges", l.edges.len())?;
+            Ok(ld)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("boundary_loops", loops)?;
+    let diags = topo
+        .diagnostics
+        .iter()
+        .map(|g| {
+            let gd = PyDict::new(py);
+            gd.set_item("kind", g.kind())?;
+            gd.set_item("message", g.to_string())?;
+            gd.set_item("curves", g.curves())?;
+            gd.set_item("location", g.location().map(|p| p.to_array()))?;
+            Ok(gd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("diagnostics", diags)?;
+    Ok(d)
+}
