@@ -45,6 +45,18 @@ impl Design {
         }
     }
 
+    /// Recompute the rows of `params[from..to]` for new `knots` (after a knot insertion, only
+    /// the data near the new knot get new basis values).
+    pub fn update_range(&mut self, knots: &[f64], params: &[f64], from: usize, to: usize) {
+        let k = self.degree;
+        let n = knots.len() - k - 1;
+        for (i, &u) in params.iter().enumerate().take(to).skip(from) {
+            let s = find_span(knots, k, n, u);
+            basis_funs(knots, s, u, k, &mut self.basis[i]);
+            self.span[i] = s;
+        }
+    }
+
     /// The spline value at data parameter `i` for coefficients `c`.
     #[inline]
     pub fn value(&self, i: usize, c: &[DVec3]) -> DVec3 {
@@ -151,62 +163,89 @@ pub(crate) fn schoenberg_whitney(knots: &[f64], degree: usize, params: &[f64]) -
     true
 }
 
-/// The next interior knot: the parametric middle of the span with the largest sum of squared
-/// residuals (H-rep paper eq. 12), among the spans where the new knot keeps data on both sides
-/// and the Schoenberg–Whitney conditions hold; where the middle leaves one side empty, the
-/// point between the span's middle data points (Dierckx's fpknot). `None` when no span can be
-/// split.
-pub(crate) fn next_knot(
+/// The next `count` interior knots (sorted), chosen one after another as in Dierckx's fpknot:
+/// each goes into the span with the largest sum of squared residuals, at its parametric middle
+/// (H-rep paper eq. 12) or, where that leaves one side without data (unevenly spaced points),
+/// between the span's middle data points (fpknot's choice); a span that cannot take a knot
+/// with data on both sides and the Schoenberg–Whitney conditions holding is passed over. The
+/// split span's error is shared between its halves in proportion to their data (fpknot), so
+/// that the following knots of the batch go where the error is. With `count = 1` this is the
+/// single knot of the span with the largest error. Empty when no span can be split.
+pub(crate) fn next_knots(
     knots: &[f64],
     degree: usize,
     design: &Design,
     residual2: &[f64],
     params: &[f64],
-) -> Option<f64> {
+    count: usize,
+) -> Vec<f64> {
     let k = degree;
     let n = knots.len() - k - 1;
-    let mut err = vec![0.0; n - k];
-    let mut count = vec![0usize; n - k];
+    // Per knot span: (error, lo, hi, usable).
+    let mut spans: Vec<(f64, f64, f64, bool)> = (0..n - k)
+        .map(|j| (0.0, knots[j + k], knots[j + k + 1], true))
+        .collect();
+    let mut data = vec![0usize; n - k];
     for (s, r) in design.span.iter().zip(residual2) {
-        err[s - k] += r;
-        count[s - k] += 1;
+        spans[s - k].0 += r;
+        data[s - k] += 1;
     }
-    let mut order: Vec<usize> = (0..n - k).filter(|&j| count[j] >= 2).collect();
-    order.sort_by(|&x, &y| err[y].total_cmp(&err[x]));
-    for j in order {
-        if err[j] <= 0.0 {
-            break;
+    for (sp, &c) in spans.iter_mut().zip(&data) {
+        sp.3 = c >= 2;
+    }
+    let mut trial = knots.to_vec();
+    let mut chosen = Vec::with_capacity(count);
+    while chosen.len() < count {
+        // The usable span with the largest error (the first of equals).
+        let mut pick: Option<usize> = None;
+        for (j, sp) in spans.iter().enumerate() {
+            if sp.3 && sp.0 > 0.0 && pick.is_none_or(|p| sp.0 > spans[p].0) {
+                pick = Some(j);
+            }
         }
-        let (lo, hi) = (knots[j + k], knots[j + k + 1]);
-        let inside: Vec<f64> = params
-            .iter()
-            .copied()
-            .filter(|&u| lo < u && u < hi)
-            .collect();
-        // The paper's knot, the parametric middle; where that leaves one side without data
-        // (unevenly spaced points), Dierckx's choice (fpknot): between the middle data points.
+        let Some(j) = pick else { break };
+        let (err, lo, hi, _) = spans[j];
+        // Data strictly inside the span (params are sorted).
+        let i0 = params.partition_point(|&u| u <= lo);
+        let i1 = params.partition_point(|&u| u < hi);
+        let inside = &params[i0..i1.max(i0)];
         let mid = 0.5 * (lo + hi);
         let median = (inside.len() >= 2).then(|| {
             let h = inside.len() / 2;
             0.5 * (inside[h - 1] + inside[h])
         });
+        let mut placed = None;
         for t in std::iter::once(mid).chain(median) {
             if !(lo < t && t < hi) {
                 continue;
             }
-            let left = inside.iter().any(|&u| u < t);
-            let right = inside.iter().any(|&u| u > t);
+            let left = inside.first().is_some_and(|&u| u < t);
+            let right = inside.last().is_some_and(|&u| u > t);
             if !(left && right) {
                 continue;
             }
-            let mut trial = knots.to_vec();
-            trial.insert(j + k + 1, t);
+            let at = trial.partition_point(|&u| u <= lo);
+            trial.insert(at, t);
             if schoenberg_whitney(&trial, k, params) {
-                return Some(t);
+                placed = Some(t);
+                break;
             }
+            trial.remove(at);
         }
+        let Some(t) = placed else {
+            spans[j].3 = false;
+            continue;
+        };
+        chosen.push(t);
+        // Split the span; its error goes to the halves in proportion to their data (fpknot).
+        let nl = inside.partition_point(|&u| u < t);
+        let nr = inside.len() - nl;
+        let total = (nl + nr) as f64;
+        spans[j] = (err * nl as f64 / total, lo, t, nl >= 2);
+        spans.insert(j + 1, (err * nr as f64 / total, t, hi, nr >= 2));
     }
-    None
+    chosen.sort_by(f64::total_cmp);
+    chosen
 }
 
 #[cfg(test)]

@@ -20,9 +20,12 @@ pub(crate) struct BandedQr {
 
 /// Givens rotation annihilating `piv` against the diagonal `diag` (Dierckx `fpgivs`): returns
 /// `(cos, sin, new diagonal)`.
+///
+/// `√(piv² + diag²)` directly rather than `hypot` (several times slower in libm): the entries
+/// are B-spline values and rotated sums of them (at most a few times √m), far from overflow.
 #[inline]
 fn givens(piv: f64, diag: f64) -> (f64, f64, f64) {
-    let dd = piv.hypot(diag);
+    let dd = (piv * piv + diag * diag).sqrt();
     (diag / dd, piv / dd, dd)
 }
 
@@ -40,6 +43,33 @@ impl BandedQr {
     /// Number of unknowns.
     pub fn unknowns(&self) -> usize {
         self.n
+    }
+
+    /// Bandwidth.
+    pub fn band(&self) -> usize {
+        self.band
+    }
+
+    /// Row `i` of the triangle (diagonal first) and its rotated right-hand side.
+    pub fn row(&self, i: usize) -> (&[f64], DVec3) {
+        (&self.r[i * self.band..(i + 1) * self.band], self.z[i])
+    }
+
+    /// Overwrite row `i` and its right-hand side.
+    pub fn set_row(&mut self, i: usize, row: &[f64], z: DVec3) {
+        self.r[i * self.band..(i + 1) * self.band].copy_from_slice(row);
+        self.z[i] = z;
+    }
+
+    /// Resize to `n` unknowns keeping rows `..keep` and zeroing the rest (for rebuilding the
+    /// triangle from the first observation a knot insertion changes).
+    pub fn truncate_resize(&mut self, n: usize, keep: usize) {
+        let keep = keep.min(self.n).min(n);
+        self.n = n;
+        self.r.truncate(keep * self.band);
+        self.r.resize(n * self.band, 0.0);
+        self.z.truncate(keep);
+        self.z.resize(n, DVec3::ZERO);
     }
 
     /// The same triangle in a wider band (the extra columns zero), so that rows with more

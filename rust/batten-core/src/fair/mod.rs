@@ -269,7 +269,17 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
 
     let (knots, coefs, corner_parameters) = join(&pieces, k);
     let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
-    let dev = metrics::deviation(&curve, pts)?;
+    // A single piece whose fit measured its deviation (tolerance mode) is the curve itself:
+    // its parameters start at 0, so joining leaves knots and control points as they were.
+    let dev = match pieces.as_slice() {
+        [p] if p.deviation.is_some()
+            && p.curve.knots() == curve.knots()
+            && p.curve.control_points() == curve.control_points() =>
+        {
+            p.deviation.expect("checked")
+        }
+        _ => metrics::deviation(&curve, pts)?,
+    };
     let report = FairReport {
         control_points: curve.control_point_count(),
         knots,

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::error::FairError;
 use super::fit::{smoothing_spline, Ends, Spline, Target};
-use super::metrics::deviation;
+use super::metrics::{deviation, Deviation};
 use super::param::{chord_length, reproject};
 use crate::curve::NurbsCurve;
 
@@ -30,6 +30,8 @@ pub(crate) struct PieceFit {
     pub s: f64,
     pub iterations: usize,
     pub settled: bool,
+    /// The deviation of the piece's points from `curve`, when the fit already measured it.
+    pub deviation: Option<Deviation>,
 }
 
 /// End directions (unit vectors) of the piece, if fixed.
@@ -102,6 +104,7 @@ pub(crate) fn fit_smooth(
         s: s.s,
         iterations,
         settled,
+        deviation: None,
     })
 }
 
@@ -119,9 +122,10 @@ pub(crate) fn fit_within(
     let mut s = m as f64 * tol * tol;
     let mut best: Option<(f64, usize)> = None;
     for _ in 0..MAX_S_STEPS {
-        let fit = fit_smooth(points, degree, Target::exact(s), dirs, max_iter)?;
+        let mut fit = fit_smooth(points, degree, Target::exact(s), dirs, max_iter)?;
         let dev = deviation(&fit.curve, points)?;
         if dev.max <= tol {
+            fit.deviation = Some(dev);
             return Ok(Ok(fit));
         }
         if best.is_none_or(|(d, _)| dev.max < d) {
@@ -164,6 +168,7 @@ fn short_piece(points: &[DVec3], degree: usize) -> Result<PieceFit, FairError> {
             s: 0.0,
             iterations: 0,
             settled: true,
+            deviation: None,
         },
         degree,
     ))
