@@ -15,7 +15,7 @@ OUT ?= out
 
 demo: venv sysdeps
 	$(MAKE) --no-print-directory native PROFILE=release
-	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/demo.py -- --out $(OUT)
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/demo.py -- --out $(OUT) --zebra
 
 test: venv sysdeps lint
 	cargo test -p batten-core

@@ -3,13 +3,15 @@
 import importlib.util
 
 import batten.api as api
+import pytest
 
 
-def test_wigley_json_matches_its_generator(examples_dir):
-    spec = importlib.util.spec_from_file_location("wigley", examples_dir / "wigley.py")
+@pytest.mark.parametrize("name", ["wigley", "hard_chine"])
+def test_example_json_matches_its_generator(examples_dir, name):
+    spec = importlib.util.spec_from_file_location(name, examples_dir / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    assert (examples_dir / "wigley.json").read_text() == module.text()
+    assert (examples_dir / f"{name}.json").read_text() == module.text()
 
 
 def test_wigley_sections_are_exact(examples_dir):

@@ -4,9 +4,9 @@ The add-on is a thin front end: geometry runs in the Rust module ``batten_native
 scripting API is :mod:`batten.api`; operators and panels only call it.
 """
 
-from . import operators, overlay, panels, properties
+from . import live, operators, overlay, panels, properties
 
-_MODULES = (properties, operators, panels, overlay)
+_MODULES = (properties, operators, panels, overlay, live)
 
 
 def register():

@@ -16,6 +16,7 @@ import os
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
+from typing import NamedTuple
 
 import bpy
 import numpy as np
@@ -24,6 +25,7 @@ from batten_native import (
     ROLES,
     BattenError,
     Curve,
+    build_surface,
     fair_points,
     fairness,
     network_from_json,
@@ -31,9 +33,11 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
-from .bridge import curves_in, curves_out, sections_in
+from .bridge import curves_in, curves_out, mesh_out, sections_in
 
 __all__ = [
+    "BuildResult",
+    "build",
     "read_network",
     "DEFAULT_TOLERANCE",
     "ROLES",
@@ -50,6 +54,10 @@ __all__ = [
     "set_role",
     "topology",
 ]
+
+
+#: Custom property marking a mesh object as the surface batten built, holding the source's name.
+SURFACE_TAG = "batten_surface"
 
 
 def _source_name(source) -> str:
@@ -77,6 +85,8 @@ def curve_objects(source) -> list:
         raise BattenError(
             f"expected a collection, a curve object or a list of them, got {type(source).__name__}"
         )
+    # The hull surface batten built from these curves may sit beside them: it is output, not input.
+    objects = [o for o in objects if not (isinstance(o, bpy.types.Object) and o.get(SURFACE_TAG))]
     if not objects:
         raise BattenError(f"{where} holds no curves")
     for obj in objects:
@@ -309,3 +319,52 @@ def topology(source, *, tolerance: float = DEFAULT_TOLERANCE) -> dict:
     ``diagnostics`` (each ``kind``, ``message``, ``curves``, ``location``).
     """
     return _topology(read_curves(source), tolerance)
+
+
+class BuildResult(NamedTuple):
+    """What :func:`build` returns: the surface mesh object and the report dict."""
+
+    object: object
+    report: dict
+
+
+def _surface_object(name: str):
+    for obj in bpy.data.objects:
+        if obj.type == "MESH" and obj.get(SURFACE_TAG) == name:
+            return obj
+    return None
+
+
+def build(
+    source, *, tolerance: float = DEFAULT_TOLERANCE, resolution: int = 8, mirror: bool = True
+) -> BuildResult:
+    """Build the smooth hull surface of the curve network in ``source`` (H-rep paper): nodes
+    where curves meet, faces found automatically, one Gregory (4 sides) or Charrot–Gregory
+    (3, 5, 6 … sides) patch per face with cross-boundary tangents from the crossing curves, G1
+    across ordinary curves and G0 across knuckles, tessellated with ``resolution`` segments per
+    side into one watertight mesh.
+
+    The mesh object (``"<source> surface"``) is updated in place on every rebuild: its name,
+    materials and modifiers survive. ``mirror`` adds a Mirror modifier about y = 0. Faces
+    carry an integer attribute ``patch`` (the network face they belong to). A build that fails
+    raises BattenError and leaves the previous mesh untouched.
+
+    ``report`` holds: nodes, edges, faces, faces_by_sides, open_edges, max_gap,
+    max_normal_angle_deg, crease_angles_deg (per knuckle curve: name, min, max), volume (between
+    the drawn half surface and the centreplane), displacement_volume (both halves when
+    mirrored), mesh_vertices, mesh_faces, warnings.
+    """
+    curves = read_curves(source)
+    name = _source_name(source)
+    (positions, corners, sizes, patch), report = build_surface(curves, tolerance, resolution)
+    obj = mesh_out.write_surface(
+        f"{name} surface", positions, corners, sizes, patch, obj=_surface_object(name), mirror=mirror
+    )
+    obj[SURFACE_TAG] = name
+    report["mirror"] = mirror
+    report["displacement_volume"] = report["volume"] * (2.0 if mirror else 1.0)
+    # Messages name curves as 'name': keep the names per warning, so the panel can show them.
+    report["warning_curves"] = {
+        w: sorted({c.name.split("[")[0] for c in curves if f"'{c.name}'" in w}) for w in report["warnings"]
+    }
+    return BuildResult(obj, report)

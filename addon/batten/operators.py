@@ -1,5 +1,8 @@
 """Operators: convert properties, call :mod:`batten.api`, report errors. No geometry here."""
 
+import json
+from pathlib import Path
+
 import bpy
 from bpy.props import FloatProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
@@ -14,6 +17,127 @@ def _hull_source(context):
     if settings.source is not None:
         return settings.source
     return [o for o in context.selected_objects if o.type == "CURVE"]
+
+
+def build_into_scene(scene) -> dict:
+    """Build the scene's hull with its settings, keep the report in the scene (JSON), and
+    return it; a failure is kept as the report's error and raised again."""
+    settings = scene.batten
+    try:
+        result = api.build(
+            settings.source,
+            tolerance=settings.tolerance,
+            resolution=settings.resolution,
+            mirror=settings.mirror,
+        )
+    except api.BattenError as e:
+        settings.last_report = json.dumps({"error": str(e)})
+        raise
+    topo = api.topology(settings.source, tolerance=settings.tolerance)
+    result.report["markers"] = {
+        "nodes": topo["node_positions"],
+        "problems": [d["location"] for d in topo["diagnostics"] if d["location"] is not None],
+    }
+    settings.last_report = json.dumps(result.report)
+    return result.report
+
+
+class BATTEN_OT_build(bpy.types.Operator):
+    """Build the smooth hull surface from the hull's curve network"""
+
+    bl_idname = "batten.build"
+    bl_label = "Build Surface"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def execute(self, context):
+        try:
+            report = build_into_scene(context.scene)
+        except api.BattenError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        for warning in report["warnings"]:
+            self.report({"WARNING"}, warning)
+        sides = ", ".join(f"{n}-sided: {c}" for n, c in sorted(report["faces_by_sides"].items()))
+        self.report({"INFO"}, f"Built {report['faces']} patches ({sides})")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_select_curves(bpy.types.Operator):
+    """Select and frame the curves a warning names"""
+
+    bl_idname = "batten.select_curves"
+    bl_label = "Show Curves"
+    bl_options = {"REGISTER", "UNDO"}
+
+    names: StringProperty(name="Curves", description="Curve object names, separated by newlines")
+
+    def execute(self, context):
+        wanted = {n for n in self.names.split("\n") if n}
+        found = [o for o in context.view_layer.objects if o.name in wanted or o.name.split("[")[0] in wanted]
+        if not found:
+            self.report({"WARNING"}, "None of the named curves is in this view layer")
+            return {"CANCELLED"}
+        for o in context.view_layer.objects:
+            o.select_set(o in found)
+        context.view_layer.objects.active = found[0]
+        if context.area is not None and context.area.type == "VIEW_3D":
+            bpy.ops.view3d.view_selected()
+        return {"FINISHED"}
+
+
+def example_files() -> list[Path]:
+    """The example networks: shipped inside the extension, or in this checkout's examples/."""
+    here = Path(__file__).resolve().parent
+    for folder in (here / "examples", here.parent.parent / "examples"):
+        files = sorted(folder.glob("*.json"))
+        if files:
+            return files
+    return []
+
+
+class BATTEN_OT_add_example(bpy.types.Operator):
+    """Draw a batten example hull network as curves in a new collection"""
+
+    bl_idname = "batten.add_example"
+    bl_label = "batten Example Hull"
+    bl_options = {"REGISTER", "UNDO"}
+
+    example: StringProperty(name="Example", description="File name of the example network")
+
+    def execute(self, context):
+        path = next((p for p in example_files() if p.name == self.example), None)
+        if path is None:
+            self.report({"ERROR"}, f"No example '{self.example}'")
+            return {"CANCELLED"}
+        try:
+            coll = api.load_network(path)
+        except api.BattenError as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        context.scene.batten.source = coll
+        return {"FINISHED"}
+
+
+class BATTEN_MT_add_example(bpy.types.Menu):
+    """Add ▸ Curve ▸ batten example hulls"""
+
+    bl_idname = "BATTEN_MT_add_example"
+    bl_label = "batten Example Hulls"
+
+    def draw(self, _context):
+        for path in example_files():
+            op = self.layout.operator(
+                BATTEN_OT_add_example.bl_idname, text=path.stem.replace("_", " ").title()
+            )
+            op.example = path.name
+
+
+def _menu_add_curve(self, _context):
+    self.layout.menu(BATTEN_MT_add_example.bl_idname, icon="MOD_CURVE")
 
 
 class BATTEN_OT_export_network(bpy.types.Operator, ExportHelper):
@@ -119,6 +243,10 @@ def _menu_export(self, _context):
 
 
 _CLASSES = (
+    BATTEN_OT_build,
+    BATTEN_OT_select_curves,
+    BATTEN_OT_add_example,
+    BATTEN_MT_add_example,
     BATTEN_OT_export_network,
     BATTEN_OT_import_network,
     BATTEN_OT_fair_curves,
@@ -133,10 +261,13 @@ def register():
     bpy.types.TOPBAR_MT_file_export.remove(_menu_export)
     bpy.types.TOPBAR_MT_file_import.append(_menu_import)
     bpy.types.TOPBAR_MT_file_export.append(_menu_export)
+    bpy.types.VIEW3D_MT_curve_add.remove(_menu_add_curve)
+    bpy.types.VIEW3D_MT_curve_add.append(_menu_add_curve)
 
 
 def unregister():
     """Remove the menu entries and operators."""
     bpy.types.TOPBAR_MT_file_import.remove(_menu_import)
     bpy.types.TOPBAR_MT_file_export.remove(_menu_export)
+    bpy.types.VIEW3D_MT_curve_add.remove(_menu_add_curve)
     unregister_classes(_CLASSES)

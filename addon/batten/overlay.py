@@ -1,8 +1,12 @@
-"""Viewport overlay: curvature combs on the selected curves (drawn only, nothing stored).
+"""Viewport overlay: curvature combs on the selected curves, and markers on the network's
+nodes and problems (dangling ends, near misses) from the last build (drawn only, nothing
+stored).
 
-The comb geometry comes from :func:`batten.api.curvature_comb`; this module only turns it
-into line batches for the GPU.
+The comb geometry comes from :func:`batten.api.curvature_comb`, the markers from the scene's
+last build report; this module only turns them into batches for the GPU.
 """
+
+import json
 
 import bpy
 import numpy as np
@@ -32,20 +36,39 @@ def comb_lines(context) -> np.ndarray:
     return np.concatenate(segments).astype(np.float32)
 
 
+def markers(context) -> dict[str, np.ndarray]:
+    """Marker positions from the last build: ``nodes`` and ``problems``, each (n, 3) float32."""
+    text = context.scene.batten.last_report
+    data = json.loads(text).get("markers", {}) if text else {}
+    return {k: np.asarray(data.get(k, []), dtype=np.float32).reshape(-1, 3) for k in ("nodes", "problems")}
+
+
 def _draw():
     context = bpy.context
-    if not getattr(context.scene, "batten", None) or not context.scene.batten.show_combs:
+    settings = getattr(context.scene, "batten", None)
+    if settings is None:
         return
     import gpu
     from gpu_extras.batch import batch_for_shader
 
-    lines = comb_lines(context)
-    if len(lines) == 0:
-        return
     shader = gpu.shader.from_builtin("UNIFORM_COLOR")
-    batch = batch_for_shader(shader, "LINES", {"pos": lines})
-    shader.uniform_float("color", (0.85, 0.2, 0.6, 1.0))
-    batch.draw(shader)
+    if settings.show_combs:
+        lines = comb_lines(context)
+        if len(lines):
+            batch = batch_for_shader(shader, "LINES", {"pos": lines})
+            shader.uniform_float("color", (0.85, 0.2, 0.6, 1.0))
+            batch.draw(shader)
+    if settings.show_network:
+        for kind, color, size in (
+            ("nodes", (0.1, 0.6, 1.0, 1.0), 6.0),
+            ("problems", (1.0, 0.15, 0.1, 1.0), 12.0),
+        ):
+            pts = markers(context)[kind]
+            if len(pts):
+                gpu.state.point_size_set(size)
+                batch = batch_for_shader(shader, "POINTS", {"pos": pts})
+                shader.uniform_float("color", color)
+                batch.draw(shader)
 
 
 def register():

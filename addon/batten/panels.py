@@ -1,5 +1,7 @@
 """The batten tab in the 3D viewport's sidebar."""
 
+import json
+
 import bpy
 
 from ._registry import register_classes, unregister_classes
@@ -23,6 +25,12 @@ class VIEW3D_PT_batten(bpy.types.Panel):
         col.prop(settings, "resolution")
         col.prop(settings, "mirror")
         row = layout.row(align=True)
+        row.scale_y = 1.3
+        row.operator("batten.build", icon="MOD_SMOOTH")
+        row.prop(settings, "live", toggle=True, icon="REC" if settings.live else "PLAY")
+        layout.prop(settings, "show_network")
+        _draw_report(layout, settings.last_report)
+        row = layout.row(align=True)
         row.operator("batten.import_network", text="Import", icon="IMPORT")
         row.operator("batten.export_network", text="Export", icon="EXPORT")
         box = layout.box()
@@ -37,6 +45,35 @@ class VIEW3D_PT_batten(bpy.types.Panel):
             box = layout.box()
             box.label(text=obj.name, icon="CURVE_DATA")
             box.prop(obj.batten, "role")
+
+
+def _draw_report(layout, text: str) -> None:
+    """The last build's figures and warnings; each warning can select and frame its curves."""
+    if not text:
+        return
+    report = json.loads(text)
+    box = layout.box()
+    if "error" in report:
+        box.alert = True
+        box.label(text=report["error"], icon="ERROR")
+        return
+    col = box.column(align=True)
+    sides = ", ".join(
+        f"{c}×{n}" for n, c in sorted(report["faces_by_sides"].items(), key=lambda kv: int(kv[0]))
+    )
+    col.label(text=f"Patches: {report['faces']} ({sides}-sided)")
+    col.label(text=f"Open edges: {report['open_edges']}")
+    col.label(text=f"Max gap: {report['max_gap'] * 1e3:.3f} mm")
+    col.label(text=f"Max normal jump: {report['max_normal_angle_deg']:.4f}°")
+    for name, lo, hi in report["crease_angles_deg"]:
+        col.label(text=f"Crease {name}: {lo:.1f}°–{hi:.1f}°")
+    col.label(text=f"Volume: {report['displacement_volume']:.2f} m³")
+    for warning in report["warnings"]:
+        row = box.row()
+        row.label(text=warning, icon="ERROR")
+        names = [n for n in report.get("warning_curves", {}).get(warning, [])]
+        if names:
+            row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(names)
 
 
 _CLASSES = (VIEW3D_PT_batten,)

@@ -4,7 +4,7 @@ Everything lives in Blender data (saved with the file, seen by undo); nothing in
 """
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._registry import register_classes, unregister_classes
 
@@ -66,6 +66,17 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         description="Mirror the drawn half hull about the centreplane (y = 0)",
         default=True,
     )
+    live: BoolProperty(
+        name="Live",
+        description="Rebuild the surface whenever a curve of the hull changes",
+        default=False,
+    )
+    last_report: StringProperty(
+        name="Last report",
+        description="The report of the last build (JSON), shown in the panel",
+        default="",
+        options={"HIDDEN"},
+    )
     fair_tolerance: FloatProperty(
         name="Fair tolerance",
         description="Largest distance a faired curve may stray from its points",
@@ -74,6 +85,11 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         max=1.0,
         precision=4,
         unit="LENGTH",
+    )
+    show_network: BoolProperty(
+        name="Network markers",
+        description="Mark the network's nodes, and dangling ends and near misses, in the viewport",
+        default=True,
     )
     show_combs: BoolProperty(
         name="Curvature combs",

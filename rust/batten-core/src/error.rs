@@ -154,6 +154,11 @@ pub enum Error {
     /// A network file could not be read.
     #[error("network file: {0}")]
     Format(String),
+    /// The network gives no hull surface: it has no faces (the message names the topology's
+    /// diagnostics), none of its faces could be patched, or the mesh request is invalid
+    /// (H-rep paper §3: a surface needs closed regions of curves).
+    #[error("no surface: {0}")]
+    NoSurface(String),
 }
 
 impl CurveError {

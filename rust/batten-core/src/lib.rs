@@ -10,6 +10,7 @@
 mod curve;
 mod error;
 mod fair;
+mod hull;
 mod network;
 mod patch;
 mod tolerance;
@@ -24,6 +25,7 @@ pub use fair::{
     FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
     MAX_FAIR_DEGREE,
 };
+pub use hull::{build_hull, HullOptions, HullReport, HullSurface, KNUCKLE_POINT_ANGLE_DEGREES};
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,
 };

@@ -7,6 +7,7 @@
 mod curve;
 mod errors;
 mod fair;
+mod hull;
 mod network;
 mod topology;
 
@@ -28,5 +29,6 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
+    m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
     Ok(())
 }

@@ -257,6 +257,17 @@ impl Patch {
         self.sides[i % self.sides.len()].point(s)
     }
 
+    /// The side parameter `s ∈ [0, 1]` of the point at fraction `lambda` of segment `segment`
+    /// of side `side` (the segment's curve parameter is then `t0 + lambda·(t1 − t0)`): lets the
+    /// hull report (H-rep §3.2.2, G1 across shared edges) evaluate both faces of an edge at the
+    /// same curve point when the edge is one segment of a composite side.
+    pub(crate) fn segment_side_parameter(&self, side: usize, segment: usize, lambda: f64) -> f64 {
+        let side = &self.sides[side % self.sides.len()];
+        let k = segment.min(side.segs.len() - 1);
+        let (a, b) = (side.breaks[k], side.breaks[k + 1]);
+        a + (b - a) * lambda.clamp(0.0, 1.0)
+    }
+
     /// The ribbon (cross-boundary derivative pointing into the face, with respect to the cross
     /// parameter running from 0 on the side to 1 across the domain) of side `i` at `s`.
     pub fn ribbon(&self, i: usize, s: f64) -> DVec3 {

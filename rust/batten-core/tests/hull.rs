@@ -1,0 +1,683 @@
+//! The H-rep pipeline end to end (network → topology → patches → one welded mesh + report),
+//! checked against analytic surfaces: the Wigley hull's exact volume, planar networks, a
+//! sphere network for GC¹, a hard-chine section for knuckles, the frigate network of the paper,
+//! and bad input.
+
+mod common;
+
+use std::collections::{BTreeMap, HashMap};
+
+use batten_core::{
+    build_hull, Error, HullOptions, HullSurface, Network, NetworkCurve, NurbsCurve, Role,
+    SurfaceMesh, Tolerance, Topology,
+};
+use glam::DVec3;
+
+const L: f64 = 100.0;
+const B: f64 = 10.0;
+const T: f64 = 6.25;
+const F: f64 = 2.5;
+
+fn examples() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+fn load(name: &str) -> Network {
+    let text = std::fs::read_to_string(examples().join(name)).expect("example file");
+    Network::from_json(&text).expect("valid network")
+}
+
+fn nc(name: &str, role: Role, curve: NurbsCurve) -> NetworkCurve {
+    NetworkCurve {
+        name: name.to_owned(),
+        role,
+        curve,
+    }
+}
+
+fn poly(degree: usize, knots: Vec<f64>, pts: &[[f64; 3]]) -> NurbsCurve {
+    let pts = pts.iter().map(|p| DVec3::from(*p)).collect();
+    NurbsCurve::try_new(degree, knots, pts, None).expect("valid curve")
+}
+
+fn line(a: [f64; 3], b: [f64; 3]) -> NurbsCurve {
+    poly(1, vec![0.0, 0.0, 1.0, 1.0], &[a, b])
+}
+
+/// The Wigley hull of `examples/wigley.py` with `stations` stations (odd) at spacing
+/// `L / (stations + 1)` and `waterlines` waterlines at `T·k / waterlines` (the last is the design
+/// waterline): exact quadratic stations (wall-sided above `T`) and waterlines.
+fn wigley(stations: usize, waterlines: usize) -> Network {
+    let half = |x: f64| 0.5 * B * (1.0 - (2.0 * x / L).powi(2));
+    let depth = |z: f64| 1.0 - ((T - z) / T).powi(2);
+    let deck = T + F;
+    let mut c = Vec::new();
+    let m = (stations as i64 - 1) / 2;
+    for k in -m..=m {
+        let x = L * k as f64 / (stations + 1) as f64;
+        let h = half(x);
+        c.push(nc(
+            &format!("station {x:+.2}"),
+            Role::Free,
+            poly(
+                2,
+                vec![0., 0., 0., 1., 1., 2., 2., 2.],
+                &[
+                    [x, 0., 0.],
+                    [x, h, T / 2.],
+                    [x, h, T],
+                    [x, h, T + F / 2.],
+                    [x, h, deck],
+                ],
+            ),
+        ));
+    }
+    let wl = |z: f64, g: f64| {
+        poly(
+            2,
+            vec![0., 0., 0., 1., 1., 1.],
+            &[[-L / 2., 0., z], [0., B * g, z], [L / 2., 0., z]],
+        )
+    };
+    for k in 1..=waterlines {
+        let z = T * k as f64 / waterlines as f64;
+        c.push(nc(
+            &format!("waterline {z:.4}"),
+            Role::Free,
+            wl(z, depth(z)),
+        ));
+    }
+    c.push(nc("deck edge", Role::Deck, wl(deck, 1.0)));
+    c.push(nc(
+        "keel",
+        Role::Keel,
+        line([-L / 2., 0., 0.], [L / 2., 0., 0.]),
+    ));
+    c.push(nc(
+        "stem",
+        Role::Stem,
+        line([L / 2., 0., 0.], [L / 2., 0., deck]),
+    ));
+    c.push(nc(
+        "stern",
+        Role::Transom,
+        line([-L / 2., 0., 0.], [-L / 2., 0., deck]),
+    ));
+    Network::try_new("wigley", c).expect("unique names")
+}
+
+/// The exact half volume of the Wigley hull to the deck: (2/9)·L·B·T + (1/3)·L·B·F.
+fn wigley_volume() -> f64 {
+    2.0 / 9.0 * L * B * T + L * B * F / 3.0
+}
+
+fn build(net: &Network, resolution: usize) -> HullSurface {
+    let options = HullOptions {
+        tolerance: Tolerance::DEFAULT,
+        resolution,
+    };
+    build_hull(net, &options).expect("hull builds")
+}
+
+fn assert_finite(mesh: &SurfaceMesh) {
+    assert!(
+        mesh.positions
+            .iter()
+            .all(|p| p.iter().all(|c| c.is_finite())),
+        "every mesh position is finite"
+    );
+}
+
+fn pos(mesh: &SurfaceMesh, v: u32) -> DVec3 {
+    DVec3::from(mesh.positions[v as usize])
+}
+
+fn face_normal(mesh: &SurfaceMesh, f: &[u32]) -> DVec3 {
+    let a = pos(mesh, f[0]);
+    let mut n = DVec3::ZERO;
+    for w in f[1..].windows(2) {
+        n += (pos(mesh, w[0]) - a).cross(pos(mesh, w[1]) - a);
+    }
+    n.normalize_or_zero()
+}
+
+/// Every mesh edge: its faces and whether it is traversed as `(a, b)` by them. Checks that an
+/// edge used twice is traversed in opposite directions (consistent orientation) and never more
+/// than twice (a manifold weld).
+fn check_orientation(mesh: &SurfaceMesh) -> HashMap<(u32, u32), Vec<usize>> {
+    let mut edges: HashMap<(u32, u32), Vec<(usize, bool)>> = HashMap::new();
+    for (fi, f) in mesh.faces().enumerate() {
+        for i in 0..f.len() {
+            let (a, b) = (f[i], f[(i + 1) % f.len()]);
+            let key = (a.min(b), a.max(b));
+            edges.entry(key).or_default().push((fi, a < b));
+        }
+    }
+    for (k, uses) in &edges {
+        assert!(
+            uses.len() <= 2,
+            "mesh edge {k:?} used by {} faces",
+            uses.len()
+        );
+        if uses.len() == 2 {
+            assert_ne!(
+                uses[0].1, uses[1].1,
+                "mesh edge {k:?} is traversed the same way by both faces"
+            );
+        }
+    }
+    edges
+        .into_iter()
+        .map(|(k, u)| (k, u.into_iter().map(|x| x.0).collect()))
+        .collect()
+}
+
+/// Consistent orientation, and every face of a port half (a Wigley hull, `y = f(x, z) ≥ 0`)
+/// facing away from the centreplane.
+fn assert_outward(mesh: &SurfaceMesh) {
+    check_orientation(mesh);
+    let outward = mesh
+        .faces()
+        .map(|f| face_normal(mesh, f))
+        .filter(|n| n.y > 0.0)
+        .count();
+    assert_eq!(
+        outward,
+        mesh.face_count(),
+        "every face of the port half faces +y"
+    );
+}
+
+/// The largest angle (degrees) between neighbouring mesh faces of different patches.
+fn max_seam_dihedral(mesh: &SurfaceMesh) -> f64 {
+    let faces: Vec<&[u32]> = mesh.faces().collect();
+    let normals: Vec<DVec3> = faces.iter().map(|f| face_normal(mesh, f)).collect();
+    check_orientation(mesh)
+        .values()
+        .filter(|u| u.len() == 2 && mesh.face_patch[u[0]] != mesh.face_patch[u[1]])
+        .map(|u| normals[u[0]].angle_between(normals[u[1]]).to_degrees())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn wigley_example_matches_its_exact_volume_and_refines() {
+    let example = load("wigley.json");
+    let exact = wigley_volume();
+    let hull = build(&example, 16);
+    let r = &hull.report;
+    let err = (r.volume - exact).abs() / exact;
+    println!(
+        "wigley 7x3: volume {:.4} m³ vs exact {exact:.4} m³ (error {:.4}%), max normal angle {:.2e}°, max gap {:.2e} m, faces {:?}, open edges {}, warnings {:?}",
+        r.volume, err * 100.0, r.max_normal_angle_deg, r.max_gap, r.faces_by_sides, r.open_edges, r.warnings
+    );
+    assert_finite(&hull.mesh);
+    assert_eq!(r.faces, 32, "8 columns × 4 rows of faces");
+    assert_eq!(r.faces_by_sides, BTreeMap::from([(4, 32)]), "all quads");
+    assert_eq!(r.skipped_faces, 0, "every face patched");
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    assert!(err < 0.002, "volume within 0.2% ({:.4}%)", err * 100.0);
+    // Nodes come from the junction solver (to ~1e-9 m); the sides are the curves themselves.
+    assert!(
+        r.max_gap < 1e-7,
+        "patches lie on the curves ({:e})",
+        r.max_gap
+    );
+    assert!(
+        r.max_normal_angle_deg <= 0.01,
+        "GC¹ across smooth edges ({}°)",
+        r.max_normal_angle_deg
+    );
+    assert!(r.crease_angles_deg.is_empty(), "no knuckles on the Wigley");
+    // Open boundary: keel 8 + stem 4 + stern 4 + deck 8 edges.
+    assert_eq!(r.open_edges, 24, "open edges");
+    // Orientation: consistent and outward (away from the centreplane).
+    assert_outward(&hull.mesh);
+
+    // The same network built in the test gives the same hull.
+    let same = build(&wigley(7, 3), 16);
+    assert!(
+        (same.report.volume - r.volume).abs() < 1e-9 * exact,
+        "wigley.json is the 7×3 network"
+    );
+
+    for res in [8, 32] {
+        let v = build(&example, res).report.volume;
+        println!(
+            "wigley 7x3 at resolution {res}: volume {v:.4} (error {:.4}%)",
+            (v - exact).abs() / exact * 100.0
+        );
+    }
+
+    // Refining the network reduces the error; at resolution 8 the 15×6 network's mesh spacing
+    // is about that of the 7×3 network at 16, so the gain is the surface's, not the mesh's.
+    let fine = build(&wigley(15, 6), 8);
+    let err_fine = (fine.report.volume - exact).abs() / exact;
+    println!(
+        "wigley 15x6 at resolution 8: volume {:.4} m³ (error {:.5}%), max normal angle {:.2e}°, max gap {:.2e} m",
+        fine.report.volume,
+        err_fine * 100.0,
+        fine.report.max_normal_angle_deg,
+        fine.report.max_gap
+    );
+    assert!(
+        err_fine < err,
+        "refined network is closer ({err_fine} vs {err})"
+    );
+    assert!(
+        fine.report.max_normal_angle_deg <= 0.01,
+        "GC¹ on the fine network ({}°)",
+        fine.report.max_normal_angle_deg
+    );
+}
+
+#[test]
+fn seam_dihedral_halves_when_the_resolution_doubles() {
+    let net = wigley(7, 3);
+    let coarse = max_seam_dihedral(&build(&net, 8).mesh);
+    let fine = max_seam_dihedral(&build(&net, 16).mesh);
+    let ratio = fine / coarse;
+    println!("wigley seam dihedral: {coarse:.4}° at 8, {fine:.4}° at 16 (ratio {ratio:.3})");
+    assert!(
+        (0.35..0.7).contains(&ratio),
+        "a smooth seam's dihedral is proportional to the mesh size (ratio {ratio})"
+    );
+    let sphere = sphere_octant();
+    let coarse = max_seam_dihedral(&build(&sphere, 8).mesh);
+    let fine = max_seam_dihedral(&build(&sphere, 16).mesh);
+    let ratio = fine / coarse;
+    println!("sphere seam dihedral: {coarse:.4}° at 8, {fine:.4}° at 16 (ratio {ratio:.3})");
+    assert!(
+        (0.35..0.7).contains(&ratio),
+        "sphere seams are smooth (ratio {ratio})"
+    );
+}
+
+/// A planar network in the plane `z = 0.3x + 0.2y + 1`: a square, a curved station, a
+/// waterline across it and a curve ending on the waterline (T-joint, a three-sided face).
+#[test]
+fn planar_network_gives_a_planar_mesh() {
+    let lift = |x: f64, y: f64| [x, y, 0.3 * x + 0.2 * y + 1.0];
+    let seg = |a: (f64, f64), b: (f64, f64)| line(lift(a.0, a.1), lift(b.0, b.1));
+    let quad = |a: (f64, f64), m: (f64, f64), b: (f64, f64)| {
+        poly(
+            2,
+            vec![0., 0., 0., 1., 1., 1.],
+            &[lift(a.0, a.1), lift(m.0, m.1), lift(b.0, b.1)],
+        )
+    };
+    // The curved station x = 0.5 + 0.2·4s(1−s)·... crosses y = 0.5 at x = 0.6.
+    let net = Network::try_new(
+        "plane",
+        vec![
+            nc("bottom", Role::Free, seg((0., 0.), (1., 0.))),
+            nc("right", Role::Free, seg((1., 0.), (1., 1.))),
+            nc("top", Role::Free, seg((1., 1.), (0., 1.))),
+            nc("left", Role::Free, seg((0., 1.), (0., 0.))),
+            nc(
+                "station",
+                Role::Free,
+                quad((0.5, 0.), (0.7, 0.5), (0.5, 1.)),
+            ),
+            nc("waterline", Role::Free, seg((0., 0.5), (1., 0.5))),
+            nc("diagonal", Role::Free, seg((0., 1.), (0.3, 0.5))),
+        ],
+    )
+    .expect("network");
+    let hull = build(&net, 10);
+    let r = &hull.report;
+    println!("planar: {:?}, warnings {:?}", r.faces_by_sides, r.warnings);
+    assert_finite(&hull.mesh);
+    assert_eq!(r.faces, 5, "four quads, one split by the diagonal");
+    assert_eq!(r.faces_by_sides.get(&3), Some(&1), "one triangle");
+    let dist = |p: DVec3| (0.3 * p.x + 0.2 * p.y - p.z + 1.0).abs() / (1.0f64 + 0.09 + 0.04).sqrt();
+    let worst_plane = hull
+        .mesh
+        .positions
+        .iter()
+        .map(|p| dist(DVec3::from(*p)))
+        .fold(0.0, f64::max);
+    println!("planar: max distance to the plane {worst_plane:.2e}");
+    assert!(worst_plane <= 1e-9, "planar mesh ({worst_plane:e})");
+    assert!(r.max_normal_angle_deg <= 1e-3, "one plane: no normal jumps");
+    assert!(r.volume.is_finite(), "volume defined");
+}
+
+/// Rational quadratic circular arc from `a` to `b` about `centre` (angle below 180°).
+fn arc(centre: DVec3, a: DVec3, b: DVec3) -> NurbsCurve {
+    let (u, v) = (a - centre, b - centre);
+    let half = 0.5 * u.angle_between(v);
+    let mid = centre + (u + v).normalize() * (u.length() / half.cos());
+    NurbsCurve::try_new(
+        2,
+        vec![0., 0., 0., 1., 1., 1.],
+        vec![a, mid, b],
+        Some(vec![1.0, half.cos(), 1.0]),
+    )
+    .expect("arc")
+}
+
+/// An octant of the unit sphere: meridians at 0°, 30°, 60°, 90° from the pole to the equator
+/// and parallels at 30°, 60° polar angle plus the equator (exact rational arcs).
+fn sphere_octant() -> Network {
+    let point = |theta: f64, phi: f64| {
+        let (t, p) = (theta.to_radians(), phi.to_radians());
+        DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+    };
+    let mut c = Vec::new();
+    for phi in [0.0, 30.0, 60.0, 90.0] {
+        c.push(nc(
+            &format!("meridian {phi}"),
+            Role::Free,
+            arc(DVec3::ZERO, point(0.0, phi), point(90.0, phi)),
+        ));
+    }
+    for theta in [30.0f64, 60.0, 90.0] {
+        let centre = DVec3::new(0.0, 0.0, theta.to_radians().cos());
+        c.push(nc(
+            &format!("parallel {theta}"),
+            Role::Free,
+            arc(centre, point(theta, 0.0), point(theta, 90.0)),
+        ));
+    }
+    Network::try_new("sphere", c).expect("network")
+}
+
+#[test]
+fn sphere_network_is_gc1_across_its_edges() {
+    let hull = build(&sphere_octant(), 16);
+    let r = &hull.report;
+    println!(
+        "sphere: {:?}, max normal angle {:.2e}°, max gap {:.2e}, warnings {:?}",
+        r.faces_by_sides, r.max_normal_angle_deg, r.max_gap, r.warnings
+    );
+    assert_finite(&hull.mesh);
+    assert_eq!(
+        r.faces_by_sides,
+        BTreeMap::from([(3, 3), (4, 6)]),
+        "three triangles at the pole, six quads"
+    );
+    assert!(
+        r.max_normal_angle_deg <= 0.01,
+        "GC¹ ({}°)",
+        r.max_normal_angle_deg
+    );
+    // The surface stays close to the sphere.
+    let worst = hull
+        .mesh
+        .positions
+        .iter()
+        .map(|p| (DVec3::from(*p).length() - 1.0).abs())
+        .fold(0.0, f64::max);
+    println!("sphere: max radial deviation {worst:.2e}");
+    // 30° patches interpolating arcs and ribbons: about 1% of the radius.
+    assert!(worst < 0.02, "close to the unit sphere ({worst})");
+    check_orientation(&hull.mesh);
+}
+
+/// A prismatic hard-chine section, 10 m long: bottom with deadrise `beta` from the keel to the
+/// chine at half breadth 2 m, wall side up to the deck at 3 m. Sections are polylines (corner
+/// at the chine).
+fn hard_chine(beta_deg: f64, chine_role: Role) -> Network {
+    let b = 2.0;
+    let h = b * beta_deg.to_radians().tan();
+    let deck = 3.0;
+    let mut c = Vec::new();
+    for x in [0.0, 5.0, 10.0] {
+        c.push(nc(
+            &format!("section {x}"),
+            Role::Free,
+            poly(
+                1,
+                vec![0., 0., 1., 2., 2.],
+                &[[x, 0., 0.], [x, b, h], [x, b, deck]],
+            ),
+        ));
+    }
+    c.push(nc("keel", Role::Keel, line([0., 0., 0.], [10., 0., 0.])));
+    c.push(nc("chine", chine_role, line([0., b, h], [10., b, h])));
+    c.push(nc("deck", Role::Deck, line([0., b, deck], [10., b, deck])));
+    Network::try_new("barge", c).expect("network")
+}
+
+#[test]
+fn hard_chine_keeps_its_crease_and_flat_panels() {
+    let beta: f64 = 20.0;
+    let drawn = 90.0 - beta; // angle between the bottom's and the side's normals
+    for role in [Role::Knuckle, Role::Free] {
+        let hull = build(&hard_chine(beta, role), 12);
+        let r = &hull.report;
+        println!(
+            "hard chine ({:?}): creases {:?}, max normal angle {:.2e}°, volume {:.6}",
+            role, r.crease_angles_deg, r.max_normal_angle_deg, r.volume
+        );
+        assert_finite(&hull.mesh);
+        assert_eq!(r.faces, 4, "two bottom and two side panels");
+        assert_eq!(r.crease_angles_deg.len(), 1, "one knuckle curve");
+        let (name, lo, hi) = &r.crease_angles_deg[0];
+        assert_eq!(name, "chine", "the chine is the knuckle");
+        assert!(
+            (lo - drawn).abs() < 1e-3 && (hi - drawn).abs() < 1e-3,
+            "crease {lo}..{hi}° vs drawn {drawn}°"
+        );
+        assert!(r.max_normal_angle_deg < 1e-3, "the sections are smooth");
+        // Flat panels: bottom points in the deadrise plane, side points in y = 2.
+        let h = 2.0 * beta.to_radians().tan();
+        let bottom_n = DVec3::new(0.0, -h, 2.0).normalize();
+        let worst = hull
+            .mesh
+            .positions
+            .iter()
+            .map(|p| {
+                let p = DVec3::from(*p);
+                if p.z <= h {
+                    p.dot(bottom_n).abs()
+                } else {
+                    (p.y - 2.0).abs()
+                }
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9, "flat panels stay flat ({worst:e})");
+        // Volume: bottom triangle + side rectangle, times the length.
+        let exact = 10.0 * (0.5 * 2.0 * h + 2.0 * (3.0 - h));
+        assert!(
+            (r.volume - exact).abs() < 1e-9 * exact,
+            "prism volume {} vs {exact}",
+            r.volume
+        );
+    }
+}
+
+#[test]
+fn frigate_example_builds_with_the_topology_faces() {
+    let net = load("frigate_network.json");
+    let topo = Topology::build(&net, Tolerance::DEFAULT).expect("topology");
+    let hull = build(&net, 12);
+    let r = &hull.report;
+    println!(
+        "frigate: nodes {}, edges {}, faces {:?}, open edges {}, max gap {:.2e}, max normal angle {:.2e}°, creases {:?}, volume {:.4}, warnings {:?}",
+        r.nodes, r.edges, r.faces_by_sides, r.open_edges, r.max_gap, r.max_normal_angle_deg, r.crease_angles_deg, r.volume, r.warnings
+    );
+    assert_finite(&hull.mesh);
+    assert_eq!(r.faces, 17, "17 faces");
+    assert_eq!(r.faces_by_sides, topo.faces_by_corners(), "as the topology");
+    assert_eq!(
+        r.faces_by_sides,
+        BTreeMap::from([(3, 1), (4, 15), (5, 1)]),
+        "one 3-, fifteen 4-, one 5-sided"
+    );
+    assert_eq!(r.skipped_faces, 0, "all patched");
+    assert!(r.max_gap < 1e-6, "on the curves ({})", r.max_gap);
+    assert!(
+        r.max_normal_angle_deg <= 0.01,
+        "GC¹ ({}°)",
+        r.max_normal_angle_deg
+    );
+    assert!(
+        r.crease_angles_deg.iter().any(|(n, _, _)| n == "knuckle"),
+        "the knuckle is reported"
+    );
+    assert!(r.volume > 0.0 && r.volume.is_finite(), "volume");
+    check_orientation(&hull.mesh);
+}
+
+#[test]
+fn near_miss_is_reported_and_the_rest_builds() {
+    let mut curves = wigley(7, 3).curves().to_vec();
+    // Lift the middle station's keel end by 5 tolerances: a near miss with the keel.
+    let st = curves
+        .iter_mut()
+        .find(|c| c.name == "station +0.00")
+        .expect("midship station");
+    let mut pts = st.curve.control_points();
+    pts[0].z += 5e-4;
+    st.curve = NurbsCurve::try_new(2, st.curve.knots().to_vec(), pts, None).expect("curve");
+    let net = Network::try_new("wigley near miss", curves).expect("network");
+    let hull = build(&net, 8);
+    let r = &hull.report;
+    println!("near miss: faces {}, warnings {:?}", r.faces, r.warnings);
+    assert_finite(&hull.mesh);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("miss") && w.contains("station +0.00") && w.contains("keel")),
+        "the near miss is reported by name: {:?}",
+        r.warnings
+    );
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("miss") && w.contains("waterline 2.0833")),
+        "the lifted station also misses the lowest waterline: {:?}",
+        r.warnings
+    );
+    // The station's dangling lower stretch is pruned: its two bottom-row neighbours and its
+    // two second-row neighbours merge, 32 − 2 faces, all patched.
+    assert_eq!(r.faces, 30, "the rest builds");
+    assert_eq!(r.skipped_faces, 0, "and nothing is skipped");
+    let err = (r.volume - wigley_volume()).abs() / wigley_volume();
+    assert!(err < 0.01, "still about the right volume ({err})");
+}
+
+#[test]
+fn faceless_networks_are_errors() {
+    let empty = Network::try_new("empty", Vec::new()).expect("network");
+    let err = build_hull(&empty, &HullOptions::default()).expect_err("no faces");
+    assert!(matches!(err, Error::NoSurface(_)), "{err}");
+
+    let lone = Network::try_new(
+        "lone",
+        vec![nc("batten", Role::Free, line([0., 0., 0.], [1., 0., 0.]))],
+    )
+    .expect("network");
+    let err = build_hull(&lone, &HullOptions::default()).expect_err("no faces");
+    let msg = err.to_string();
+    println!("{msg}");
+    assert!(
+        matches!(err, Error::NoSurface(_)) && msg.contains("batten"),
+        "the message names the diagnostics: {msg}"
+    );
+
+    let zero = HullOptions {
+        resolution: 0,
+        ..HullOptions::default()
+    };
+    assert!(
+        matches!(build_hull(&wigley(7, 3), &zero), Err(Error::NoSurface(_))),
+        "resolution 0 is refused"
+    );
+}
+
+/// A face that cannot be patched (a 17-gon: more sides than the N-sided patch takes, H-rep
+/// §3.2.1) is skipped, named and counted; its neighbour is still built.
+#[test]
+fn unpatchable_face_is_skipped_and_named() {
+    let n = 17;
+    let p = |k: usize| {
+        let a = std::f64::consts::TAU * (k % n) as f64 / n as f64;
+        [a.cos(), a.sin(), 0.0]
+    };
+    let mut curves: Vec<NetworkCurve> = (0..n)
+        .map(|k| nc(&format!("side {k}"), Role::Free, line(p(k), p(k + 1))))
+        .collect();
+    let (p0, p1) = (DVec3::from(p(0)), DVec3::from(p(1)));
+    let out = (p0 + p1).normalize() * (p1 - p0).length();
+    let (q0, q1) = ((p0 + out).to_array(), (p1 + out).to_array());
+    curves.push(nc("square a", Role::Free, line(p(1), q1)));
+    curves.push(nc("square b", Role::Free, line(q1, q0)));
+    curves.push(nc("square c", Role::Free, line(q0, p(0))));
+    let net = Network::try_new("polygon", curves).expect("network");
+    let hull = build(&net, 6);
+    let r = &hull.report;
+    println!(
+        "17-gon: faces {}, skipped {}, warnings {:?}",
+        r.faces, r.skipped_faces, r.warnings
+    );
+    assert_finite(&hull.mesh);
+    assert_eq!(r.faces, 1, "the square is built");
+    assert_eq!(r.faces_by_sides, BTreeMap::from([(4, 1)]), "one quad");
+    assert_eq!(r.skipped_faces, 1, "the 17-gon is skipped");
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("not patched") && w.contains("side 16") && w.contains("17 sides")),
+        "the skipped face is named: {:?}",
+        r.warnings
+    );
+    let topo = Topology::build(&net, Tolerance::DEFAULT).expect("topology");
+    let square = topo
+        .faces
+        .iter()
+        .position(|f| f.corners == 4)
+        .expect("the square face") as u32;
+    assert!(
+        hull.mesh.face_patch.iter().all(|&f| f == square),
+        "mesh polygons name their topology face"
+    );
+}
+
+/// The curve's reverse (same points, parameter running the other way).
+fn reversed(c: &NurbsCurve) -> NurbsCurve {
+    let (a, b) = c.domain();
+    let knots: Vec<f64> = c.knots().iter().rev().map(|k| a + b - k).collect();
+    let mut pts = c.control_points();
+    pts.reverse();
+    let w = c.weights().map(|mut w| {
+        w.reverse();
+        w
+    });
+    NurbsCurve::try_new(c.degree(), knots, pts, w).expect("reversed curve")
+}
+
+/// Curve directions and order do not matter: every other curve reversed and the list rotated
+/// gives the same hull (volume, counts, GC¹, outward orientation).
+#[test]
+fn curve_direction_and_order_do_not_matter() {
+    let net = wigley(7, 3);
+    let base = build(&net, 8);
+    let mut curves: Vec<NetworkCurve> = net
+        .curves()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let mut c = c.clone();
+            if i % 2 == 0 {
+                c.curve = reversed(&c.curve);
+            }
+            c
+        })
+        .collect();
+    curves.rotate_left(5);
+    let other = build(&Network::try_new("shuffled", curves).expect("network"), 8);
+    let (a, b) = (&base.report, &other.report);
+    println!("reversed/rotated: volume {} vs {}", b.volume, a.volume);
+    assert_eq!(a.faces_by_sides, b.faces_by_sides, "same faces");
+    assert_eq!(a.open_edges, b.open_edges, "same boundary");
+    assert!(
+        (a.volume - b.volume).abs() < 1e-9 * a.volume,
+        "same volume ({} vs {})",
+        b.volume,
+        a.volume
+    );
+    assert!(b.max_normal_angle_deg <= 0.01, "still GC¹");
+    assert_outward(&other.mesh);
+}

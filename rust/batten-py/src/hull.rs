@@ -1,0 +1,74 @@
+//! The hull surface: network → topology → patches → one welded mesh, as numpy arrays.
+
+use batten_core::{build_hull, HullOptions, Network, Tolerance};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::curve::Curve;
+use crate::errors::{core_err, guard, msg_err};
+
+/// Mesh arrays: positions (n, 3) float64, corner vertex indices (m,) int32, face sizes (k,)
+/// int32, the network face of each mesh face (k,) int32.
+type MeshArrays<'py> = (
+    Bound<'py, numpy::PyArray2<f64>>,
+    Bound<'py, PyArray1<i32>>,
+    Bound<'py, PyArray1<i32>>,
+    Bound<'py, PyArray1<i32>>,
+);
+
+/// Build the hull surface of `curves` (H-rep pipeline): returns `(arrays, report)` where arrays
+/// are `(positions (n,3), corner_vertices (m,), face_sizes (k,), face_patch (k,))` and report
+/// is a dict (node/edge/face counts, faces_by_sides, open_edges, max_gap,
+/// max_normal_angle_deg, crease_angles_deg, volume, warnings). The GIL is released.
+#[pyfunction]
+#[pyo3(signature = (curves, tolerance=1e-4, resolution=8))]
+pub fn build_surface<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    tolerance: f64,
+    resolution: usize,
+) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
+    if resolution == 0 || resolution > 256 {
+        return Err(msg_err(format!(
+            "resolution {resolution} must be between 1 and 256"
+        )));
+    }
+    let options = HullOptions {
+        tolerance: Tolerance::try_new(tolerance).map_err(core_err)?,
+        resolution,
+    };
+    let network =
+        Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)?;
+    let hull = py.detach(|| {
+        guard("building the hull surface", || {
+            build_hull(&network, &options).map_err(core_err)
+        })
+    })?;
+    let mesh = &hull.mesh;
+    let positions: Vec<f64> = mesh.positions.iter().flatten().copied().collect();
+    let rows = mesh.positions.len();
+    let arrays = (
+        PyArray1::from_vec(py, positions).reshape([rows, 3])?,
+        PyArray1::from_vec(py, mesh.face_vertices.iter().map(|&v| v as i32).collect()),
+        PyArray1::from_vec(py, mesh.face_sizes.iter().map(|&s| i32::from(s)).collect()),
+        PyArray1::from_vec(py, mesh.face_patch.iter().map(|&p| p as i32).collect()),
+    );
+    let r = &hull.report;
+    let d = PyDict::new(py);
+    d.set_item("nodes", r.nodes)?;
+    d.set_item("edges", r.edges)?;
+    d.set_item("faces", r.faces)?;
+    d.set_item("faces_by_sides", r.faces_by_sides.clone())?;
+    d.set_item("skipped_faces", r.skipped_faces)?;
+    d.set_item("open_edges", r.open_edges)?;
+    d.set_item("max_gap", r.max_gap)?;
+    d.set_item("max_normal_angle_deg", r.max_normal_angle_deg)?;
+    let creases: Vec<(String, f64, f64)> = r.crease_angles_deg.clone();
+    d.set_item("crease_angles_deg", creases)?;
+    d.set_item("volume", r.volume)?;
+    d.set_item("warnings", r.warnings.clone())?;
+    d.set_item("mesh_vertices", rows)?;
+    d.set_item("mesh_faces", mesh.face_sizes.len())?;
+    Ok((arrays, d))
+}
