@@ -17,13 +17,14 @@ use crate::patch::{
     tessellate_patches, EdgeNormal, FaceBoundary, Patch, PatchKind, PatchOptions, Side, SideParam,
     SideRibbon, SideSegment, SurfaceMesh, MAX_SIDES,
 };
+use crate::tolerance::Tolerance;
 use crate::topo::{TopoFace, Topology};
 
 /// What the hull needs of one edge of the topology that bounds a region.
 #[derive(Clone, Debug)]
 pub(crate) struct EdgeInfo {
-    /// The edge as a side segment along its curve (`t0 → t1`, snapped onto knots within
-    /// [`KNOT_SNAP`]), named, with its node positions.
+    /// The edge as a side segment along its curve (`t0 → t1`, snapped onto knots whose
+    /// points coincide with the node within the tolerance), named, with its node positions.
     /// Its curve is the designer curve cut to `[t0, t1]` (same parameterisation): at a corner
     /// point of the curve at a node, evaluation and derivatives then belong to this edge's
     /// side of the corner, whichever direction a face runs along it.
@@ -34,21 +35,22 @@ pub(crate) struct EdgeInfo {
     pub(crate) end_tangent: DVec3,
 }
 
-/// Edge parameters closer than this (relative to the curve's domain) to a knot are moved onto
-/// it: a node found by the junction solver at `1 + 2e-16` next to a double knot at 1 would
-/// otherwise leave a span of width 2e-16 at the end of the edge's curve, where derivatives are
-/// meaningless. The node position itself is kept ([`SideSegment::with_nodes`]).
-const KNOT_SNAP: f64 = 1e-9;
-
-/// `t` moved onto the nearest knot of `curve` if it lies within [`KNOT_SNAP`] of it.
-fn snap_to_knot(curve: &NurbsCurve, t: f64) -> f64 {
+/// `t` moved onto the nearest knot of `curve` whose point lies within the model tolerance of
+/// C(t). A node found by the junction solver a hair beside a knot (at `1 + 2e-16` next to a
+/// double knot, or 1e-8 beside a polyline's corner once coordinates went through Blender's
+/// float32) would otherwise leave a sliver span at the end of the edge's curve, where the
+/// derivatives describe the wrong side of the corner and the patch folds. Points that
+/// coincide within the tolerance are the same point, so the knot is the node. The node
+/// position itself is kept ([`SideSegment::with_nodes`]).
+fn snap_to_knot(curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
     let (a, b) = curve.domain();
-    let eps = KNOT_SNAP * (b - a);
+    let at = curve.point(t);
     curve
         .knots()
         .iter()
         .copied()
-        .filter(|k| (k - t).abs() <= eps)
+        .filter(|&k| k >= a && k <= b && k != t)
+        .filter(|&k| (curve.point(k) - at).length() <= tolerance.get())
         .min_by(|x, y| (x - t).abs().total_cmp(&(y - t).abs()))
         .unwrap_or(t)
 }
@@ -81,10 +83,13 @@ fn tangent(curve: &NurbsCurve, t: f64, chord: DVec3) -> DVec3 {
         .unwrap_or(DVec3::ZERO)
 }
 
-fn edge_info(network: &Network, topology: &Topology, k: usize) -> EdgeInfo {
+fn edge_info(network: &Network, topology: &Topology, k: usize, tolerance: Tolerance) -> EdgeInfo {
     let e = &topology.brep.edges[k];
     let nc = &network.curves()[e.curve];
-    let (t0, t1) = (snap_to_knot(&nc.curve, e.t0), snap_to_knot(&nc.curve, e.t1));
+    let (t0, t1) = (
+        snap_to_knot(&nc.curve, e.t0, tolerance),
+        snap_to_knot(&nc.curve, e.t1, tolerance),
+    );
     let (t0, t1) = if t0 < t1 { (t0, t1) } else { (e.t0, e.t1) };
     let curve = edge_curve(&nc.curve, t0, t1);
     let (p0, p1) = (
@@ -239,7 +244,7 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
             brep.edges[k]
                 .half_edges
                 .is_some()
-                .then(|| edge_info(network, &topology, k))
+                .then(|| edge_info(network, &topology, k, options.tolerance))
         })
         .collect();
     let mut at_vertex: Vec<Vec<(usize, bool)>> = vec![Vec::new(); brep.vertices.len()];
