@@ -681,3 +681,107 @@ fn curve_direction_and_order_do_not_matter() {
     assert!(b.max_normal_angle_deg <= 0.01, "still GC¹");
     assert_outward(&other.mesh);
 }
+
+/// A chain of exact circular arcs through `points` (consecutive points less than 180° apart
+/// about `centre`): one rational quadratic curve with double inner knots.
+fn arc_chain(centre: DVec3, points: &[DVec3]) -> NurbsCurve {
+    let mut pts = vec![points[0]];
+    let mut w = vec![1.0];
+    let mut knots = vec![0.0; 3];
+    for (i, pair) in points.windows(2).enumerate() {
+        let a = arc(centre, pair[0], pair[1]);
+        let cp = a.control_points();
+        let aw = a.weights().expect("rational arc");
+        pts.extend_from_slice(&cp[1..]);
+        w.extend_from_slice(&aw[1..]);
+        let k = (i + 1) as f64;
+        if i + 2 < points.len() {
+            knots.extend([k, k]);
+        } else {
+            knots.extend([k, k, k]);
+        }
+    }
+    NurbsCurve::try_new(2, knots, pts, Some(w)).expect("arc chain")
+}
+
+/// A quarter of a torus (major radius 3, minor radius 1), u in [0°, 90°] around the axis and
+/// v in [0°, 180°] over the top from the outer equator to the inner one (positive and
+/// negative Gaussian curvature), cut by minor circles every `du`° and major circles every
+/// `dv`°, all exact rational arcs.
+fn torus_quarter(du: f64, dv: f64) -> Network {
+    let (rr, r) = (3.0, 1.0);
+    let point = |u: f64, v: f64| {
+        let (u, v) = (u.to_radians(), v.to_radians());
+        DVec3::new(
+            (rr + r * v.cos()) * u.cos(),
+            (rr + r * v.cos()) * u.sin(),
+            r * v.sin(),
+        )
+    };
+    let steps = |d: f64, end: f64| (0..=(end / d).round() as usize).map(move |i| i as f64 * d);
+    let mut c = Vec::new();
+    for u in steps(du, 90.0) {
+        let centre = DVec3::new(rr * u.to_radians().cos(), rr * u.to_radians().sin(), 0.0);
+        let pts: Vec<DVec3> = steps(dv, 180.0).map(|v| point(u, v)).collect();
+        c.push(nc(
+            &format!("minor {u}"),
+            Role::Free,
+            arc_chain(centre, &pts),
+        ));
+    }
+    for v in steps(dv, 180.0) {
+        let centre = DVec3::new(0.0, 0.0, r * v.to_radians().sin());
+        let pts: Vec<DVec3> = steps(du, 90.0).map(|u| point(u, v)).collect();
+        c.push(nc(
+            &format!("major {v}"),
+            Role::Free,
+            arc_chain(centre, &pts),
+        ));
+    }
+    Network::try_new("torus", c).expect("network")
+}
+
+fn torus_deviation(mesh: &SurfaceMesh) -> f64 {
+    mesh.positions
+        .iter()
+        .map(|p| {
+            let p = DVec3::from(*p);
+            let rho = (p.x * p.x + p.y * p.y).sqrt();
+            (((rho - 3.0).powi(2) + p.z * p.z).sqrt() - 1.0).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn torus_network_converges_to_the_torus_and_stays_gc1() {
+    let mut previous = f64::INFINITY;
+    for (du, dv) in [(45.0, 45.0), (22.5, 22.5), (11.25, 11.25)] {
+        let net = torus_quarter(du, dv);
+        let hull = build(&net, 8);
+        let r = &hull.report;
+        assert_finite(&hull.mesh);
+        let faces = ((90.0 / du) * (180.0 / dv)) as usize;
+        assert_eq!(
+            r.faces_by_sides,
+            BTreeMap::from([(4, faces)]),
+            "a grid of quads"
+        );
+        assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+        assert!(
+            r.max_normal_angle_deg <= 0.01,
+            "GC¹ ({}°)",
+            r.max_normal_angle_deg
+        );
+        let dev = torus_deviation(&hull.mesh);
+        println!("torus {du}°×{dv}°: {faces} patches, max deviation {dev:.2e} (minor radius 1)");
+        assert!(
+            dev < previous / 4.0,
+            "refining the network shrinks the error ({dev} vs {previous})"
+        );
+        previous = dev;
+    }
+    assert!(
+        previous < 1e-3,
+        "the finest network is within 1e-3 of the torus ({previous})"
+    );
+}
