@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 
-use crate::curve::{Aabb, BezierDecomposition, NurbsCurve, GL8};
+use crate::curve::{segment_distance, Aabb, BezierDecomposition, NurbsCurve, GL8};
 use crate::error::CurveError;
 
 /// Curvature samples per non-empty knot span for counting sign changes and extrema.
@@ -311,19 +311,6 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
     }
     out.rms = (sum2 / points.len().max(1) as f64).sqrt();
     Ok(out)
-}
-
-/// Distance from `p` to the segment `[a, b]` (the chord of a Bézier piece; the same formula as
-/// the closest-point search's bound).
-fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
-    let ab = b - a;
-    let len2 = ab.length_squared();
-    let s = if len2 > 0.0 {
-        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + ab * s - p).length()
 }
 
 #[cfg(test)]

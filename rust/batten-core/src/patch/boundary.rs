@@ -271,6 +271,13 @@ impl PreparedSide {
     /// Position and derivative d/ds of the (corrected) side at `s`.
     #[inline]
     pub(crate) fn eval(&self, s: f64) -> (DVec3, DVec3) {
+        let (p, dp, _, _) = self.eval_located(s);
+        (p, dp)
+    }
+
+    /// Position and derivative d/ds at `s`, with the segment index and curve parameter there.
+    #[inline]
+    pub(crate) fn eval_located(&self, s: f64) -> (DVec3, DVec3, usize, f64) {
         let (k, lam) = self.locate(s);
         let seg = &self.segs[k];
         let dt = seg.tb - seg.ta;
@@ -283,7 +290,7 @@ impl PreparedSide {
         let du = self.breaks[k + 1] - self.breaks[k];
         let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
         let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
-        (p, dp)
+        (p, dp, k, t)
     }
 
     /// Position only.

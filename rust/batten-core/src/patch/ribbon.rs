@@ -330,18 +330,7 @@ impl PreparedRibbon {
     /// The side's frame at `s`: point, unit tangent and unit inward cross tangent.
     #[inline]
     pub(crate) fn frame(&self, side: &PreparedSide, s: f64) -> SideSample {
-        let (k, lam) = side.locate(s);
-        let seg = &side.segs[k];
-        let dt = seg.tb - seg.ta;
-        let t = if lam >= 1.0 {
-            seg.tb
-        } else {
-            seg.ta + lam * dt
-        };
-        let (point, d1) = seg.fast.eval_d1(t);
-        let du = side.breaks[k + 1] - side.breaks[k];
-        let p = point + seg.d0 * (1.0 - lam) + seg.d1 * lam;
-        let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
+        let (p, dp, k, t) = side.eval_located(s);
         // A zero derivative (coincident control points) has no direction: use the chord.
         let c = dp
             .try_normalize()
