@@ -89,3 +89,34 @@ def test_select_curves_selects_the_named_ones(frigate):
     selected = sorted(o.name for o in bpy.context.selected_objects)
     assert selected == ["keel", "stem"]
     assert bpy.ops.batten.select_curves(names="nothing") == {"CANCELLED"}
+
+
+def test_knuckle_role_makes_a_crease_and_free_makes_it_smooth():
+    """Sections bend 3 degrees at the chine (below the 5 degree automatic knuckle rule):
+    with the chine free the hull is smoothed across it (G1), as a knuckle it keeps the crease."""
+    from helpers import new_curve
+
+    coll = bpy.data.collections.new("barge")
+    bpy.context.scene.collection.children.link(coll)
+    bend = np.radians(3.0)
+    chine = np.array([0.0, 2.0, 0.5])
+    d = chine[1:] / np.linalg.norm(chine[1:])  # bottom direction in (y, z)
+    turned = np.array([d[0] * np.cos(bend) - d[1] * np.sin(bend), d[0] * np.sin(bend) + d[1] * np.cos(bend)])
+    top = np.array([0.0, *(chine[1:] + 1.5 * turned)])
+    xs = [0.0, 3.0, 6.0, 9.0]
+    for x in xs:
+        pts = np.array([[x, 0.0, 0.0], [x, *chine[1:]], [x, *top[1:]]])
+        new_curve(f"st{x:g}", "POLY", pts, collection=coll)
+    for name, p in (("keel", [0.0, 0.0, 0.0]), ("chine", list(chine)), ("sheer", list(top))):
+        new_curve(name, "POLY", np.array([[0.0, *p[1:]], [9.0, *p[1:]]]), collection=coll)
+    smooth = api.build(coll, resolution=6).report
+    assert smooth["crease_angles_deg"] == []
+    # Free: the chine is G1 between nodes; only the 3 degree corners drawn into the sections
+    # themselves remain, at the nodes, since the surface passes through every curve.
+    assert smooth["max_normal_angle_deg"] <= 3.0 + 1e-3
+    coll.objects["chine"].batten.role = "knuckle"
+    creased = api.build(coll, resolution=6).report
+    ((name, lo, hi),) = creased["crease_angles_deg"]
+    assert name == "chine" and lo == pytest.approx(3.0, abs=0.01) and hi == pytest.approx(3.0, abs=0.01)
+    coll.objects["chine"].batten.role = "free"
+    assert api.build(coll, resolution=6).report["crease_angles_deg"] == []
