@@ -6,6 +6,23 @@ import bpy
 import numpy as np
 
 
+def _curve_data(name: str, resolution: int):
+    """An empty 3D curve data-block."""
+    data = bpy.data.curves.new(name, "CURVE")
+    data.dimensions = "3D"
+    data.resolution_u = resolution
+    return data
+
+
+def _link(name: str, data, matrix, collection):
+    """A new object for ``data`` with ``matrix`` (if any), linked to ``collection`` (or the scene)."""
+    obj = bpy.data.objects.new(name, data)
+    if matrix is not None:
+        obj.matrix_world = matrix
+    (collection or bpy.context.scene.collection).objects.link(obj)
+    return obj
+
+
 def new_curve(
     name: str,
     kind: str,
@@ -22,9 +39,7 @@ def new_curve(
 ):
     """A curve object with one POLY or NURBS spline through ``points`` (n, 3)."""
     points = np.asarray(points, dtype=np.float64)
-    data = bpy.data.curves.new(name, "CURVE")
-    data.dimensions = "3D"
-    data.resolution_u = resolution
+    data = _curve_data(name, resolution)
     spline = data.splines.new(kind)
     spline.points.add(len(points) - 1)
     w = np.ones(len(points)) if weights is None else np.asarray(weights, dtype=np.float64)
@@ -33,11 +48,7 @@ def new_curve(
     spline.use_endpoint_u = endpoint
     spline.use_bezier_u = bezier
     spline.use_cyclic_u = cyclic
-    obj = bpy.data.objects.new(name, data)
-    if matrix is not None:
-        obj.matrix_world = matrix
-    (collection or bpy.context.scene.collection).objects.link(obj)
-    return obj
+    return _link(name, data, matrix, collection)
 
 
 def new_bezier(
@@ -45,9 +56,7 @@ def new_bezier(
 ):
     """A curve object with one BEZIER spline (points and FREE handles as given)."""
     co = np.asarray(co, dtype=np.float32)
-    data = bpy.data.curves.new(name, "CURVE")
-    data.dimensions = "3D"
-    data.resolution_u = resolution
+    data = _curve_data(name, resolution)
     spline = data.splines.new("BEZIER")
     bp = spline.bezier_points
     bp.add(len(co) - 1)
@@ -58,11 +67,7 @@ def new_bezier(
     bp.foreach_set("handle_left", np.asarray(left, dtype=np.float32).ravel())
     bp.foreach_set("handle_right", np.asarray(right, dtype=np.float32).ravel())
     spline.use_cyclic_u = cyclic
-    obj = bpy.data.objects.new(name, data)
-    if matrix is not None:
-        obj.matrix_world = matrix
-    (collection or bpy.context.scene.collection).objects.link(obj)
-    return obj
+    return _link(name, data, matrix, collection)
 
 
 def evaluated_polyline(obj) -> np.ndarray:
