@@ -35,10 +35,11 @@ def _spline_data(curve: Curve) -> tuple[str, np.ndarray, dict]:
     return "NURBS", points, {"order_u": degree + 1, "use_endpoint_u": True, "use_bezier_u": True}
 
 
-def write_spline(data, curve: Curve, to_local: np.ndarray | None = None):
-    """Add one spline drawing ``curve`` to the curve data-block ``data``; ``to_local`` (4×4)
-    maps batten's world coordinates into the object's space (identity when None)."""
-    kind, points, flags = _spline_data(curve)
+def write_spline(data, spec: tuple[str, np.ndarray, dict], to_local: np.ndarray | None = None):
+    """Add one spline to the curve data-block ``data`` from ``spec`` (what ``_spline_data``
+    returns for a curve); ``to_local`` (4×4) maps batten's world coordinates into the
+    object's space (identity when None)."""
+    kind, points, flags = spec
     if to_local is not None:
         points = points.copy()
         points[:, :3] = points[:, :3] @ to_local[:3, :3].T + to_local[:3, 3]
@@ -53,12 +54,12 @@ def write_spline(data, curve: Curve, to_local: np.ndarray | None = None):
 def new_curve_object(curve: Curve, collection, *, resolution: int = 16):
     """A new curve object drawing ``curve`` (world coordinates, identity transform), linked to
     ``collection``, with the curve's role set. Returns the object."""
-    _spline_data(curve)  # refuse what Blender cannot draw before creating anything
+    spec = _spline_data(curve)  # refuses what Blender cannot draw before anything is created
     data = bpy.data.curves.new(curve.name, "CURVE")
     try:
         data.dimensions = "3D"
         data.resolution_u = resolution
-        write_spline(data, curve)
+        write_spline(data, spec)
         obj = bpy.data.objects.new(curve.name, data)
     except Exception:
         bpy.data.curves.remove(data)
@@ -73,10 +74,9 @@ def replace_splines(obj, curves: list[Curve]) -> None:
     """Replace every spline of the curve object ``obj`` by ``curves`` (world coordinates),
     keeping the object, its data-block, materials and modifiers. Everything Blender cannot
     draw is refused before anything is changed."""
-    for curve in curves:
-        _spline_data(curve)
+    specs = [_spline_data(curve) for curve in curves]
     to_local = np.array(obj.matrix_world.inverted(), dtype=np.float64)
     data = obj.data
     data.splines.clear()
-    for curve in curves:
-        write_spline(data, curve, to_local)
+    for spec in specs:
+        write_spline(data, spec, to_local)
