@@ -58,7 +58,8 @@ impl Seg {
         let (_, chord) = self.chord();
         let axis = chord.try_normalize()?;
         let rational = self.cw[..self.n].iter().any(|c| c.w != self.cw[0].w);
-        let mut half: f64 = 0.0;
+        // The widest leg has the smallest cosine with the axis: one arccosine per cone.
+        let mut cos_half: f64 = 1.0;
         for i in 0..self.n - 1 {
             let js = if rational {
                 i + 1..self.n
@@ -67,12 +68,13 @@ impl Seg {
             };
             for j in js {
                 let leg = self.point(j) - self.point(i);
-                if leg.length_squared() > 0.0 {
-                    half = half.max(leg.angle_between(axis));
+                let len = leg.length();
+                if len > 0.0 {
+                    cos_half = cos_half.min(leg.dot(axis) / len);
                 }
             }
         }
-        Some((axis, half))
+        Some((axis, cos_half.clamp(-1.0, 1.0).acos()))
     }
 
     /// De Casteljau subdivision at the parametric middle.
@@ -109,6 +111,10 @@ pub(crate) struct Approach {
     pub s: f64,
     pub t: f64,
     pub gap: f64,
+    /// The points of the two curves at `s` and `t`.
+    pub points: (DVec3, DVec3),
+    /// Their first derivatives there.
+    pub tangents: (DVec3, DVec3),
 }
 
 /// Work arrays of this size cover the usual degrees (up to 7) without touching a full
@@ -279,6 +285,8 @@ pub(crate) fn closest_approach(
         s,
         t,
         gap: f.sqrt(),
+        points: (e1.0, e2.0),
+        tangents: (e1.1, e2.1),
     }
 }
 

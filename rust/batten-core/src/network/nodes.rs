@@ -84,6 +84,37 @@ struct Hit {
     s: f64,
     t: f64,
     gap: f64,
+    /// Curve a at `s` and curve b at `t` (kept so later stages need not evaluate again).
+    pa: DVec3,
+    pb: DVec3,
+    /// Sine of the angle between the two curves' tangents there.
+    sine: f64,
+}
+
+impl Hit {
+    /// A join of curve `a` at `s` with curve `b` at `t`, with its points and crossing angle
+    /// evaluated.
+    fn at(prepared: &[Prepared], a: usize, b: usize, s: f64, t: f64, gap: f64) -> Hit {
+        let (ea, eb) = (
+            PieceCurve::new(&prepared[a].decomposition).eval(s),
+            PieceCurve::new(&prepared[b].decomposition).eval(t),
+        );
+        Hit {
+            a,
+            b,
+            s,
+            t,
+            gap,
+            pa: ea.0,
+            pb: eb.0,
+            sine: sine_between(ea.1, eb.1),
+        }
+    }
+}
+
+/// Sine of the angle between two tangent vectors (0 when one of them vanishes).
+fn sine_between(ta: DVec3, tb: DVec3) -> f64 {
+    ta.cross(tb).length() / (ta.length() * tb.length()).max(f64::MIN_POSITIVE)
 }
 
 #[derive(Clone, Copy)]
@@ -198,7 +229,8 @@ impl Network {
         pairs.sort_unstable();
 
         // Narrow phase, one curve pair at a time.
-        let mut hits: Vec<Hit> = Vec::new();
+        let mut hits: Vec<Hit> = Vec::with_capacity(pairs.len());
+        let mut pair_hits: Vec<Hit> = Vec::new();
         let mut k = 0;
         while k < pairs.len() {
             let (ca, cb) = (pairs[k].0, pairs[k].1);
@@ -206,7 +238,7 @@ impl Network {
             while group_end < pairs.len() && (pairs[group_end].0, pairs[group_end].1) == (ca, cb) {
                 group_end += 1;
             }
-            let mut pair_hits: Vec<Hit> = Vec::new();
+            pair_hits.clear();
             let mut narrow = Narrow {
                 a: &prepared[ca],
                 b: &prepared[cb],
@@ -230,16 +262,18 @@ impl Network {
                     &curves[ca].name,
                 );
             } else {
-                let kept = sort_out_pair(
+                sort_out_pair(
                     &prepared,
                     &pair_hits,
                     tolerance,
                     curves,
-                    &mut diagnostics,
-                    &mut excluded,
-                    &mut suppressed,
+                    PairOutcome {
+                        diagnostics: &mut diagnostics,
+                        excluded: &mut excluded,
+                        suppressed: &mut suppressed,
+                        joins: &mut hits,
+                    },
                 );
-                hits.extend(kept);
             }
             k = group_end;
         }
@@ -336,7 +370,13 @@ impl Narrow<'_, '_> {
             PieceCurve::new(&self.a.decomposition),
             PieceCurve::new(&self.b.decomposition),
         );
-        let Approach { s, t, gap } = closest_approach(&ea, &eb, start, sr, tr, self.accuracy);
+        let Approach {
+            s,
+            t,
+            gap,
+            points,
+            tangents,
+        } = closest_approach(&ea, &eb, start, sr, tr, self.accuracy);
         if gap <= self.near {
             self.hits.push(Hit {
                 a: self.ca,
@@ -344,6 +384,9 @@ impl Narrow<'_, '_> {
                 s,
                 t,
                 gap,
+                pa: points.0,
+                pb: points.1,
+                sine: sine_between(tangents.0, tangents.1),
             });
         }
     }
@@ -395,7 +438,7 @@ fn self_hits(
         if along <= 2.0 * tolerance.near_miss() {
             continue;
         }
-        let location = p.curve.point(h.s);
+        let location = h.pa;
         if found
             .iter()
             .any(|q| (*q - location).length() <= tolerance.near_miss())
@@ -411,21 +454,27 @@ fn self_hits(
     }
 }
 
+/// Where [`sort_out_pair`] puts what it finds.
+struct PairOutcome<'o> {
+    diagnostics: &'o mut Vec<Diagnostic>,
+    excluded: &'o mut [bool],
+    suppressed: &'o mut Vec<(usize, f64, f64)>,
+    joins: &'o mut Vec<Hit>,
+}
+
 /// Sort the approaches of one pair of curves into joins, tangential touches, overlaps,
-/// duplicates and near misses; returns the joins that make nodes.
+/// duplicates and near misses; pushes the joins that make nodes onto `out.joins`.
 fn sort_out_pair(
     prepared: &[Prepared],
     pair_hits: &[Hit],
     tolerance: Tolerance,
     curves: &[super::NetworkCurve],
-    diagnostics: &mut Vec<Diagnostic>,
-    excluded: &mut [bool],
-    suppressed: &mut Vec<(usize, f64, f64)>,
-) -> Vec<Hit> {
+    out: PairOutcome,
+) {
     let tol = tolerance.get();
     let near = tolerance.near_miss();
     let Some(first) = pair_hits.first() else {
-        return Vec::new();
+        return;
     };
     let (ca, cb) = (first.a, first.b);
     let (pa, pb) = (&prepared[ca], &prepared[cb]);
@@ -440,21 +489,22 @@ fn sort_out_pair(
     if pair_hits.len() == 1 && first.gap <= tol {
         // The usual case, one crossing: only the end snapping applies.
         let mut h = *first;
-        snap_to_end(pa, pb, &mut h, tol, false);
-        snap_to_end(pb, pa, &mut h, tol, true);
-        return vec![h];
+        snap_to_end(prepared, &mut h, tol, false);
+        snap_to_end(prepared, &mut h, tol, true);
+        out.joins.push(h);
+        return;
     }
     let mut joins: Vec<Hit> = pair_hits.iter().copied().filter(|h| h.gap <= tol).collect();
     // Curves meeting at a shallow angle are within tolerance along a short stretch; where that
     // stretch reaches a curve end, the join is at the end (else jitter moves it along).
     for h in &mut joins {
-        snap_to_end(pa, pb, h, tol, false);
-        snap_to_end(pb, pa, h, tol, true);
+        snap_to_end(prepared, h, tol, false);
+        snap_to_end(prepared, h, tol, true);
     }
     joins.sort_by(|x, y| x.s.total_cmp(&y.s));
     // Merge joins that are the same point of curve a.
     joins.dedup_by(|later, earlier| {
-        (pa.curve.point(later.s) - pa.curve.point(earlier.s)).length() <= tol && {
+        (later.pa - earlier.pa).length() <= tol && {
             if later.gap < earlier.gap {
                 *earlier = *later;
             }
@@ -474,10 +524,7 @@ fn sort_out_pair(
             kept.push(joins[i]);
         } else {
             let chain = &joins[i..=j];
-            let extent: f64 = chain
-                .windows(2)
-                .map(|w| (pa.curve.point(w[1].s) - pa.curve.point(w[0].s)).length())
-                .sum();
+            let extent: f64 = chain.windows(2).map(|w| (w[1].pa - w[0].pa).length()).sum();
             let shorter = pa.size.min(pb.size);
             if extent > (OVERLAP_MIN_TOLERANCES * tol).max(OVERLAP_MIN_FRACTION * shorter) {
                 // The joins sample the shared stretch; find where it really ends.
@@ -503,38 +550,26 @@ fn sort_out_pair(
                     } else {
                         ca
                     };
-                    excluded[drop] = true;
-                    diagnostics.push(Diagnostic::DuplicateCurve {
+                    out.excluded[drop] = true;
+                    out.diagnostics.push(Diagnostic::DuplicateCurve {
                         curves: names(),
                         location: from,
                     });
-                    return Vec::new();
+                    return;
                 }
-                diagnostics.push(Diagnostic::Overlap {
+                out.diagnostics.push(Diagnostic::Overlap {
                     curves: names(),
                     from,
                     to,
                 });
                 if curves[ca].name > curves[cb].name {
-                    suppressed.push((ca, s_lo.min(s_hi), s_lo.max(s_hi)));
+                    out.suppressed.push((ca, s_lo.min(s_hi), s_lo.max(s_hi)));
                 } else {
-                    suppressed.push((cb, t_lo.min(t_hi), t_lo.max(t_hi)));
+                    out.suppressed.push((cb, t_lo.min(t_hi), t_lo.max(t_hi)));
                 }
                 let (ca_, cb_) = (chain[0].a, chain[0].b);
-                kept.push(Hit {
-                    a: ca_,
-                    b: cb_,
-                    s: s_lo,
-                    t: t_lo,
-                    gap: g_lo,
-                });
-                kept.push(Hit {
-                    a: ca_,
-                    b: cb_,
-                    s: s_hi,
-                    t: t_hi,
-                    gap: g_hi,
-                });
+                kept.push(Hit::at(prepared, ca_, cb_, s_lo, t_lo, g_lo));
+                kept.push(Hit::at(prepared, ca_, cb_, s_hi, t_hi, g_hi));
             } else {
                 // A tangential touch: one join, at a curve end if there is one there.
                 let at_end = chain
@@ -557,20 +592,14 @@ fn sort_out_pair(
         .iter()
         .copied()
         .filter(|h| h.gap > tol)
-        .filter(|h| {
-            let p = pa.curve.point(h.s);
-            !kept
-                .iter()
-                .any(|k| (pa.curve.point(k.s) - p).length() <= 2.0 * near)
-        })
+        .filter(|h| !kept.iter().any(|k| (k.pa - h.pa).length() <= 2.0 * near))
         .collect();
     misses.sort_by(|x, y| x.s.total_cmp(&y.s));
     let mut reported: Vec<Hit> = Vec::new();
     for m in misses {
-        let p = pa.curve.point(m.s);
         if let Some(r) = reported
             .iter_mut()
-            .find(|r| (pa.curve.point(r.s) - p).length() <= 10.0 * near)
+            .find(|r| (r.pa - m.pa).length() <= 10.0 * near)
         {
             if m.gap < r.gap {
                 *r = m;
@@ -580,14 +609,14 @@ fn sort_out_pair(
         }
     }
     for m in reported {
-        let location = 0.5 * (pa.curve.point(m.s) + pb.curve.point(m.t));
-        diagnostics.push(Diagnostic::NearMiss {
+        let location = 0.5 * (m.pa + m.pb);
+        out.diagnostics.push(Diagnostic::NearMiss {
             curves: names(),
             location,
             gap: m.gap,
         });
     }
-    kept
+    out.joins.extend(kept);
 }
 
 fn is_end(curve: &NurbsCurve, t: f64, tol: f64) -> bool {
@@ -636,24 +665,17 @@ fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tol: f64) {
         on_curve[h.b].push(h.t);
     }
     for h in hits.iter_mut() {
-        let (pa, pb) = (&prepared[h.a], &prepared[h.b]);
-        let (ea, eb) = (
-            PieceCurve::new(&pa.decomposition),
-            PieceCurve::new(&pb.decomposition),
-        );
-        let (ta, tb) = (ea.eval(h.s).1, eb.eval(h.t).1);
-        let sine = ta.cross(tb).length() / (ta.length() * tb.length()).max(f64::MIN_POSITIVE);
-        if sine >= SHALLOW_SINE {
+        if h.sine >= SHALLOW_SINE {
             continue;
         }
+        let (pa, pb) = (&prepared[h.a], &prepared[h.b]);
         let mut best: Option<(f64, Hit)> = None;
-        for (swapped, p, q, here) in [(false, pa, pb, h.s), (true, pb, pa, h.t)] {
+        for (swapped, p, q, here, at) in [(false, pa, pb, h.s, h.pa), (true, pb, pa, h.t, h.pb)] {
             let list = if swapped {
                 &on_curve[h.b]
             } else {
                 &on_curve[h.a]
             };
-            let at = p.curve.point(here);
             for &u in list {
                 let pu = p.curve.point(u);
                 let d = (pu - at).length();
@@ -666,21 +688,8 @@ fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tol: f64) {
                 if n.distance > tol || !stays_close(p, q, here, u, tol) {
                     continue;
                 }
-                let moved = if swapped {
-                    Hit {
-                        s: n.t,
-                        t: u,
-                        gap: n.distance,
-                        ..*h
-                    }
-                } else {
-                    Hit {
-                        s: u,
-                        t: n.t,
-                        gap: n.distance,
-                        ..*h
-                    }
-                };
+                let (s, t) = if swapped { (n.t, u) } else { (u, n.t) };
+                let moved = Hit::at(prepared, h.a, h.b, s, t, n.distance);
                 let better = best.is_none_or(|(g, b)| {
                     n.distance < g || (n.distance == g && (moved.s, moved.t) < (b.s, b.t))
                 });
@@ -698,9 +707,13 @@ fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tol: f64) {
 /// Move a join to an end of curve `p` (the join's `s` side, or its `t` side when `swapped`)
 /// when that end is within `tol` of curve `q` and the stretch of `p` from the join to the end
 /// stays within `tol` of `q`.
-fn snap_to_end(p: &Prepared, q: &Prepared, h: &mut Hit, tol: f64, swapped: bool) {
-    let (s, t) = if swapped { (h.t, h.s) } else { (h.s, h.t) };
-    let here = p.curve.point(s);
+fn snap_to_end(prepared: &[Prepared], h: &mut Hit, tol: f64, swapped: bool) {
+    let (p, q) = if swapped {
+        (&prepared[h.b], &prepared[h.a])
+    } else {
+        (&prepared[h.a], &prepared[h.b])
+    };
+    let (s, here) = if swapped { (h.t, h.pb) } else { (h.s, h.pa) };
     for (end, end_point) in p.ends {
         let to_end = (end_point - here).length();
         // Within the tolerance the clustering already puts the join on the end.
@@ -711,16 +724,8 @@ fn snap_to_end(p: &Prepared, q: &Prepared, h: &mut Hit, tol: f64, swapped: bool)
             continue;
         };
         if n.distance <= tol && stays_close(p, q, s, end, tol) {
-            let (ns, nt) = (end, n.t);
-            if swapped {
-                h.t = ns;
-                h.s = nt;
-            } else {
-                h.s = ns;
-                h.t = nt;
-            }
-            h.gap = n.distance;
-            let _ = t;
+            let (ns, nt) = if swapped { (n.t, end) } else { (end, n.t) };
+            *h = Hit::at(prepared, h.a, h.b, ns, nt, n.distance);
             return;
         }
     }
@@ -778,14 +783,8 @@ fn cluster(
     let mut uf = UnionFind((0..incs.len() + 2 * hits.len()).collect());
     for h in hits {
         let ia = incs.len();
-        incs.push((
-            Incidence { curve: h.a, t: h.s },
-            prepared[h.a].curve.point(h.s),
-        ));
-        incs.push((
-            Incidence { curve: h.b, t: h.t },
-            prepared[h.b].curve.point(h.t),
-        ));
+        incs.push((Incidence { curve: h.a, t: h.s }, h.pa));
+        incs.push((Incidence { curve: h.b, t: h.t }, h.pb));
         uf.union(ia, ia + 1);
     }
     // Any two curve points within the tolerance are one node: sweep along x.

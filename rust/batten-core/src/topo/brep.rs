@@ -179,13 +179,20 @@ impl Brep {
     /// The half-edges of a loop in order (§3.1), following `next` from its first half-edge (at most
     /// as many steps as there are half-edges, so a broken `next` chain cannot hang).
     pub fn loop_half_edges(&self, l: LoopId) -> Vec<HalfEdgeId> {
+        let mut out = Vec::new();
+        self.loop_half_edges_into(l, &mut out);
+        out
+    }
+
+    /// [`Brep::loop_half_edges`] into `out` (cleared first), reusing its storage.
+    pub fn loop_half_edges_into(&self, l: LoopId, out: &mut Vec<HalfEdgeId>) {
         let first = self.loops[l.index()].first;
-        let mut out = vec![first];
+        out.clear();
+        out.push(first);
         let mut h = self.half_edge(first).next;
         while h != first && out.len() <= self.half_edges.len() {
             out.push(h);
             h = self.half_edge(h).next;
         }
-        out
     }
 }

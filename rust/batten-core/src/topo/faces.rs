@@ -44,26 +44,34 @@ pub(crate) fn turn_angle(brep: &Brep, dirs: &[DVec3], h_in: HalfEdgeId, h_out: H
 /// Corners and sides of a loop: a vertex is a corner when the boundary turns there by at least
 /// [`CORNER_ANGLE_DEGREES`]; a T-joint seen from the through-curve's side, or a node where
 /// one curve is split, is not a corner, so that side is a composite of several edges.
+///
+/// `corner` is a work buffer.
 pub(crate) fn corners_and_sides(
     brep: &Brep,
     dirs: &[DVec3],
     half_edges: &[HalfEdgeId],
+    corner: &mut Vec<bool>,
 ) -> (usize, Vec<FaceSide>) {
     let n = half_edges.len();
     let limit = CORNER_ANGLE_DEGREES.to_radians();
     // corner[i]: the vertex where half_edges[i] starts is a corner.
-    let corner: Vec<bool> = (0..n)
-        .map(|i| turn_angle(brep, dirs, half_edges[(i + n - 1) % n], half_edges[i]) >= limit)
-        .collect();
+    corner.clear();
+    corner.extend(
+        (0..n).map(|i| turn_angle(brep, dirs, half_edges[(i + n - 1) % n], half_edges[i]) >= limit),
+    );
     let count = corner.iter().filter(|&&c| c).count();
     let start = corner.iter().position(|&c| c).unwrap_or(0);
-    let mut sides: Vec<FaceSide> = Vec::new();
+    let mut sides: Vec<FaceSide> = Vec::with_capacity(count.max(1));
     for k in 0..n {
         let i = (start + k) % n;
         if k == 0 || corner[i] {
+            // The side runs to the next corner: size its edge list once.
+            let len = (1..n)
+                .position(|j| corner[(i + j) % n])
+                .map_or(n - k, |j| j + 1);
             sides.push(FaceSide {
-                edges: Vec::new(),
-                curves: Vec::new(),
+                edges: Vec::with_capacity(len),
+                curves: Vec::with_capacity(1),
             });
         }
         let side = sides.last_mut().expect("a side was opened");

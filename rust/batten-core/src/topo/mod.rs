@@ -2,6 +2,7 @@
 //! edges as parameter intervals of those curves, a half-edge B-rep, and faces found
 //! automatically (§5.2) with their true corners, plus diagnostics that name curves and places.
 
+mod adjacency;
 mod brep;
 mod checks;
 mod diagnostic;
@@ -19,6 +20,8 @@ pub use brep::{
 pub use checks::{EdgeFacesError, EulerPoincareError, NextPrevError, TwinError, ValidationError};
 pub use diagnostic::Diagnostic;
 pub use faces::{FaceSide, CORNER_ANGLE_DEGREES};
+
+use adjacency::Adjacency;
 
 use crate::curve::BezierDecomposition;
 use crate::error::Error;
@@ -177,7 +180,6 @@ impl Topology {
         let core_edges = core.iter().filter(|&&c| c).count();
         brep.half_edges.reserve_exact(2 * core_edges);
         let mut dirs: Vec<DVec3> = Vec::with_capacity(2 * core_edges);
-        let mut outgoing: Vec<Vec<HalfEdgeId>> = vec![Vec::new(); brep.vertices.len()];
         for (k, e) in brep.edges.iter_mut().enumerate() {
             if !core[k] {
                 continue;
@@ -197,17 +199,25 @@ impl Topology {
                     loop_id: LoopId(0),
                 });
                 dirs.push(rotation::leaving_direction(curve, from, to));
-                outgoing[origin.index()].push(h);
             }
             e.half_edges = Some([a, b]);
         }
 
+        // The half-edges leaving each vertex, in the order they were made.
+        let mut outgoing = Adjacency::from_pairs(
+            brep.vertices.len(),
+            brep.half_edges
+                .iter()
+                .enumerate()
+                .map(|(i, he)| (he.origin.index(), HalfEdgeId::from_index(i))),
+        );
+
         // Normals and the rotation system.
         let mut ts: Vec<DVec3> = Vec::new();
         let mut branching: Vec<HalfEdgeId> = Vec::new();
-        let raw: Vec<Option<(DVec3, f64)>> = outgoing
-            .iter()
-            .map(|hs| {
+        let raw: Vec<Option<(DVec3, f64)>> = (0..outgoing.rows())
+            .map(|v| {
+                let hs = outgoing.row(v);
                 ts.clear();
                 ts.extend(hs.iter().map(|h| dirs[h.index()]));
                 if rotation::off_plane(&ts) > BRANCHING_TIP_DISTANCE {
@@ -216,17 +226,16 @@ impl Topology {
                 rotation::raw_normal(&ts).map(|n| (n, confidence(&ts)))
             })
             .collect();
-        let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); brep.vertices.len()];
-        for he in &brep.half_edges {
-            let twin = &brep.half_edges[he.twin.index()];
-            neighbours[he.origin.index()].push(twin.origin.index());
-        }
+        let neighbours = outgoing.map(|h| brep.destination(h).index());
         let mut normals = rotation::orient_normals(&raw, &neighbours);
         let mut position_in_rotation = vec![0usize; brep.half_edges.len()];
-        for (v, hs) in outgoing.iter_mut().enumerate() {
-            if hs.is_empty() {
+        let (mut keys, mut order, mut hs) = (Vec::new(), Vec::new(), Vec::new());
+        for (v, &normal) in normals.iter().enumerate() {
+            if outgoing.row(v).is_empty() {
                 continue;
             }
+            hs.clear();
+            hs.extend_from_slice(outgoing.row(v));
             ts.clear();
             ts.extend(hs.iter().map(|h| dirs[h.index()]));
             let d = &ts;
@@ -242,18 +251,19 @@ impl Topology {
                 let c = &evals[e.curve];
                 (c.point(from + 0.25 * (to - from)) - c.point(from)).normalize_or_zero()
             };
-            let order = rotation::ccw_order(normals[v], d, &further);
-            *hs = order.into_iter().map(|i| hs[i]).collect();
-            for (i, h) in hs.iter().enumerate() {
-                position_in_rotation[h.index()] = i;
+            rotation::ccw_order(normal, d, &further, &mut keys, &mut order);
+            let row = outgoing.row_mut(v);
+            for (i, &k) in order.iter().enumerate() {
+                row[i] = hs[k];
+                position_in_rotation[hs[k].index()] = i;
             }
-            brep.vertices[v].outgoing = Some(hs[0]);
-            brep.vertices[v].normal = normals[v];
+            brep.vertices[v].outgoing = Some(row[0]);
+            brep.vertices[v].normal = normal;
         }
         for i in 0..brep.half_edges.len() {
             let twin = brep.half_edges[i].twin;
             let v = brep.half_edges[twin.index()].origin.index();
-            let rot = &outgoing[v];
+            let rot = outgoing.row(v);
             let next = rot[(position_in_rotation[twin.index()] + rot.len() - 1) % rot.len()];
             brep.half_edges[i].next = next;
             brep.half_edges[next.index()].prev = HalfEdgeId::from_index(i);
@@ -340,21 +350,23 @@ impl Topology {
         let mut faces = Vec::with_capacity(brep.loops.len());
         let mut boundary_loops = Vec::new();
         let mut edge_stamp = vec![0u32; brep.edges.len()];
+        let (mut corner_flags, mut names_buf) = (Vec::new(), Vec::new());
         for li in 0..brep.loops.len() {
             let l = LoopId::from_index(li);
-            let hs = brep.loop_half_edges(l);
+            brep.loop_half_edges_into(l, &mut hs);
             let (area, normal) =
                 faces::loop_orientation(&brep, &evals, &edge_areas, &normals, l, &hs);
             let is_face_side = area.dot(normal) > 0.0;
             let bridge = faces::has_bridge(&brep, &hs, &mut edge_stamp, li as u32 + 1);
             let shell = brep.loops[li].shell;
-            let names = sorted_curves(&brep, &hs);
+            let names = sorted_curves(&brep, &hs, &mut names_buf);
             if is_face_side && !bridge {
                 let f = FaceId::from_index(brep.faces.len());
                 brep.faces.push(Face { outer: l, shell });
                 brep.loops[li].face = Some(f);
                 brep.shells[shell.index()].faces.push(f);
-                let (corners, sides) = faces::corners_and_sides(&brep, &dirs, &hs);
+                let (corners, sides) =
+                    faces::corners_and_sides(&brep, &dirs, &hs, &mut corner_flags);
                 faces.push(TopoFace {
                     edges: hs.iter().map(|&h| brep.half_edge(h).edge).collect(),
                     forward: hs.iter().map(|&h| brep.is_forward(h)).collect(),
@@ -483,33 +495,35 @@ fn confidence(tangents: &[DVec3]) -> f64 {
     best
 }
 
-fn sorted_curves(brep: &Brep, hs: &[HalfEdgeId]) -> Vec<usize> {
-    let mut names: Vec<usize> = hs
-        .iter()
-        .map(|&h| brep.edges[brep.half_edge(h).edge.index()].curve)
-        .collect();
-    names.sort();
-    names.dedup();
-    names
+/// The designer curves along a loop, sorted, without repeats (`scratch` is a work buffer).
+fn sorted_curves(brep: &Brep, hs: &[HalfEdgeId], scratch: &mut Vec<usize>) -> Vec<usize> {
+    scratch.clear();
+    scratch.extend(
+        hs.iter()
+            .map(|&h| brep.edges[brep.half_edge(h).edge.index()].curve),
+    );
+    scratch.sort_unstable();
+    scratch.dedup();
+    scratch.clone()
 }
 
 /// Edges that can bound a region: repeatedly drop edges with an end no other edge touches.
 fn prune_branches(brep: &Brep) -> Vec<bool> {
-    let mut degree = vec![0usize; brep.vertices.len()];
-    let mut at: Vec<Vec<usize>> = vec![Vec::new(); brep.vertices.len()];
-    for (k, e) in brep.edges.iter().enumerate() {
-        degree[e.start.index()] += 1;
-        degree[e.end.index()] += 1;
-        at[e.start.index()].push(k);
-        at[e.end.index()].push(k);
-    }
+    let at = Adjacency::from_pairs(
+        brep.vertices.len(),
+        brep.edges
+            .iter()
+            .enumerate()
+            .flat_map(|(k, e)| [(e.start.index(), k), (e.end.index(), k)]),
+    );
+    let mut degree: Vec<usize> = (0..at.rows()).map(|v| at.row(v).len()).collect();
     let mut core = vec![true; brep.edges.len()];
     let mut stack: Vec<usize> = (0..degree.len()).filter(|&v| degree[v] == 1).collect();
     while let Some(v) = stack.pop() {
         if degree[v] != 1 {
             continue;
         }
-        let Some(&k) = at[v].iter().find(|&&k| core[k]) else {
+        let Some(&k) = at.row(v).iter().find(|&&k| core[k]) else {
             continue;
         };
         core[k] = false;
@@ -588,17 +602,18 @@ fn report_ends(
 }
 
 /// Connected parts of the graph: a part index per vertex (`usize::MAX` for lone vertices).
-fn components(neighbours: &[Vec<usize>]) -> Vec<usize> {
-    let mut part = vec![usize::MAX; neighbours.len()];
+fn components(neighbours: &Adjacency<usize>) -> Vec<usize> {
+    let mut part = vec![usize::MAX; neighbours.rows()];
     let mut count = 0;
-    for s in 0..neighbours.len() {
-        if part[s] != usize::MAX || neighbours[s].is_empty() {
+    let mut stack = Vec::new();
+    for s in 0..neighbours.rows() {
+        if part[s] != usize::MAX || neighbours.row(s).is_empty() {
             continue;
         }
         part[s] = count;
-        let mut stack = vec![s];
+        stack.push(s);
         while let Some(u) = stack.pop() {
-            for &v in &neighbours[u] {
+            for &v in neighbours.row(u) {
                 if part[v] == usize::MAX {
                     part[v] = count;
                     stack.push(v);

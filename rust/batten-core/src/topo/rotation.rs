@@ -7,6 +7,7 @@ use std::collections::VecDeque;
 
 use glam::DVec3;
 
+use super::adjacency::Adjacency;
 use crate::network::PieceCurve;
 
 /// Below this sine of the angle between two tangents they are taken as parallel, so they do
@@ -121,12 +122,12 @@ fn plane_normal(points: &[DVec3]) -> Option<DVec3> {
 /// (zero for vertices without edges).
 pub(crate) fn orient_normals(
     raw: &[Option<(DVec3, f64)>],
-    neighbours: &[Vec<usize>],
+    neighbours: &Adjacency<usize>,
 ) -> Vec<DVec3> {
     let n = raw.len();
     let mut out = vec![DVec3::ZERO; n];
     let mut seen = vec![false; n];
-    let mut order: Vec<usize> = (0..n).filter(|&v| !neighbours[v].is_empty()).collect();
+    let mut order: Vec<usize> = (0..n).filter(|&v| !neighbours.row(v).is_empty()).collect();
     // Start each part at its most confident normal.
     order.sort_by(|&a, &b| {
         let ca = raw[a].map_or(0.0, |r| r.1);
@@ -142,7 +143,7 @@ pub(crate) fn orient_normals(
         out[start] = raw[start].map_or(DVec3::Z, |r| r.0);
         queue.push_back(start);
         while let Some(u) = queue.pop_front() {
-            for &v in &neighbours[u] {
+            for &v in neighbours.row(u) {
                 if seen[v] {
                     continue;
                 }
@@ -162,14 +163,17 @@ pub(crate) fn orient_normals(
 /// Tangent angles (radians) closer than this are a tie, broken further along the edges.
 const TANGENT_TIE: f64 = 1e-6;
 
-/// Sort directions counter-clockwise about `normal`; returns the permutation. `fallback(i)`
-/// gives a second direction for entry `i` (further along the edge) that breaks ties between
-/// edges leaving with the same tangent; it is only called for such ties.
+/// Sort directions counter-clockwise about `normal`; writes the permutation into `idx`.
+/// `fallback(i)` gives a second direction for entry `i` (further along the edge) that breaks
+/// ties between edges leaving with the same tangent; it is only called for such ties. `keys`
+/// is a work buffer.
 pub(crate) fn ccw_order(
     normal: DVec3,
     dirs: &[DVec3],
     fallback: &dyn Fn(usize) -> DVec3,
-) -> Vec<usize> {
+    keys: &mut Vec<f64>,
+    idx: &mut Vec<usize>,
+) {
     let project = |d: DVec3| d - normal * d.dot(normal);
     let e1 = dirs
         .iter()
@@ -181,8 +185,10 @@ pub(crate) fn ccw_order(
         let p = project(d);
         p.dot(e2).atan2(p.dot(e1))
     };
-    let keys: Vec<f64> = dirs.iter().map(|d| angle(*d)).collect();
-    let mut idx: Vec<usize> = (0..dirs.len()).collect();
+    keys.clear();
+    keys.extend(dirs.iter().map(|d| angle(*d)));
+    idx.clear();
+    idx.extend(0..dirs.len());
     idx.sort_by(|&a, &b| keys[a].total_cmp(&keys[b]));
     // Runs of (nearly) equal tangent angles are ordered by the direction further along.
     let mut start = 0;
@@ -205,7 +211,6 @@ pub(crate) fn ccw_order(
         }
         start = end;
     }
-    idx
 }
 
 #[cfg(test)]
@@ -215,7 +220,8 @@ mod tests {
     #[test]
     fn ccw_order_of_a_plus_sign() {
         let dirs = [DVec3::Y, DVec3::NEG_X, DVec3::X, DVec3::NEG_Y];
-        let order = ccw_order(DVec3::Z, &dirs, &|i| dirs[i]);
+        let mut order = Vec::new();
+        ccw_order(DVec3::Z, &dirs, &|i| dirs[i], &mut Vec::new(), &mut order);
         // Starting from +Y (the first direction): -X, -Y, +X counter-clockwise about +Z.
         let pos = |i: usize| order.iter().position(|&k| k == i).expect("present");
         let cyc = |a: usize, b: usize| (pos(b) + 4 - pos(a)) % 4;
@@ -234,7 +240,14 @@ mod tests {
             DVec3::NEG_X,
             DVec3::new(1.0, -0.1, 0.0),
         ];
-        let order = ccw_order(DVec3::Z, &dirs, &|i| further[i]);
+        let mut order = Vec::new();
+        ccw_order(
+            DVec3::Z,
+            &dirs,
+            &|i| further[i],
+            &mut Vec::new(),
+            &mut order,
+        );
         let pos = |i: usize| order.iter().position(|&k| k == i).expect("present");
         assert_eq!(
             (pos(0) + 3 - pos(2)) % 3,

@@ -20,20 +20,34 @@ pub struct EdgeFacesError {
 
 /// One error per edge that is used by more than two half-edges or by one face twice.
 pub(crate) fn check(brep: &Brep) -> Vec<EdgeFacesError> {
+    // Uses and the first two faces of every edge; the full face list is gathered only for
+    // the (rare) edges that fail.
     let mut uses = vec![0usize; brep.edges.len()];
-    let mut faces: Vec<Vec<FaceId>> = vec![Vec::new(); brep.edges.len()];
+    let mut first: Vec<[Option<FaceId>; 2]> = vec![[None; 2]; brep.edges.len()];
+    let face_of = |he: &crate::topo::brep::HalfEdge| brep.loops[he.loop_id.index()].face;
     for he in &brep.half_edges {
         let e = he.edge.index();
-        uses[e] += 1;
-        if let Some(f) = brep.loops[he.loop_id.index()].face {
-            faces[e].push(f);
+        if let Some(f) = face_of(he) {
+            let slot = &mut first[e];
+            if slot[0].is_none() {
+                slot[0] = Some(f);
+            } else if slot[1].is_none() {
+                slot[1] = Some(f);
+            }
         }
+        uses[e] += 1;
     }
     let mut out = Vec::new();
-    for (i, (n, mut fs)) in uses.into_iter().zip(faces).enumerate() {
-        fs.sort();
-        let repeated = fs.windows(2).any(|w| w[0] == w[1]);
+    for (i, &n) in uses.iter().enumerate() {
+        let repeated = matches!(first[i], [Some(a), Some(b)] if a == b);
         if n > 2 || repeated {
+            let mut fs: Vec<FaceId> = brep
+                .half_edges
+                .iter()
+                .filter(|he| he.edge.index() == i)
+                .filter_map(face_of)
+                .collect();
+            fs.sort();
             out.push(EdgeFacesError {
                 edge: EdgeId::from_index(i),
                 uses: n,

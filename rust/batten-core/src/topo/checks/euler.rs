@@ -32,13 +32,15 @@ pub(crate) fn check(brep: &Brep) -> Vec<EulerPoincareError> {
         let mut vertex_seen = vec![false; brep.vertices.len()];
         let mut edge_seen = vec![false; brep.edges.len()];
         let (mut v, mut e) = (0, 0);
+        let mut hs = Vec::new();
         let loops = shell
             .faces
             .iter()
             .map(|f| brep.faces[f.index()].outer)
             .chain(shell.boundaries.iter().copied());
         for l in loops {
-            for h in brep.loop_half_edges(l) {
+            brep.loop_half_edges_into(l, &mut hs);
+            for &h in &hs {
                 let he = brep.half_edge(h);
                 if !std::mem::replace(&mut vertex_seen[he.origin.index()], true) {
                     v += 1;

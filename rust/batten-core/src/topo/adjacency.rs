@@ -1,0 +1,79 @@
+//! Lists per vertex kept in one flat array (compressed rows), so building the topology does
+//! not allocate a small vector for every node.
+
+/// One list of items per row (vertex), stored back to back: row `r` is
+/// `items[start[r]..start[r + 1]]`.
+#[derive(Clone, Debug)]
+pub(crate) struct Adjacency<T> {
+    start: Vec<usize>,
+    items: Vec<T>,
+}
+
+impl<T: Copy> Adjacency<T> {
+    /// Rows `0..rows` holding the items of `pairs` (`(row, item)`), each row in the order the
+    /// pairs come. `pairs` is walked twice: once to count, once to fill.
+    pub fn from_pairs<I>(rows: usize, pairs: I) -> Self
+    where
+        I: Iterator<Item = (usize, T)> + Clone,
+    {
+        let mut start = vec![0usize; rows + 1];
+        for (r, _) in pairs.clone() {
+            start[r + 1] += 1;
+        }
+        for r in 0..rows {
+            start[r + 1] += start[r];
+        }
+        let mut fill = start.clone();
+        // Every slot is overwritten below; the first item only fills the vector.
+        let mut items = match pairs.clone().next() {
+            Some((_, first)) => vec![first; start[rows]],
+            None => Vec::new(),
+        };
+        for (r, item) in pairs {
+            items[fill[r]] = item;
+            fill[r] += 1;
+        }
+        Adjacency { start, items }
+    }
+
+    /// A list of the same shape (row lengths) with `f` applied to every item.
+    pub fn map<U: Copy>(&self, f: impl Fn(T) -> U) -> Adjacency<U> {
+        Adjacency {
+            start: self.start.clone(),
+            items: self.items.iter().map(|&x| f(x)).collect(),
+        }
+    }
+
+    /// Number of rows.
+    pub fn rows(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// The items of row `r`.
+    pub fn row(&self, r: usize) -> &[T] {
+        &self.items[self.start[r]..self.start[r + 1]]
+    }
+
+    /// The items of row `r`, to reorder in place.
+    pub fn row_mut(&mut self, r: usize) -> &mut [T] {
+        &mut self.items[self.start[r]..self.start[r + 1]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_keep_the_order_of_their_pairs() {
+        let pairs = [(2, 'a'), (0, 'b'), (2, 'c'), (3, 'd'), (0, 'e')];
+        let adj = Adjacency::from_pairs(4, pairs.iter().copied());
+        assert_eq!(adj.rows(), 4);
+        assert_eq!(adj.row(0), ['b', 'e']);
+        assert_eq!(adj.row(1), [] as [char; 0]);
+        assert_eq!(adj.row(2), ['a', 'c']);
+        assert_eq!(adj.row(3), ['d']);
+        let upper = adj.map(|c| c.to_ascii_uppercase());
+        assert_eq!(upper.row(2), ['A', 'C']);
+    }
+}
