@@ -51,6 +51,110 @@ impl BezierPiece {
         (a.truncate() / a.w, b.truncate() / b.w)
     }
 
+    /// True when the squared distance from `q` is convex along the whole piece, so it has one
+    /// minimum there and Newton's method finds it: for a polynomial piece,
+    /// `½ d²/du² |C − q|² = |C′|² + C″·(C − q)`, and `|C′| ≥ min_i H_i·e` (hodograph control
+    /// points `H_i` along the unit chord `e`), `|C″| ≤ max_i |C″_i|` (second hodograph),
+    /// `|C − q| ≤ max_i |P_i − q|` (convex hull). Always false for rational pieces.
+    pub fn distance_convex(&self, q: DVec3) -> bool {
+        let w0 = self.cw[0].w;
+        if self.cw.iter().any(|c| c.w != w0) || self.cw.len() < 2 {
+            return false;
+        }
+        let p = |i: usize| self.cw[i].truncate() / w0;
+        let n = self.cw.len();
+        let (a, b) = self.ends();
+        let Some(e) = (b - a).try_normalize() else {
+            return false;
+        };
+        let deg = (n - 1) as f64;
+        let mut speed = f64::INFINITY;
+        for i in 0..n - 1 {
+            speed = speed.min(deg * (p(i + 1) - p(i)).dot(e));
+        }
+        if speed <= 0.0 {
+            return false;
+        }
+        let mut accel: f64 = 0.0;
+        for i in 0..n.saturating_sub(2) {
+            accel = accel.max(deg * (deg - 1.0) * (p(i + 2) - 2.0 * p(i + 1) + p(i)).length());
+        }
+        let reach = (0..n).map(|i| (p(i) - q).length()).fold(0.0, f64::max);
+        speed * speed > accel * reach
+    }
+
+    /// Point, first and second derivative (with respect to the piece's local parameter
+    /// `u ∈ [0, 1]`) of a polynomial piece (equal weights), by de Casteljau down to three
+    /// points.
+    fn local_derivs(&self, u: f64) -> (DVec3, DVec3, DVec3) {
+        let n = self.cw.len();
+        let w = self.cw[0].w;
+        let mut work = [DVec3::ZERO; super::basis::MAX_ORDER];
+        for (slot, c) in work.iter_mut().zip(&self.cw) {
+            *slot = c.truncate() / w;
+        }
+        let deg = (n - 1) as f64;
+        if n < 3 {
+            let d = work[1] - work[0];
+            return (work[0] + d * u, d, DVec3::ZERO);
+        }
+        for level in 1..=n - 3 {
+            for i in 0..n - level {
+                work[i] = work[i].lerp(work[i + 1], u);
+            }
+        }
+        let (q0, q1, q2) = (work[0], work[1], work[2]);
+        let point = q0 * ((1.0 - u) * (1.0 - u)) + q1 * (2.0 * u * (1.0 - u)) + q2 * (u * u);
+        let d1 = ((q1 - q0) * (1.0 - u) + (q2 - q1) * u) * deg;
+        let d2 = (q2 - q1 * 2.0 + q0) * (deg * (deg - 1.0));
+        (point, d1, d2)
+    }
+
+    /// The closest point to `q` on a piece where [`BezierPiece::distance_convex`] holds:
+    /// the root of `g(u) = C′(u)·(C(u) − q)`, which increases along the piece, by Newton's
+    /// method kept inside a bisection bracket (or an end, where `g` does not change sign).
+    /// Returns the global parameter and the point.
+    pub fn convex_foot(&self, q: DVec3) -> (f64, DVec3) {
+        let g = |u: f64| {
+            let (c, d1, d2) = self.local_derivs(u);
+            let r = c - q;
+            (c, d1.dot(r), d2.dot(r) + d1.length_squared())
+        };
+        let global = |u: f64| self.t0 + u * (self.t1 - self.t0);
+        let (c0, g0, _) = g(0.0);
+        if g0 >= 0.0 {
+            return (self.t0, c0);
+        }
+        let (c1, g1, _) = g(1.0);
+        if g1 <= 0.0 {
+            return (self.t1, c1);
+        }
+        let (a, b) = self.ends();
+        let ab = b - a;
+        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+        let mut u = ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        let (mut c, mut gu, mut dg) = g(u);
+        for _ in 0..64 {
+            if gu < 0.0 {
+                lo = u;
+            } else {
+                hi = u;
+            }
+            let newton = u - gu / dg;
+            let next = if dg > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - u).abs() <= 4.0 * f64::EPSILON || hi - lo <= 4.0 * f64::EPSILON {
+                break;
+            }
+            u = next;
+            (c, gu, dg) = g(u);
+        }
+        (global(u), c)
+    }
+
     /// De Casteljau subdivision at the parametric middle, in homogeneous coordinates.
     pub fn halves(&self) -> (BezierPiece, BezierPiece) {
         let n = self.cw.len();
@@ -195,5 +299,81 @@ impl NurbsCurve {
     /// A box holding the curve, at most `accuracy` larger than the tightest one on each side.
     pub fn bounding_box(&self, accuracy: f64) -> Result<Aabb, CurveError> {
         self.bezier_decomposition().bounding_box(accuracy)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A shallow cubic arch bulging towards +y: from (0, 0) over (0.5, 0.0375) to (1, 0),
+    /// radius of curvature about 3.3 at its middle.
+    fn arch() -> BezierPiece {
+        let p = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0 / 3.0, 0.05, 0.0),
+            DVec3::new(2.0 / 3.0, 0.05, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+        ];
+        BezierPiece {
+            t0: 2.0,
+            t1: 4.0,
+            cw: p.iter().map(|q| q.extend(1.0)).collect(),
+        }
+    }
+
+    fn sampled_nearest(piece: &BezierPiece, q: DVec3) -> f64 {
+        (0..=100_000)
+            .map(|i| {
+                let u = f64::from(i) / 100_000.0;
+                (piece.local_derivs(u).0 - q).length()
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn convex_distance_is_recognised_and_its_foot_is_the_nearest_point() {
+        let piece = arch();
+        // Just above the arch: one minimum, found exactly.
+        let q = DVec3::new(0.37, 0.2, 0.0);
+        assert!(piece.distance_convex(q), "a point near the arch");
+        let (t, point) = piece.convex_foot(q);
+        assert!((2.0..=4.0).contains(&t), "global parameter {t}");
+        let d = (point - q).length();
+        let dense = sampled_nearest(&piece, q);
+        assert!(d <= dense + 1e-12, "foot {d} vs sampled {dense}");
+        assert!(d >= dense - 1e-9, "foot {d} below sampled {dense}");
+        // The foot is perpendicular: C'(u)·(C(u) − q) = 0.
+        let (c, d1, _) = piece.local_derivs((t - 2.0) / 2.0);
+        assert!(d1.dot(c - q).abs() < 1e-12, "perpendicular foot");
+        // Beyond the centre of curvature the middle of the arch is a local maximum of the
+        // distance (two minima, towards the ends): not convex, so it is subdivided.
+        let below = DVec3::new(0.5, -5.0, 0.0);
+        assert!(
+            !piece.distance_convex(below),
+            "beyond the centre of curvature"
+        );
+    }
+
+    #[test]
+    fn convex_foot_at_an_end_when_the_distance_only_grows() {
+        let piece = arch();
+        let q = DVec3::new(-0.3, -0.2, 0.0);
+        assert!(piece.distance_convex(q), "near the start");
+        let (t, point) = piece.convex_foot(q);
+        assert_eq!(t, 2.0, "the start is nearest");
+        assert_eq!(point, DVec3::ZERO, "at the start point");
+        let rational = BezierPiece {
+            cw: vec![
+                DVec4::new(0.0, 0.0, 0.0, 1.0),
+                DVec4::new(0.4, 1.0, 0.0, 2.0),
+                DVec4::new(1.0, 0.0, 0.0, 1.0),
+            ],
+            ..piece
+        };
+        assert!(
+            !rational.distance_convex(DVec3::new(0.5, 0.6, 0.0)),
+            "rational pieces are never taken as convex"
+        );
     }
 }

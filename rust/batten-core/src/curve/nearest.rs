@@ -65,6 +65,8 @@ impl BezierDecomposition {
         // curves with very unequal spans: 54 mm off on a 230 m waterline.)
         let leaf = 0.5 * accuracy;
         let mut best = self.endpoint_nearest(q);
+        // True while `best` is the exact minimum of a convex piece (no polish needed).
+        let mut polished = false;
         let mut heap: BinaryHeap<Candidate> = self
             .pieces
             .iter()
@@ -81,9 +83,21 @@ impl BezierDecomposition {
                 || piece.t1 - piece.t0 <= f64::EPSILON * piece.t1.abs().max(1.0)
             {
                 let start = self.golden(q, piece.t0, piece.t1);
-                let polished = self.newton(q, start, piece.t0, piece.t1);
-                if polished.distance < best.distance {
-                    best = polished;
+                let refined = self.newton(q, start, piece.t0, piece.t1);
+                if refined.distance < best.distance {
+                    best = refined;
+                    polished = false;
+                }
+                continue;
+            }
+            if piece.distance_convex(q) {
+                // One minimum on the piece (the squared distance is convex in the
+                // parameter): found to rounding on the piece itself, no subdivision needed.
+                let (t, point) = piece.convex_foot(q);
+                let distance = (point - q).length();
+                if distance < best.distance {
+                    best = Nearest { t, point, distance };
+                    polished = true;
                 }
                 continue;
             }
@@ -96,6 +110,7 @@ impl BezierDecomposition {
                     point: mid,
                     distance: d,
                 };
+                polished = false;
             }
             for half in [l, r] {
                 let lower = half.lower_bound(q);
@@ -103,6 +118,9 @@ impl BezierDecomposition {
                     heap.push(Candidate { lower, piece: half });
                 }
             }
+        }
+        if polished {
+            return Ok(best);
         }
         // The bound proves `best` is within `accuracy` in distance; polish its parameter too
         // (the distance is flat at a minimum, so a good distance can hide a poor parameter).
