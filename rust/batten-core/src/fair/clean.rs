@@ -99,7 +99,7 @@ pub(crate) fn check_order(points: &[DVec3]) -> Result<(), FairError> {
 /// points, by a plain scan of them. The tour is the same as the O(m²) scan's, in near-linear
 /// time for points that follow a curve. Below [`GRID_POINTS`] points the plain scan is faster.
 fn nearest_neighbour_tour(points: &[DVec3]) -> f64 {
-    use std::collections::HashMap;
+    use rustc_hash::FxHashMap as HashMap;
     let m = points.len();
     let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
     let h = length / (m - 1) as f64;
@@ -110,7 +110,8 @@ fn nearest_neighbour_tour(points: &[DVec3]) -> f64 {
         let c = (p / h).floor();
         [c.x as i64, c.y as i64, c.z as i64]
     };
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::with_capacity(m);
+    let mut grid: HashMap<[i64; 3], Vec<usize>> =
+        HashMap::with_capacity_and_hasher(m, Default::default());
     for (j, p) in points.iter().enumerate().skip(1) {
         grid.entry(cell_of(*p)).or_default().push(j);
     }
