@@ -23,7 +23,7 @@ HULL = ROOT.parent / "shared" / "hulls" / "kcs" / "network.json"
 SIGMA = 0.005
 
 
-def best(fn, repeat=5):
+def best(fn, repeat=20):
     out, times = None, []
     for _ in range(repeat):
         t0 = time.perf_counter()

@@ -18,7 +18,7 @@
 
 use glam::DVec3;
 
-use super::knots::{clamped, jump_rows, next_knots, Design};
+use super::knots::{clamped, jump_rows, next_knots, schoenberg_whitney, Design};
 use super::lsq::BandedQr;
 
 /// Dierckx's relative tolerance on `F(p) = S` (curfit's `tol = 0.001`).
@@ -391,12 +391,41 @@ pub(crate) fn smoothing_spline(
     target: Target,
     ends: &Ends,
 ) -> Option<Spline> {
+    smoothing_spline_from(points, params, degree, target, ends, &[], Some(None))
+}
+
+/// [`smoothing_spline`] starting from the interior knots `warm` instead of none (they are
+/// kept; knots are only added). `search_p`: `None` stops at the least-squares spline once
+/// `F(∞)` is within the target (part 1 only); `Some(start)` searches p from `start` (the p
+/// of a previous fit to nearly the same data) or, when that is `None`, from fpcurf's first
+/// guess.
+///
+/// `warm` is used only when the Schoenberg–Whitney conditions hold for it at `params`
+/// (parameters moved by a correction can leave a span without data); otherwise the search
+/// starts from no knots.
+pub(crate) fn smoothing_spline_from(
+    points: &[DVec3],
+    params: &[f64],
+    degree: usize,
+    target: Target,
+    ends: &Ends,
+    warm: &[f64],
+    search_p: Option<Option<f64>>,
+) -> Option<Spline> {
     let k = degree;
     let s = target.s;
     let m = points.len();
     let (a, b) = (params[0], params[m - 1]);
     let acc = REL_ACC * s;
-    let mut interior = initial_interior(k, ends, params);
+    let cold = initial_interior(k, ends, params);
+    let warm_started = warm.len() > cold.len()
+        && warm.iter().all(|&t| a < t && t < b)
+        && schoenberg_whitney(&clamped(k, a, b, warm), k, params);
+    let mut interior = if warm_started {
+        warm.to_vec()
+    } else {
+        cold.clone()
+    };
 
     // Part 1: knots until F(∞) ≤ S, one at a time, each updating the triangle in place.
     let mut fp0: Option<f64> = None;
@@ -412,7 +441,7 @@ pub(crate) fn smoothing_spline(
         let fp: f64 = r2.iter().sum();
         if fp0.is_none() {
             fp0 = Some(fp);
-            if fp <= s {
+            if fp <= s && !warm_started {
                 // The least-squares polynomial is smooth enough (fpcurf ier = -2).
                 return Some(system.spline(coefs, 0.0, fp, s));
             }
@@ -439,12 +468,22 @@ pub(crate) fn smoothing_spline(
             system.insert(t);
         }
     };
+    let Some(p_start) = search_p else {
+        return Some(system.spline(ls_coefs, f64::INFINITY, fp_inf, s));
+    };
     if (fp_inf - s).abs() < acc || interior.is_empty() {
         return Some(system.spline(ls_coefs, f64::INFINITY, fp_inf, s));
     }
 
     // Part 2: p with F(p) = S by rational interpolation (fpcurf, fprati).
-    let fp0 = fp0.expect("set on the first pass");
+    // F(0): the least-squares polynomial's E (the first pass of a cold start).
+    let fp0 = if warm_started {
+        let poly = System::new(k, clamped(k, a, b, &cold), points, params, ends);
+        let c = poly.least_squares()?;
+        poly.residuals2(&c).iter().sum()
+    } else {
+        fp0.expect("set on the first pass")
+    };
     let eval = |p: f64| -> Option<(Vec<DVec3>, f64)> {
         let c = system.smoothing(p)?;
         let fp = system.residuals2(&c).iter().sum();
@@ -456,7 +495,11 @@ pub(crate) fn smoothing_spline(
     let (mut p3, mut f3) = (-1.0, fp_inf - s);
     let rn = system.ls.unknowns().max(1) as f64;
     let diag = system.ls.diagonal_sum();
-    let mut p = if diag > 0.0 { rn / diag } else { 1.0 };
+    let mut p = match p_start {
+        Some(p) if p.is_finite() && p > 0.0 => p,
+        _ if diag > 0.0 => rn / diag,
+        _ => 1.0,
+    };
     let (mut ich1, mut ich3) = (false, false);
     for _ in 0..MAX_P_ITER {
         let Some((c, fp)) = eval(p) else { break };
