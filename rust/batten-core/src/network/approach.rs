@@ -165,14 +165,23 @@ impl<'a> PieceCurve<'a> {
     /// C(t), C'(t) and C''(t); at a knot, of the piece after it when `after` is true (the
     /// one-sided derivative a curve leaves the knot with), else of the piece before it.
     pub fn eval_side(&self, t: f64, after: bool) -> (DVec3, DVec3, DVec3) {
+        self.eval_in(self.piece_at(t, after), t)
+    }
+
+    /// The index of the piece [`PieceCurve::eval_side`] evaluates at `t`.
+    pub fn piece_at(&self, t: f64, after: bool) -> usize {
         let pieces = &self.decomposition.pieces;
-        let k = if after {
+        if after {
             pieces.partition_point(|p| p.t1 <= t)
         } else {
             pieces.partition_point(|p| p.t1 < t)
         }
-        .min(pieces.len() - 1);
-        let piece = &pieces[k];
+        .min(pieces.len() - 1)
+    }
+
+    /// C(t), C'(t) and C''(t) of piece `k` (t clamped into it).
+    pub fn eval_in(&self, k: usize, t: f64) -> (DVec3, DVec3, DVec3) {
+        let piece = &self.decomposition.pieces[k];
         let len = piece.t1 - piece.t0;
         let u = ((t - piece.t0) / len).clamp(0.0, 1.0);
         let (h, d1, d2) = if piece.cw.len() <= SMALL_ORDER {

@@ -74,6 +74,9 @@ struct Prepared<'a> {
     ends: [(f64, DVec3); 2],
     decomposition: BezierDecomposition,
     segs: Vec<Seg>,
+    /// Per piece: its control-point box and tangent cone (each piece meets many others in the
+    /// narrow phase; these are worked out once).
+    bounds: Vec<Bounds>,
     size: f64,
 }
 
@@ -179,11 +182,16 @@ impl Network {
                     .collect();
                 let size = decomposition.hull_box().diagonal();
                 let (a, b) = c.curve.domain();
+                let bounds = segs
+                    .iter()
+                    .map(|s| (s.hull_box(), s.tangent_cone()))
+                    .collect();
                 Prepared {
                     curve: &c.curve,
                     ends: [(a, c.curve.point(a)), (b, c.curve.point(b))],
                     decomposition,
                     segs,
+                    bounds,
                     size,
                 }
             })
@@ -250,8 +258,14 @@ impl Network {
                 hits: &mut pair_hits,
             };
             for &(_, _, sa, sb) in &pairs[k..group_end] {
-                let (x, y) = (prepared[ca].segs[sa], prepared[cb].segs[sb]);
-                narrow.recurse(&x, &y, 0);
+                let (pa, pb) = (&prepared[ca], &prepared[cb]);
+                narrow.recurse(
+                    &pa.segs[sa],
+                    &pb.segs[sb],
+                    Some(pa.bounds[sa]),
+                    Some(pb.bounds[sb]),
+                    0,
+                );
             }
             if ca == cb {
                 self_hits(
@@ -304,6 +318,9 @@ fn sweep_axis(items: &[Item]) -> usize {
     }
 }
 
+/// A piece's control-point box and tangent cone.
+type Bounds = (Aabb, Option<(DVec3, f64)>);
+
 struct Narrow<'a, 'h> {
     a: &'a Prepared<'a>,
     b: &'a Prepared<'a>,
@@ -316,8 +333,12 @@ struct Narrow<'a, 'h> {
 }
 
 impl Narrow<'_, '_> {
-    fn recurse(&mut self, x: &Seg, y: &Seg, depth: u32) {
-        let (bx, by) = (x.hull_box(), y.hull_box());
+    /// Halve the pair until it is a leaf; `kx`, `ky` are the pieces' box and cone when known.
+    fn recurse(&mut self, x: &Seg, y: &Seg, kx: Option<Bounds>, ky: Option<Bounds>, depth: u32) {
+        let (bx, by) = (
+            kx.map_or_else(|| x.hull_box(), |k| k.0),
+            ky.map_or_else(|| y.hull_box(), |k| k.0),
+        );
         if box_gap(&bx, &by) > self.near || self.leaves >= MAX_LEAVES {
             return;
         }
@@ -326,7 +347,10 @@ impl Narrow<'_, '_> {
         let small_y = dy <= (LEAF_SIZE_FRACTION * self.b.size).max(self.near);
         let leaf = (small_x && small_y)
             || depth >= MAX_DEPTH
-            || match (x.tangent_cone(), y.tangent_cone()) {
+            || match (
+                kx.map_or_else(|| x.tangent_cone(), |k| k.1),
+                ky.map_or_else(|| y.tangent_cone(), |k| k.1),
+            ) {
                 (Some((ax, hx)), Some((ay, hy))) => {
                     let between = ax.dot(ay).abs().min(1.0).acos();
                     between > hx + hy + CONE_MARGIN
@@ -339,12 +363,12 @@ impl Narrow<'_, '_> {
         }
         if dx >= dy {
             let (l, r) = x.halves();
-            self.recurse(&l, y, depth + 1);
-            self.recurse(&r, y, depth + 1);
+            self.recurse(&l, y, None, ky, depth + 1);
+            self.recurse(&r, y, None, ky, depth + 1);
         } else {
             let (l, r) = y.halves();
-            self.recurse(x, &l, depth + 1);
-            self.recurse(x, &r, depth + 1);
+            self.recurse(x, &l, kx, None, depth + 1);
+            self.recurse(x, &r, kx, None, depth + 1);
         }
     }
 
@@ -788,16 +812,15 @@ fn cluster(
         uf.union(ia, ia + 1);
     }
     // Any two curve points within the tolerance are one node: sweep along x.
-    let mut by_x: Vec<usize> = (0..incs.len()).collect();
-    by_x.sort_by(|&i, &j| incs[i].1.x.total_cmp(&incs[j].1.x));
-    for (k, &i) in by_x.iter().enumerate() {
+    let mut by_x: Vec<(f64, usize)> = incs.iter().map(|(_, p)| p.x).zip(0..).collect();
+    by_x.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    for (k, &(x, i)) in by_x.iter().enumerate() {
         let p = incs[i].1;
-        for &j in &by_x[k + 1..] {
-            let q = incs[j].1;
-            if q.x - p.x > tol {
+        for &(qx, j) in &by_x[k + 1..] {
+            if qx - x > tol {
                 break;
             }
-            if (q - p).length() <= tol {
+            if (incs[j].1 - p).length() <= tol {
                 uf.union(i, j);
             }
         }

@@ -180,11 +180,13 @@ impl Topology {
         let core_edges = core.iter().filter(|&&c| c).count();
         brep.half_edges.reserve_exact(2 * core_edges);
         let mut dirs: Vec<DVec3> = Vec::with_capacity(2 * core_edges);
+        let mut cache = rotation::EvalCache::default();
         for (k, e) in brep.edges.iter_mut().enumerate() {
             if !core[k] {
                 continue;
             }
             let curve = &evals[e.curve];
+            cache.on_curve(e.curve);
             let a = HalfEdgeId::from_index(brep.half_edges.len());
             let b = HalfEdgeId::from_index(brep.half_edges.len() + 1);
             for (h, origin, twin, from, to) in
@@ -198,7 +200,7 @@ impl Topology {
                     edge: EdgeId::from_index(k),
                     loop_id: LoopId(0),
                 });
-                dirs.push(rotation::leaving_direction(curve, from, to));
+                dirs.push(rotation::leaving_direction(curve, from, to, &mut cache));
             }
             e.half_edges = Some([a, b]);
         }

@@ -17,15 +17,50 @@ const PARALLEL_SINE: f64 = 1e-3;
 /// Unit direction in which a stretch `[t_from → t_to]` of a curve leaves `t_from`: the
 /// one-sided derivative on the stretch's side, or the chord to a nearby point where the
 /// derivative vanishes.
-pub(crate) fn leaving_direction(curve: &PieceCurve, t_from: f64, t_to: f64) -> DVec3 {
+pub(crate) fn leaving_direction(
+    curve: &PieceCurve,
+    t_from: f64,
+    t_to: f64,
+    cache: &mut EvalCache,
+) -> DVec3 {
     let forward = t_to > t_from;
-    let (p0, d1, _) = curve.eval_side(t_from, forward);
+    let (p0, d1, _) = cache.eval(curve, t_from, forward);
     let d = if forward { d1 } else { -d1 };
     let step = (t_to - t_from).abs();
     if d.length() * step > 1e-9 * (1.0 + p0.length()) {
         return d.normalize();
     }
     (curve.point(t_from + 1e-3 * (t_to - t_from)) - p0).normalize_or_zero()
+}
+
+/// The last evaluation of [`leaving_direction`], by curve, parameter and piece: the two
+/// half-edges leaving one node along one curve (forward on the edge after it, backward on the
+/// edge before it) evaluate the same piece at the same parameter unless the node is at a
+/// piece boundary.
+#[derive(Default)]
+pub(crate) struct EvalCache {
+    curve: usize,
+    key: Option<(u64, usize)>,
+    value: (DVec3, DVec3, DVec3),
+}
+
+impl EvalCache {
+    /// Start on curve `curve` (forgets the evaluation of any other curve).
+    pub fn on_curve(&mut self, curve: usize) {
+        if self.curve != curve {
+            self.curve = curve;
+            self.key = None;
+        }
+    }
+
+    fn eval(&mut self, curve: &PieceCurve, t: f64, after: bool) -> (DVec3, DVec3, DVec3) {
+        let key = (t.to_bits(), curve.piece_at(t, after));
+        if self.key != Some(key) {
+            self.value = curve.eval_in(key.1, t);
+            self.key = Some(key);
+        }
+        self.value
+    }
 }
 
 /// The surface normal at a node from the unit tangents of its edges (unoriented), or `None`
