@@ -7,7 +7,8 @@
 
 Options after ``--``: ``--out DIR`` (default ``out``), ``--examples DIR`` (default the repo's
 ``examples/``), ``--engine WORKBENCH|CYCLES``, ``--size WxH``, ``--resolution N`` (segments per
-patch side), ``--zebra`` (also render reflection lines, ``<name>_zebra.png``).
+patch side), ``--zebra`` (also render reflection lines, ``<name>_zebra.png``, on a mesh of at
+least 32 segments per patch side).
 """
 
 from __future__ import annotations
@@ -121,14 +122,74 @@ def _stage(collection, engine: str, size: str, surface=None):
         scene.display.shading.background_color = (0.95, 0.95, 0.97)
 
 
-def _zebra(scene) -> None:
-    """Reflection lines, as naval architects judge fairness: Workbench with a striped matcap."""
-    scene.render.engine = "BLENDER_WORKBENCH"
+# Reflection lines: ZEBRA_STRIPES dark and as many light stripes across the matcap, evenly
+# spaced in the vertical component of the view-space normal (about 13° of normal tilt per pair
+# facing the camera), on ZEBRA_MATCAP_SIZE² texels; the surface is rebuilt with at least
+# ZEBRA_RESOLUTION intervals per patch side for the render.
+ZEBRA_STRIPES = 9
+ZEBRA_MATCAP_SIZE = 1024
+ZEBRA_RESOLUTION = 32
+
+
+def zebra_matcap(path: Path, stripes: int = ZEBRA_STRIPES, size: int = ZEBRA_MATCAP_SIZE) -> Path:
+    """Write a reflection-line matcap to ``path`` (PNG): ``stripes`` horizontal black and white
+    stripe pairs, evenly spaced in the view-space normal's vertical component, with soft edges
+    and nothing else.
+
+    Blender's own ``check_reflection_horizontal`` matcap overlays its 11 stripe pairs with a
+    fine checker (it is meant to show texture stretching); sampled through the normals of a
+    hull a few hundred pixels across, that checker aliases into moiré, whatever the render's
+    anti-aliasing. These stripes have no texture, and their edges are linear ramps of about a
+    tenth of a period (some 10 texels), so the matcap is band-limited and the anti-aliasing
+    samples resolve the stripes where the surface turns quickly.
+    """
+    import numpy as np
+
+    v = (np.arange(size) + 0.5) / size * 2.0 - 1.0  # texel centres, bottom to top: normal y
+    wave = np.cos(np.pi * stripes * v)
+    ramp = 0.3  # |wave| below this is the soft edge: 2·asin(0.3)/π ≈ 0.19 of a half period
+    grey = 0.05 + 0.9 * np.clip(0.5 + 0.5 * wave / ramp, 0.0, 1.0)
+    pixels = np.ones((size, size, 4), dtype=np.float32)
+    pixels[..., :3] = grey[:, None, None]
+    image = bpy.data.images.new("batten zebra matcap", size, size, alpha=False)
+    image.pixels.foreach_set(pixels.ravel())
+    image.filepath_raw = str(path)
+    image.file_format = "PNG"
+    image.save()
+    bpy.data.images.remove(image)
+    return path
+
+
+def render_zebra(scene, collection, filepath: Path) -> None:
+    """Render reflection lines, as naval architects judge fairness: Workbench with the
+    :func:`zebra_matcap` on the surface, the curve tubes hidden (their own stripes would hide
+    the surface's), 32 anti-aliasing samples. Scene settings and tubes are restored after."""
+    import tempfile
+
     shading = scene.display.shading
-    shading.light = "MATCAP"
-    shading.studio_light = "check_reflection_horizontal.exr"
-    shading.color_type = "SINGLE"
-    scene.display.render_aa = "32"
+    saved = (shading.light, shading.studio_light, shading.color_type, tuple(shading.single_color))
+    saved_render = (scene.render.engine, scene.display.render_aa)
+    lights = bpy.context.preferences.studio_lights
+    with tempfile.TemporaryDirectory(prefix="batten_zebra_") as tmp:
+        light = lights.load(str(zebra_matcap(Path(tmp) / "batten_zebra.png")), "MATCAP")
+        tubes = [o for o in collection.objects if not o.hide_render]
+        try:
+            for obj in tubes:
+                obj.hide_render = True
+            scene.render.engine = "BLENDER_WORKBENCH"
+            shading.light = "MATCAP"
+            shading.studio_light = light.name
+            shading.color_type = "SINGLE"
+            shading.single_color = (1.0, 1.0, 1.0)
+            scene.display.render_aa = "32"
+            scene.render.filepath = str(filepath.resolve())
+            bpy.ops.render.render(write_still=True)
+        finally:
+            for obj in tubes:
+                obj.hide_render = False
+            shading.light, shading.studio_light, shading.color_type, shading.single_color = saved
+            scene.render.engine, scene.display.render_aa = saved_render
+            lights.remove(light)
 
 
 def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
@@ -182,11 +243,17 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
     bpy.ops.render.render(write_still=True)
     _log(f"{name}: rendered {png} ({engine}) in {time.perf_counter() - t0:.1f} s")
     if zebra:
-        _zebra(bpy.context.scene)
+        # Workbench interpolates the mesh's vertex normals linearly across each triangle, so a
+        # coarse mesh shows its facets in the stripes where the hull turns quickly (the ends):
+        # render a denser mesh, then put the reported one back.
+        zebra_resolution = max(resolution, ZEBRA_RESOLUTION)
+        if zebra_resolution != resolution:
+            api.build(coll, resolution=zebra_resolution)
         zpng = out / f"{name}_zebra.png"
-        bpy.context.scene.render.filepath = str(zpng.resolve())
-        bpy.ops.render.render(write_still=True)
-        _log(f"{name}: rendered reflection lines {zpng}")
+        render_zebra(bpy.context.scene, coll, zpng)
+        if zebra_resolution != resolution:
+            api.build(coll, resolution=resolution)
+        _log(f"{name}: rendered reflection lines {zpng} (resolution {zebra_resolution})")
     blend = out / f"{name}.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(blend.resolve()))
     _log(f"{name}: saved {blend}")

@@ -23,6 +23,10 @@ def test_frigate_faces_from_blender_curves(examples_dir):
         )
     assert len(topo["boundary_loops"]) == 1
     assert topo["diagnostics"] == []
+    # T-joints: the knuckle ends on st6, wl_aft on st2, the rounding on the cwl; stations end
+    # on the keel and the deck (every face has a corner there).
+    kinds = {k: topo["node_kinds"].count(k) for k in set(topo["node_kinds"])}
+    assert kinds == {"crossing": 7, "end_to_end": 4, "end_on_curve": 15, "t_joint": 3}
 
 
 def test_wigley_grid_counts(examples_dir):

@@ -39,7 +39,26 @@ def test_build_operator_matches_api_and_keeps_the_report(frigate):
     from batten import overlay
 
     marks = overlay.markers(bpy.context)
-    assert marks["nodes"].shape == (29, 3) and len(marks["problems"]) == 0
+    # 29 nodes: three T-joints (the knuckle ends on st6, wl_aft on st2, the rounding on the cwl:
+    # each runs on straight through the node as a face's side), 26 plain nodes, no problems.
+    assert {k: len(v) for k, v in marks.items()} == {
+        "nodes": 26,
+        "t_joints": 3,
+        "dangling_ends": 0,
+        "near_misses": 0,
+        "problems": 0,
+    }
+    curves = {c.name: c for c in api.read_curves(frigate)}
+    expected = []
+    for end, on in (("knuckle", "st6"), ("wl_aft", "st2"), ("rounding", "cwl")):
+        ends = curves[end].evaluate(np.array(curves[end].domain))
+        expected += [p for p in ends if curves[on].nearest(p)[1] < 1e-3]
+    assert len(expected) == 3, "each of the three curves has one end on the other curve"
+    found = sorted(marks["t_joints"].tolist())
+    assert np.allclose(found, sorted(np.array(expected).tolist()), atol=1e-3), (found, expected)
+    # The frigate's only knuckle is the knuckle curve (by role), cut by st8 into two edges.
+    lines = overlay.knuckle_lines(bpy.context)
+    assert lines["role"].shape == (2 * 16 * 2, 3) and lines["auto"].shape == (0, 3)
 
 
 def test_build_operator_errors_change_nothing(frigate):
@@ -120,3 +139,118 @@ def test_knuckle_role_makes_a_crease_and_free_makes_it_smooth():
     assert name == "chine" and lo == pytest.approx(3.0, abs=0.01) and hi == pytest.approx(3.0, abs=0.01)
     coll.objects["chine"].batten.role = "free"
     assert api.build(coll, resolution=6).report["crease_angles_deg"] == []
+
+
+class _Layout:
+    """Records the labels a panel draws (a stand-in for ``bpy.types.UILayout`` headless)."""
+
+    def __init__(self, labels=None):
+        self.labels = [] if labels is None else labels
+        self.alert = False
+
+    def label(self, text="", icon="NONE"):
+        self.labels.append(text)
+
+    def operator(self, *_args, **_kwargs):
+        return type("Op", (), {})()
+
+    def box(self, **_kwargs):
+        return _Layout(self.labels)
+
+    column = row = box
+
+
+def _panel_labels(report_json: str) -> list[str]:
+    from batten import panels
+
+    layout = _Layout()
+    panels._draw_report(layout, report_json)
+    return layout.labels
+
+
+def _kinds(report) -> list[tuple[str, str]]:
+    return [(k["curve"], k["source"]) for k in report["knuckle_edges"]]
+
+
+def test_hard_chine_knuckle_edges_by_role_and_found(examples_dir):
+    """The hard-chine example: the chine's six edges (transom, stations 2 … 10, stem) are the
+    knuckle edges, by role; drawn free they are found at the corners of the crossing curves,
+    and the panel names them."""
+    from batten import overlay, panels
+
+    coll = api.load_network(examples_dir / "hard_chine.json")
+    scene = bpy.context.scene
+    scene.batten.source = coll
+    scene.batten.resolution = 8
+    role = operators.build_into_scene(scene)
+    assert _kinds(role) == [("chine", "role")] * 6
+    ((name, lo, hi),) = role["crease_angles_deg"]
+    creases = [k["crease_deg"] for k in role["knuckle_edges"]]
+    assert name == "chine" and (lo, hi) == (min(c[0] for c in creases), max(c[1] for c in creases))
+    assert hi - lo > 10.0, "the crease varies along the chine"
+    lines = overlay.knuckle_lines(bpy.context)
+    assert lines["role"].shape == (6 * 16 * 2, 3) and lines["auto"].shape == (0, 3)
+    chine = next(c for c in api.read_curves(coll) if c.name == "chine")
+    for p in lines["role"]:
+        assert chine.nearest(p.astype(np.float64))[1] < 1e-4, "drawn on the chine"
+    assert panels.knuckles_found(role) == ([], [])
+    assert not any(t.startswith("Knuckles found") for t in _panel_labels(scene.batten.last_report))
+
+    coll.objects["chine"].batten.role = "free"
+    free = operators.build_into_scene(scene)
+    assert _kinds(free) == [("chine", "auto")] * 6
+    assert np.allclose([k["crease_deg"] for k in free["knuckle_edges"]], creases, atol=1e-9)
+    assert free["crease_angles_deg"][0][1:] == pytest.approx((lo, hi), abs=1e-9)
+    stations = [f"station {x}" for x in (10, 2, 4, 6, 8)]
+    assert panels.knuckles_found(free) == (["chine"], sorted([*stations, "transom"]))
+    stored = json.loads(scene.batten.last_report)["knuckle_edges"]
+    assert stored[0]["corner_curves"] == ["station 2", "transom"], "kept in the scene's report"
+    labels = _panel_labels(scene.batten.last_report)
+    assert "Knuckles found: chine" in labels, labels
+    assert "  at corners of station 10, station 2, station 4, station 6, station 8, transom" in labels
+    lines = overlay.knuckle_lines(bpy.context)
+    assert lines["role"].shape == (0, 3) and lines["auto"].shape == (6 * 16 * 2, 3)
+
+
+def test_markers_tell_t_joints_and_dangling_ends_apart():
+    """A side panel (plane y = 1) split by a station, a waterline from the aft end to the station
+    (a T-joint there) and a spur from the station ending in the open (a dangling end)."""
+    from batten import overlay
+    from helpers import new_curve
+
+    coll = bpy.data.collections.new("panel")
+    bpy.context.scene.collection.children.link(coll)
+    for name, a, b in (
+        ("keel", (0, 0), (10, 0)),
+        ("deck", (0, 3), (10, 3)),
+        ("aft", (0, 0), (0, 3)),
+        ("stem", (10, 0), (10, 3)),
+        ("st5", (5, 0), (5, 3)),
+        ("wl", (0, 1.5), (5, 1.5)),
+        ("spur", (5, 2.5), (7, 2.5)),
+    ):
+        new_curve(name, "POLY", np.array([[a[0], 1.0, a[1]], [b[0], 1.0, b[1]]]), collection=coll)
+    scene = bpy.context.scene
+    scene.batten.source = coll
+    report = operators.build_into_scene(scene)
+    assert report["faces_by_sides"] == {4: 3}
+    marks = overlay.markers(bpy.context)
+    # Nodes: the 4 panel corners, st5 on keel and deck, wl on aft, the spur's root on st5 (its
+    # branch bounds no face, so no T-joint); the spur's free end is a dangling end, not a node.
+    assert len(marks["nodes"]) == 8
+    assert marks["t_joints"].tolist() == [[5.0, 1.0, 1.5]]
+    assert marks["dangling_ends"].tolist() == [[7.0, 1.0, 2.5]]
+    assert len(marks["near_misses"]) == 0
+    assert marks["problems"].tolist() == [[5.0, 1.0, 2.5]], "the spur's unused edge"
+    assert report["knuckle_edges"] == []
+    # Lift the spur's root 0.5 mm off st5 (tolerance 0.1 mm): a near miss, and the spur is now
+    # free at both ends.
+    spur = coll.objects["spur"].data.splines[0].points[0]
+    spur.co = (5.0005, 1.0, 2.5, 1.0)
+    operators.build_into_scene(scene)
+    marks = overlay.markers(bpy.context)
+    assert len(marks["near_misses"]) == 1
+    assert np.allclose(marks["near_misses"][0], [5.00025, 1.0, 2.5], atol=1e-4)
+    assert len(marks["dangling_ends"]) == 0, "an isolated curve is a problem, not a dangling end"
+    assert np.allclose(marks["problems"], [[5.0005, 1.0, 2.5]], atol=1e-4), "the isolated spur"
+    assert len(marks["nodes"]) == 7 and len(marks["t_joints"]) == 1

@@ -314,9 +314,12 @@ def topology(source, *, tolerance: float = DEFAULT_TOLERANCE) -> dict:
     diagnostics naming the curves and locations (dangling ends, near misses, curves meeting
     nothing, regions that could not be closed, duplicates, overlaps, self-intersections).
 
-    Returns a dict: ``nodes``, ``edges``, ``node_positions``, ``faces`` (each ``curves``,
-    ``corners``, ``sides``, ``edges``), ``faces_by_corners``, ``boundary_loops``,
-    ``diagnostics`` (each ``kind``, ``message``, ``curves``, ``location``).
+    Returns a dict: ``nodes``, ``edges``, ``node_positions``, ``node_kinds`` (per node:
+    ``crossing``, ``end_to_end``, ``end_on_curve`` — a curve ending on another where every face
+    has a corner —, ``t_joint`` — a curve ending on another that runs on as one side of a face
+    —, ``free_end``), ``faces`` (each ``curves``, ``corners``, ``sides``, ``edges``),
+    ``faces_by_corners``, ``boundary_loops``, ``diagnostics`` (each ``kind``, ``message``,
+    ``curves``, ``location``).
     """
     return _topology(read_curves(source), tolerance)
 
@@ -350,9 +353,11 @@ def build(
     raises BattenError and leaves the previous mesh untouched.
 
     ``report`` holds: nodes, edges, faces, faces_by_sides, open_edges, max_gap,
-    max_normal_angle_deg, crease_angles_deg (per knuckle curve: name, min, max), volume (between
-    the drawn half surface and the centreplane), displacement_volume (both halves when
-    mirrored), mesh_vertices, mesh_faces, warnings.
+    max_normal_angle_deg, crease_angles_deg (per knuckle curve: name, min, max), knuckle_edges
+    (each ``curve``, ``source`` — ``"role"`` or ``"auto"``, found at corners of crossing
+    curves —, ``corner_curves``, ``crease_deg`` (min, max) or None, ``points`` along the edge),
+    volume (between the drawn half surface and the centreplane), displacement_volume (both
+    halves when mirrored), mesh_vertices, mesh_faces, warnings.
     """
     curves = read_curves(source)
     name = _source_name(source)

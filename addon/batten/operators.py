@@ -34,12 +34,29 @@ def build_into_scene(scene) -> dict:
         settings.last_report = json.dumps({"error": str(e)})
         raise
     topo = api.topology(settings.source, tolerance=settings.tolerance)
-    result.report["markers"] = {
-        "nodes": topo["node_positions"],
-        "problems": [d["location"] for d in topo["diagnostics"] if d["location"] is not None],
-    }
+    result.report["markers"] = network_markers(topo)
     settings.last_report = json.dumps(result.report)
     return result.report
+
+
+# Marker kinds of the viewport overlay: node kinds and diagnostic kinds of api.topology.
+_NODE_MARKERS = {"crossing": "nodes", "end_to_end": "nodes", "end_on_curve": "nodes", "t_joint": "t_joints"}
+_DIAGNOSTIC_MARKERS = {"dangling_end": "dangling_ends", "near_miss": "near_misses"}
+
+
+def network_markers(topo: dict) -> dict[str, list]:
+    """Marker positions by kind from an :func:`api.topology` dict: ``nodes`` (crossings, ends
+    on ends, ends on a curve where the faces have corners), ``t_joints``, ``dangling_ends``,
+    ``near_misses`` and ``problems`` (every other diagnostic with a location). A free end is
+    marked by its dangling-end diagnostic, not as a node."""
+    marks = {k: [] for k in ("nodes", "t_joints", "dangling_ends", "near_misses", "problems")}
+    for position, kind in zip(topo["node_positions"], topo["node_kinds"], strict=True):
+        if kind in _NODE_MARKERS:
+            marks[_NODE_MARKERS[kind]].append(position)
+    for d in topo["diagnostics"]:
+        if d["location"] is not None:
+            marks[_DIAGNOSTIC_MARKERS.get(d["kind"], "problems")].append(list(d["location"]))
+    return marks
 
 
 class BATTEN_OT_build(bpy.types.Operator):

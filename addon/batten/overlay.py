@@ -1,9 +1,10 @@
-"""Viewport overlay: curvature combs on the selected curves, and markers on the network's
-nodes and problems (dangling ends, near misses) from the last build (drawn only, nothing
-stored).
+"""Viewport overlay: curvature combs on the selected curves, and from the last build markers
+on the network's nodes, T-joints, dangling ends, near misses and other problems, and the
+knuckle edges as thick lines, the automatically found ones in their own colour (drawn only,
+nothing stored).
 
-The comb geometry comes from :func:`batten.api.curvature_comb`, the markers from the scene's
-last build report; this module only turns them into batches for the GPU.
+The comb geometry comes from :func:`batten.api.curvature_comb`, the markers and knuckle lines
+from the scene's last build report; this module only turns them into batches for the GPU.
 """
 
 import json
@@ -36,11 +37,49 @@ def comb_lines(context) -> np.ndarray:
     return np.concatenate(segments).astype(np.float32)
 
 
-def markers(context) -> dict[str, np.ndarray]:
-    """Marker positions from the last build: ``nodes`` and ``problems``, each (n, 3) float32."""
+# Marker kinds of the build report (see operators.network_markers): colour, point size (px).
+MARKER_STYLES = {
+    "nodes": ((0.1, 0.6, 1.0, 1.0), 6.0),
+    "t_joints": ((0.2, 0.85, 0.3, 1.0), 10.0),
+    "dangling_ends": ((1.0, 0.85, 0.1, 1.0), 12.0),
+    "near_misses": ((1.0, 0.2, 0.85, 1.0), 14.0),
+    "problems": ((1.0, 0.15, 0.1, 1.0), 12.0),
+}
+# Knuckle edges by source ("role": the curve's role, "auto": found at corners of crossing
+# curves): colour, line width (px).
+KNUCKLE_STYLES = {
+    "role": ((1.0, 0.5, 0.0, 1.0), 4.0),
+    "auto": ((0.0, 0.9, 0.9, 1.0), 4.0),
+}
+
+
+_parsed = ("", {})  # the last report text and its parse (the overlay redraws every frame)
+
+
+def _last_report(context) -> dict:
+    global _parsed
     text = context.scene.batten.last_report
-    data = json.loads(text).get("markers", {}) if text else {}
-    return {k: np.asarray(data.get(k, []), dtype=np.float32).reshape(-1, 3) for k in ("nodes", "problems")}
+    if text != _parsed[0]:
+        _parsed = (text, json.loads(text) if text else {})
+    return _parsed[1]
+
+
+def markers(context) -> dict[str, np.ndarray]:
+    """Marker positions from the last build, each (n, 3) float32, by kind: ``nodes``,
+    ``t_joints``, ``dangling_ends``, ``near_misses``, ``problems``."""
+    data = _last_report(context).get("markers", {})
+    return {k: np.asarray(data.get(k, []), dtype=np.float32).reshape(-1, 3) for k in MARKER_STYLES}
+
+
+def knuckle_lines(context) -> dict[str, np.ndarray]:
+    """Line segment end points (2k, 3), float32, along the knuckle edges of the last build,
+    by source: ``role`` and ``auto``."""
+    segments = {k: [] for k in KNUCKLE_STYLES}
+    for edge in _last_report(context).get("knuckle_edges", []):
+        pts = np.asarray(edge["points"], dtype=np.float32).reshape(-1, 3)
+        if edge["source"] in segments and len(pts) > 1:
+            segments[edge["source"]].append(np.stack([pts[:-1], pts[1:]], axis=1).reshape(-1, 3))
+    return {k: np.concatenate(v) if v else np.zeros((0, 3), dtype=np.float32) for k, v in segments.items()}
 
 
 def _draw():
@@ -58,17 +97,24 @@ def _draw():
             batch = batch_for_shader(shader, "LINES", {"pos": lines})
             shader.uniform_float("color", (0.85, 0.2, 0.6, 1.0))
             batch.draw(shader)
-    if settings.show_network:
-        for kind, color, size in (
-            ("nodes", (0.1, 0.6, 1.0, 1.0), 6.0),
-            ("problems", (1.0, 0.15, 0.1, 1.0), 12.0),
-        ):
-            pts = markers(context)[kind]
-            if len(pts):
-                gpu.state.point_size_set(size)
-                batch = batch_for_shader(shader, "POINTS", {"pos": pts})
-                shader.uniform_float("color", color)
-                batch.draw(shader)
+    if not settings.show_network:
+        return
+    # Thick lines need the polyline shader (core-profile GPU backends ignore line_width_set).
+    wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
+    wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
+    for source, lines in knuckle_lines(context).items():
+        if len(lines):
+            color, width = KNUCKLE_STYLES[source]
+            wide.uniform_float("lineWidth", width)
+            wide.uniform_float("color", color)
+            batch_for_shader(wide, "LINES", {"pos": lines}).draw(wide)
+    dots = gpu.shader.from_builtin("POINT_UNIFORM_COLOR")
+    for kind, pts in markers(context).items():
+        if len(pts):
+            color, size = MARKER_STYLES[kind]
+            dots.uniform_float("size", size)
+            dots.uniform_float("color", color)
+            batch_for_shader(dots, "POINTS", {"pos": pts}).draw(dots)
 
 
 def register():

@@ -67,6 +67,12 @@ def _draw_report(layout, text: str) -> None:
     col.label(text=f"Max normal jump: {report['max_normal_angle_deg']:.4f}°")
     for name, lo, hi in report["crease_angles_deg"]:
         col.label(text=f"Crease {name}: {lo:.1f}°–{hi:.1f}°")
+    found, corners = knuckles_found(report)
+    if found:
+        row = col.row()
+        row.label(text=f"Knuckles found: {_names(found)}", icon="SHARPCURVE")
+        row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(found)
+        col.label(text=f"  at corners of {_names(corners)}")
     col.label(text=f"Volume: {report['displacement_volume']:.2f} m³")
     for warning in report["warnings"]:
         row = box.row()
@@ -74,6 +80,20 @@ def _draw_report(layout, text: str) -> None:
         names = [n for n in report.get("warning_curves", {}).get(warning, [])]
         if names:
             row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(names)
+
+
+def _names(names: list[str], most: int = 6) -> str:
+    """``a, b, c``; past ``most`` names the first ones and how many more."""
+    if len(names) <= most:
+        return ", ".join(names)
+    return f"{', '.join(names[: most - 1])} … (+{len(names) - most + 1})"
+
+
+def knuckles_found(report: dict) -> tuple[list[str], list[str]]:
+    """The curves with automatically found knuckle edges, and the crossing curves whose corners
+    made them knuckles (both sorted, without repeats), from a build report."""
+    auto = [k for k in report.get("knuckle_edges", []) if k["source"] == "auto"]
+    return sorted({k["curve"] for k in auto}), sorted({c for k in auto for c in k["corner_curves"]})
 
 
 _CLASSES = (VIEW3D_PT_batten,)

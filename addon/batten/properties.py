@@ -88,7 +88,10 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
     )
     show_network: BoolProperty(
         name="Network markers",
-        description="Mark the network's nodes, and dangling ends and near misses, in the viewport",
+        description=(
+            "Mark the network's nodes, T-joints, dangling ends and near misses, and draw the knuckle "
+            "edges (automatically found ones in cyan), in the viewport"
+        ),
         default=True,
     )
     show_combs: BoolProperty(

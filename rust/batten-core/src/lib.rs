@@ -25,7 +25,10 @@ pub use fair::{
     FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
     MAX_FAIR_DEGREE,
 };
-pub use hull::{build_hull, HullOptions, HullReport, HullSurface, KNUCKLE_POINT_ANGLE_DEGREES};
+pub use hull::{
+    build_hull, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
+    KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES,
+};
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,
 };
@@ -37,7 +40,7 @@ pub use patch::{
 pub use tolerance::Tolerance;
 pub use topo::{
     BoundaryLoop, Brep, Diagnostic, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId,
-    FaceSide, HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, Shell, ShellId, TopoFace,
-    Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
+    FaceSide, HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, NodeKind, Shell, ShellId,
+    TopoFace, Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
 };

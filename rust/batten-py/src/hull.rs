@@ -20,7 +20,10 @@ type MeshArrays<'py> = (
 /// Build the hull surface of `curves` (H-rep pipeline): returns `(arrays, report)` where arrays
 /// are `(positions (n,3), corner_vertices (m,), face_sizes (k,), face_patch (k,))` and report
 /// is a dict (node/edge/face counts, faces_by_sides, open_edges, max_gap,
-/// max_normal_angle_deg, crease_angles_deg, volume, warnings). The GIL is released.
+/// max_normal_angle_deg, crease_angles_deg, knuckle_edges, volume, warnings). Each knuckle edge
+/// is a dict: `curve`, `source` (`"role"` or `"auto"`), `corner_curves` (the curves whose
+/// corners made an automatic knuckle), `crease_deg` (`(min, max)` or None) and `points` (list
+/// of [x, y, z] along the edge). The GIL is released.
 #[pyfunction]
 #[pyo3(signature = (curves, tolerance=1e-4, resolution=8))]
 pub fn build_surface<'py>(
@@ -66,6 +69,20 @@ pub fn build_surface<'py>(
     d.set_item("max_normal_angle_deg", r.max_normal_angle_deg)?;
     let creases: Vec<(String, f64, f64)> = r.crease_angles_deg.clone();
     d.set_item("crease_angles_deg", creases)?;
+    let knuckles = r
+        .knuckle_edges
+        .iter()
+        .map(|k| {
+            let kd = PyDict::new(py);
+            kd.set_item("curve", &k.curve)?;
+            kd.set_item("source", k.source.name())?;
+            kd.set_item("corner_curves", &k.corner_curves)?;
+            kd.set_item("crease_deg", k.crease_deg)?;
+            kd.set_item("points", &k.points)?;
+            Ok(kd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("knuckle_edges", knuckles)?;
     d.set_item("volume", r.volume)?;
     d.set_item("warnings", r.warnings.clone())?;
     d.set_item("mesh_vertices", rows)?;

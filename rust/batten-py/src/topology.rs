@@ -8,11 +8,13 @@ use crate::curve::Curve;
 use crate::errors::{core_err, guard};
 
 /// The topology of the network of `curves` at `tolerance` (H-rep paper §3.1, §5.2): a dict
-/// with `nodes`, `edges` (counts), `node_positions` (list of [x, y, z]), `faces` (each:
-/// `curves` (names), `corners`, `sides` (list of curve-name lists, one per side between true
-/// corners), `edges` (edge count)), `faces_by_corners` ({corners: count}), `boundary_loops`
-/// (each: `curves`, `edges`), and `diagnostics` (each: `kind`, `message`, `curves`,
-/// `location` or None).
+/// with `nodes`, `edges` (counts), `node_positions` (list of [x, y, z]), `node_kinds` (one per
+/// node: `crossing`, `end_to_end`, `end_on_curve` — a curve ending on another where every face
+/// has a corner —, `t_joint` — a curve ending on another that runs on as one side of a face —
+/// or `free_end`), `faces` (each: `curves` (names), `corners`, `sides` (list of curve-name
+/// lists, one per side between true corners), `edges` (edge count)), `faces_by_corners`
+/// ({corners: count}), `boundary_loops` (each: `curves`, `edges`), and `diagnostics` (each:
+/// `kind`, `message`, `curves`, `location` or None).
 #[pyfunction]
 #[pyo3(signature = (curves, tolerance=1e-4))]
 pub fn topology<'py>(
@@ -41,6 +43,8 @@ pub fn topology<'py>(
         .map(|v| v.position.to_array())
         .collect();
     d.set_item("node_positions", positions)?;
+    let kinds: Vec<&str> = topo.node_kinds().into_iter().map(|k| k.as_str()).collect();
+    d.set_item("node_kinds", kinds)?;
     let faces = topo
         .faces
         .iter()

@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::knuckles::knuckle_edges;
+use super::knuckles::{knuckle_edges, Knuckle};
 use super::report::{self, PatchLayout};
 use super::ribbons::{one_sided_normal, shared_normal};
 use super::{HullOptions, HullSurface};
@@ -122,7 +122,7 @@ fn plan_face(
     face: &TopoFace,
     topology: &Topology,
     edges: &[Option<EdgeInfo>],
-    knuckle: &[bool],
+    knuckle: &[Option<Knuckle>],
     shared: &[Option<EdgeNormal>],
 ) -> Result<FacePlan, String> {
     let n_sides = face.sides.len();
@@ -165,7 +165,7 @@ fn plan_face(
             } else {
                 info.segment.reversed()
             });
-            let normal = if knuckle[k] {
+            let normal = if knuckle[k].is_some() {
                 one_sided_normal(face, pos, topology, edges).map_err(|e| e.to_string())?
             } else {
                 shared[k].clone()
@@ -259,7 +259,7 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
     let shared_results: Vec<Result<Option<EdgeNormal>, String>> = (0..brep.edges.len())
         .into_par_iter()
         .map(|k| {
-            if knuckle[k] || edges[k].is_none() {
+            if knuckle[k].is_some() || edges[k].is_none() {
                 Ok(None)
             } else {
                 shared_normal(k, &topology, &edges, &at_vertex).map_err(|e| e.to_string())

@@ -2,7 +2,10 @@
 //! ribbons (H-rep paper §1 "knuckles", §5: chines made "simply by connecting the knuckles in
 //! each cross section").
 
+use std::collections::{BTreeMap, BTreeSet};
+
 use glam::DVec3;
+use serde::Serialize;
 
 use super::build::EdgeInfo;
 use crate::network::{Network, Role};
@@ -17,6 +20,60 @@ use crate::topo::Topology;
 /// patches on both sides. The paper gives no number for this (its 15° rule, §3.2.2, is about
 /// crossing tangents too close to the edge, not about corners).
 pub const KNUCKLE_POINT_ANGLE_DEGREES: f64 = 5.0;
+
+/// Intervals (equal steps of the curve parameter) of the polyline drawn along each knuckle edge
+/// in [`KnuckleEdge::points`]: 17 points, enough to draw a curved chine between two nodes.
+pub const KNUCKLE_EDGE_SAMPLES: usize = 16;
+
+/// Why an edge is a knuckle (H-rep paper §1 "knuckles", §5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum KnuckleSource {
+    /// The designer gave its curve the role [`Role::Knuckle`].
+    Role,
+    /// Found automatically: a crossing curve has a corner (a tangent jump above
+    /// [`KNUCKLE_POINT_ANGLE_DEGREES`]) at one of the edge's nodes.
+    Auto,
+}
+
+impl KnuckleSource {
+    /// The stable tag: `"role"` or `"auto"` (as serialised).
+    pub fn name(self) -> &'static str {
+        match self {
+            KnuckleSource::Role => "role",
+            KnuckleSource::Auto => "auto",
+        }
+    }
+}
+
+/// One knuckle edge of the hull: a stretch of a curve between two nodes along which the
+/// surface keeps a crease (G0), with why, how sharp, and where (for drawing it).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct KnuckleEdge {
+    /// The name of the edge's curve.
+    pub curve: String,
+    /// Role knuckle, or found automatically.
+    pub source: KnuckleSource,
+    /// For an automatic knuckle, the crossing curves (sorted names) whose corners at the edge's
+    /// nodes made it one; empty for a role knuckle.
+    pub corner_curves: Vec<String>,
+    /// Smallest and largest angle (degrees) between the two patches' normals along the edge,
+    /// as in [`HullReport::crease_angles_deg`](super::HullReport::crease_angles_deg); `None`
+    /// when fewer than two patches share the edge.
+    pub crease_deg: Option<(f64, f64)>,
+    /// [`KNUCKLE_EDGE_SAMPLES`] + 1 points along the edge's curve, from its start node to its
+    /// end node (equal parameter steps), for drawing.
+    pub points: Vec<[f64; 3]>,
+}
+
+/// Why an edge of the topology is a knuckle, as found by [`knuckle_edges`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Knuckle {
+    /// Its curve has role [`Role::Knuckle`].
+    Role,
+    /// Corner points of these crossing curves (network indices) lie on its nodes.
+    Auto(BTreeSet<usize>),
+}
 
 /// The corner points of every curve (positions where the tangent jumps by more than
 /// [`KNUCKLE_POINT_ANGLE_DEGREES`]).
@@ -35,9 +92,9 @@ pub(crate) fn corner_points(network: &Network) -> Vec<Vec<DVec3>> {
         .collect()
 }
 
-/// Which edges are knuckles: every edge of a curve with role [`Role::Knuckle`], and every edge
-/// with an end node that lies (within the near-miss distance, 10× the tolerance) on a corner
-/// point of another curve through that node.
+/// Which edges are knuckles, and why: every edge of a curve with role [`Role::Knuckle`], and
+/// every edge with an end node that lies (within the near-miss distance, 10× the tolerance) on
+/// a corner point of another curve through that node. `None` for the other edges.
 ///
 /// `at_vertex[v]` lists the face edges at node `v` as `(edge, node is the edge's start)`.
 pub(crate) fn knuckle_edges(
@@ -46,7 +103,7 @@ pub(crate) fn knuckle_edges(
     edges: &[Option<EdgeInfo>],
     at_vertex: &[Vec<(usize, bool)>],
     near_miss: f64,
-) -> Vec<bool> {
+) -> Vec<Option<Knuckle>> {
     let corners = corner_points(network);
     let curves = network.curves();
     topology
@@ -55,18 +112,63 @@ pub(crate) fn knuckle_edges(
         .iter()
         .enumerate()
         .map(|(k, e)| {
-            if edges[k].is_none() {
-                return false;
-            }
+            edges[k].as_ref()?;
             if curves[e.curve].role == Role::Knuckle {
-                return true;
+                return Some(Knuckle::Role);
             }
-            [e.start, e.end].iter().any(|v| {
+            let mut by: BTreeSet<usize> = BTreeSet::new();
+            for v in [e.start, e.end] {
                 let p = topology.brep.vertices[v.index()].position;
-                at_vertex[v.index()].iter().any(|&(j, _)| {
+                for &(j, _) in &at_vertex[v.index()] {
                     let d = topology.brep.edges[j].curve;
-                    d != e.curve && corners[d].iter().any(|c| (*c - p).length() <= near_miss)
+                    if d != e.curve && corners[d].iter().any(|c| (*c - p).length() <= near_miss) {
+                        by.insert(d);
+                    }
+                }
+            }
+            (!by.is_empty()).then_some(Knuckle::Auto(by))
+        })
+        .collect()
+}
+
+/// The knuckle edges for the report, in the topology's edge order: curve, source, the curves
+/// whose corners made it, its crease (`creases[edge]`, min and max degrees) and a polyline.
+pub(crate) fn knuckle_report(
+    network: &Network,
+    topology: &Topology,
+    knuckle: &[Option<Knuckle>],
+    creases: &BTreeMap<usize, (f64, f64)>,
+) -> Vec<KnuckleEdge> {
+    let curves = network.curves();
+    topology
+        .brep
+        .edges
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| {
+            let why = knuckle[k].as_ref()?;
+            let (source, corner_curves) = match why {
+                Knuckle::Role => (KnuckleSource::Role, Vec::new()),
+                Knuckle::Auto(by) => {
+                    let mut names: Vec<String> =
+                        by.iter().map(|&d| curves[d].name.clone()).collect();
+                    names.sort();
+                    (KnuckleSource::Auto, names)
+                }
+            };
+            let curve = &curves[e.curve].curve;
+            let points = (0..=KNUCKLE_EDGE_SAMPLES)
+                .map(|j| {
+                    let lam = j as f64 / KNUCKLE_EDGE_SAMPLES as f64;
+                    curve.point(e.t0 + lam * (e.t1 - e.t0)).to_array()
                 })
+                .collect();
+            Some(KnuckleEdge {
+                curve: curves[e.curve].name.clone(),
+                source,
+                corner_curves,
+                crease_deg: creases.get(&k).copied(),
+                points,
             })
         })
         .collect()

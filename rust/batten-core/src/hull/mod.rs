@@ -5,7 +5,8 @@
 //!
 //! - [`ribbons`]: one shared [`EdgeNormal`](crate::EdgeNormal) per smooth edge (G1 across it),
 //!   one per face on knuckle edges (G0).
-//! - [`knuckles`]: which edges are knuckles (role, or corner points of crossing curves).
+//! - [`knuckles`]: which edges are knuckles (role, or corner points of crossing curves), and
+//!   the report's [`KnuckleEdge`]s.
 //! - [`build`]: the face boundaries, the patches, the tessellation and its orientation.
 //! - [`report`]: gaps, normal jumps, crease angles and volume.
 
@@ -16,12 +17,14 @@ mod ribbons;
 
 use std::collections::BTreeMap;
 
+use serde::Serialize;
+
 use crate::error::Error;
 use crate::network::Network;
 use crate::patch::SurfaceMesh;
 use crate::tolerance::Tolerance;
 
-pub use knuckles::KNUCKLE_POINT_ANGLE_DEGREES;
+pub use knuckles::{KnuckleEdge, KnuckleSource, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES};
 
 /// Options of [`build_hull`] (H-rep paper §3: the model tolerance of the topology and the
 /// patches, and the density of the display mesh).
@@ -46,7 +49,8 @@ impl Default for HullOptions {
 
 /// What [`build_hull`] built and how good it is (H-rep paper §3–§5: counts of the topology,
 /// continuity across the network's edges, and the designer's first hydrostatic check).
-#[derive(Clone, Debug, Default, PartialEq)]
+/// Serialises (serde) as a JSON object with these field names.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct HullReport {
     /// Nodes of the topology (§3.1 vertices).
     pub nodes: usize,
@@ -70,6 +74,10 @@ pub struct HullReport {
     /// Per knuckle curve: its name and the smallest and largest angle (degrees) between the two
     /// patches' normals along it (the crease the designer drew, §1 "knuckles").
     pub crease_angles_deg: Vec<(String, f64, f64)>,
+    /// Every knuckle edge (G0 crease), in the topology's edge order: its curve, whether the
+    /// designer's role or batten's corner rule made it a knuckle, its crease angles and a
+    /// polyline along it (so a front end can show which creases were found automatically).
+    pub knuckle_edges: Vec<KnuckleEdge>,
     /// Volume (m³) between the surface and the centreplane `y = 0`, closed by lids
     /// perpendicular to the centreplane: `|Σ ȳ·n_y·A|` over the mesh triangles (the divergence
     /// theorem with the field `(0, y, 0)`, exact for the mesh); for the drawn half only.

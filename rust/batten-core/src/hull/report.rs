@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::knuckles::{knuckle_report, Knuckle};
 use super::HullReport;
 use crate::network::Network;
 use crate::patch::{Patch, SurfaceMesh};
@@ -84,7 +85,7 @@ pub(crate) fn report(
     topology: &Topology,
     patches: &[Patch],
     layouts: &[PatchLayout],
-    knuckle: &[bool],
+    knuckle: &[Option<Knuckle>],
     mesh: &SurfaceMesh,
     skipped_faces: usize,
     warnings: Vec<String>,
@@ -153,8 +154,10 @@ pub(crate) fn report(
         .collect();
     let mut max_normal_angle_deg: f64 = 0.0;
     let mut creases: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
+    let mut edge_creases: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
     for &(edge, lo, hi) in &angles {
-        if knuckle[edge] {
+        if knuckle[edge].is_some() {
+            edge_creases.insert(edge, (lo, hi));
             let c = creases
                 .entry(brep.edges[edge].curve)
                 .or_insert((f64::INFINITY, 0.0));
@@ -179,6 +182,7 @@ pub(crate) fn report(
         max_gap,
         max_normal_angle_deg,
         crease_angles_deg,
+        knuckle_edges: knuckle_report(network, topology, knuckle, &edge_creases),
         volume: signed_volume(mesh).abs(),
         warnings,
     }

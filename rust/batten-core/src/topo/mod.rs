@@ -7,6 +7,7 @@ mod brep;
 mod checks;
 mod diagnostic;
 mod faces;
+mod node_kind;
 mod rotation;
 
 use std::collections::{BTreeMap, HashMap};
@@ -20,6 +21,7 @@ pub use brep::{
 pub use checks::{EdgeFacesError, EulerPoincareError, NextPrevError, TwinError, ValidationError};
 pub use diagnostic::Diagnostic;
 pub use faces::{FaceSide, CORNER_ANGLE_DEGREES};
+pub use node_kind::NodeKind;
 
 use adjacency::Adjacency;
 
