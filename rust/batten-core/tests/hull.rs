@@ -8,8 +8,8 @@ mod common;
 use std::collections::{BTreeMap, HashMap};
 
 use batten_core::{
-    build_hull, Error, HullOptions, HullSurface, Network, NetworkCurve, NurbsCurve, Role,
-    SurfaceMesh, Tolerance, Topology,
+    build_hull, Error, HullOptions, HullReport, HullSurface, KnuckleSource, Network, NetworkCurve,
+    NurbsCurve, Role, SurfaceMesh, Tolerance, Topology, KNUCKLE_EDGE_SAMPLES,
 };
 use glam::DVec3;
 
@@ -228,6 +228,7 @@ fn wigley_example_matches_its_exact_volume_and_refines() {
         r.max_normal_angle_deg
     );
     assert!(r.crease_angles_deg.is_empty(), "no knuckles on the Wigley");
+    assert!(r.knuckle_edges.is_empty(), "no knuckle edges on the Wigley");
     // Open boundary: keel 8 + stem 4 + stern 4 + deck 8 edges.
     assert_eq!(r.open_edges, 24, "open edges");
     // Orientation: consistent and outward (away from the centreplane).
@@ -460,6 +461,39 @@ fn hard_chine_keeps_its_crease_and_flat_panels() {
             "crease {lo}..{hi}° vs drawn {drawn}°"
         );
         assert!(r.max_normal_angle_deg < 1e-3, "the sections are smooth");
+        // The chine's two edges are the knuckle edges: by role, or found at the sections'
+        // corners (each edge between two sections).
+        let found: Vec<(&str, KnuckleSource, Vec<&str>)> = r
+            .knuckle_edges
+            .iter()
+            .map(|k| {
+                let by = k.corner_curves.iter().map(String::as_str).collect();
+                (k.curve.as_str(), k.source, by)
+            })
+            .collect();
+        let expected = if role == Role::Knuckle {
+            vec![
+                ("chine", KnuckleSource::Role, vec![]),
+                ("chine", KnuckleSource::Role, vec![]),
+            ]
+        } else {
+            vec![
+                ("chine", KnuckleSource::Auto, vec!["section 0", "section 5"]),
+                (
+                    "chine",
+                    KnuckleSource::Auto,
+                    vec!["section 10", "section 5"],
+                ),
+            ]
+        };
+        assert_eq!(found, expected, "knuckle edges ({role:?} chine)");
+        for k in &r.knuckle_edges {
+            let (lo, hi) = k.crease_deg.expect("two patches along the chine");
+            assert!(
+                (lo - drawn).abs() < 1e-3 && (hi - drawn).abs() < 1e-3,
+                "edge crease {lo}..{hi}° vs drawn {drawn}°"
+            );
+        }
         // Flat panels: bottom points in the deadrise plane, side points in y = 2.
         let h = 2.0 * beta.to_radians().tan();
         let bottom_n = DVec3::new(0.0, -h, 2.0).normalize();
@@ -487,6 +521,117 @@ fn hard_chine_keeps_its_crease_and_flat_panels() {
     }
 }
 
+/// Check a report's knuckle edges against its crease report and the network: every crease
+/// range of a knuckle curve is the span of its edges' ranges, and every edge's polyline has
+/// `KNUCKLE_EDGE_SAMPLES + 1` points on its curve.
+fn check_knuckle_edges(r: &HullReport, net: &Network) {
+    for (name, lo, hi) in &r.crease_angles_deg {
+        let ranges: Vec<(f64, f64)> = r
+            .knuckle_edges
+            .iter()
+            .filter(|k| &k.curve == name)
+            .filter_map(|k| k.crease_deg)
+            .collect();
+        let min = ranges.iter().map(|c| c.0).fold(f64::INFINITY, f64::min);
+        let max = ranges.iter().map(|c| c.1).fold(0.0, f64::max);
+        assert_eq!(
+            (min, max),
+            (*lo, *hi),
+            "crease of '{name}' spans its edges'"
+        );
+    }
+    for k in &r.knuckle_edges {
+        assert_eq!(
+            k.points.len(),
+            KNUCKLE_EDGE_SAMPLES + 1,
+            "points of '{}'",
+            k.curve
+        );
+        let curve = &net
+            .curves()
+            .iter()
+            .find(|c| c.name == k.curve)
+            .expect("the edge's curve")
+            .curve;
+        for p in &k.points {
+            let d = curve
+                .nearest(DVec3::from(*p), 1e-9)
+                .expect("nearest")
+                .distance;
+            assert!(d < 1e-7, "polyline point {p:?} on '{}' ({d:e})", k.curve);
+        }
+    }
+}
+
+#[test]
+fn hard_chine_example_reports_its_chine_edges_role_or_found() {
+    let net = load("hard_chine.json");
+    let role = build(&net, 12).report;
+    // Six chine edges: transom, stations 2 … 10, stem.
+    assert_eq!(role.knuckle_edges.len(), 6, "{:?}", role.knuckle_edges);
+    assert!(role.knuckle_edges.iter().all(|k| k.curve == "chine"
+        && k.source == KnuckleSource::Role
+        && k.corner_curves.is_empty()));
+    check_knuckle_edges(&role, &net);
+    // In order along the chine, from the transom (x = 0) to the stem (x = 12), end to end.
+    let ends: Vec<([f64; 3], [f64; 3])> = role
+        .knuckle_edges
+        .iter()
+        .map(|k| (k.points[0], k.points[KNUCKLE_EDGE_SAMPLES]))
+        .collect();
+    assert_near!(ends[0].0[0], 0.0, 1e-9, "starts at the transom");
+    assert_near!(ends[5].1[0], 12.0, 1e-9, "ends at the stem");
+    for w in ends.windows(2) {
+        assert_near!(DVec3::from(w[0].1), DVec3::from(w[1].0), 1e-4, "edges join");
+    }
+    // The same chine drawn free is found at the corners of the transom and the stations, with
+    // the same creases.
+    let mut curves = net.curves().to_vec();
+    for c in curves.iter_mut().filter(|c| c.name == "chine") {
+        c.role = Role::Free;
+    }
+    let free_net = Network::try_new("hard chine, free", curves).expect("network");
+    let free = build(&free_net, 12).report;
+    check_knuckle_edges(&free, &free_net);
+    assert_eq!(
+        free.crease_angles_deg, role.crease_angles_deg,
+        "same creases"
+    );
+    let by: Vec<Vec<&str>> = free
+        .knuckle_edges
+        .iter()
+        .map(|k| {
+            assert_eq!((k.curve.as_str(), k.source), ("chine", KnuckleSource::Auto));
+            k.corner_curves.iter().map(String::as_str).collect()
+        })
+        .collect();
+    assert_eq!(
+        by,
+        [
+            vec!["station 2", "transom"],
+            vec!["station 2", "station 4"],
+            vec!["station 4", "station 6"],
+            vec!["station 6", "station 8"],
+            vec!["station 10", "station 8"],
+            vec!["station 10"],
+        ],
+        "the curves whose corners make each edge a knuckle"
+    );
+    for (a, b) in free.knuckle_edges.iter().zip(&role.knuckle_edges) {
+        assert_eq!((a.crease_deg, &a.points), (b.crease_deg, &b.points));
+    }
+    // The report serialises with the knuckle edges (serde).
+    let json = serde_json::to_value(&free).expect("serialises");
+    let first = &json["knuckle_edges"][0];
+    assert_eq!(first["source"], "auto", "{first}");
+    assert_eq!(first["curve"], "chine", "{first}");
+    assert_eq!(
+        first["points"].as_array().map(Vec::len),
+        Some(KNUCKLE_EDGE_SAMPLES + 1)
+    );
+    assert_eq!(json["faces"], 12, "{json}");
+}
+
 #[test]
 fn frigate_example_builds_with_the_topology_faces() {
     let net = load("frigate_network.json");
@@ -512,11 +657,32 @@ fn frigate_example_builds_with_the_topology_faces() {
         "GC¹ ({}°)",
         r.max_normal_angle_deg
     );
-    assert!(
-        r.crease_angles_deg.iter().any(|(n, _, _)| n == "knuckle"),
-        "the knuckle is reported"
-    );
-    assert!(r.volume > 0.0 && r.volume.is_finite(), "volume");
+    assert!(r.warnings.is_empty(), "no warnings: {:?}", r.warnings);
+    // The knuckle is a real crease: the design surface's normals jump by up to 15.8° across it
+    // (at x ≈ 103 m); the patches take their normals from the curves' tangent ribbons.
+    let (_, _, crease) = r
+        .crease_angles_deg
+        .iter()
+        .find(|(n, _, _)| n == "knuckle")
+        .expect("the knuckle is reported");
+    assert!((10.0..20.0).contains(crease), "knuckle crease {crease}°");
+    // The knuckle curve, cut by st8, is the only knuckle: two edges by role.
+    let knuckles: Vec<(&str, KnuckleSource)> = r
+        .knuckle_edges
+        .iter()
+        .map(|k| (k.curve.as_str(), k.source))
+        .collect();
+    assert_eq!(knuckles, [("knuckle", KnuckleSource::Role); 2]);
+    check_knuckle_edges(r, &net);
+    // The volume between the half hull and the centreplane is ∫∫ y dx dz of the design surface
+    // over the hull's (x, z) region (transom x = 0, keel z = 0, the raked stem, deck z = 9.6):
+    // 5230.516 m³, by Gauss–Legendre quadrature (exact for the polynomial) on the three pieces
+    // where the surface is one polynomial, and by scipy's dblquad. The patches know only the
+    // curves, so their interior departs from the design surface (most in the bow, between st8
+    // and the stem): 0.2 % of the volume.
+    let exact = 5230.516;
+    let err = (r.volume - exact).abs() / exact;
+    assert!(err < 0.005, "volume {} vs {exact} ({err:.2e})", r.volume);
     check_orientation(&hull.mesh);
 }
 

@@ -2,11 +2,13 @@
 //! networks drawn on a Wigley-like hull surface, corner counts with T-joints, the frigate-like
 //! network of the paper, invariance under curve order, direction and jitter, and bad input.
 //!
-//! Every network here lies exactly on the surface `y = B/2 (1 − u²)(1 − w²)` with
-//! `u = (x − 5)/6`, `w = z/T`: a curve that is straight in the (x, z) plane lifts to a degree-4
-//! polynomial curve (the product of four linear factors), written exactly as a Bézier spline by
-//! its blossom. So curves that cross in the (x, z) plane meet exactly in 3D, and the networks are
-//! genuinely curved.
+//! Every network here lies exactly on a polynomial hull surface `y(x, z)`, a sum of products of
+//! factors linear in (x, z): a curve that is straight in the (x, z) plane lifts to a polynomial
+//! curve whose degree is the number of factors, written exactly as a Bézier spline by its
+//! blossom. So curves that cross in the (x, z) plane meet exactly in 3D, and the networks are
+//! genuinely curved. The test networks use the Wigley-like surface `y = B/2 (1 − u²)(1 − w²)`
+//! with `u = (x − 5)/6`, `w = z/T` (x from 0 to 10, keel at z = −1, deck at z = 0); the frigate
+//! has a full-scale surface of its own (see [`frigate_surface`]).
 
 mod common;
 
@@ -19,67 +21,151 @@ use proptest::prelude::*;
 const HALF_BEAM: f64 = 0.6;
 const DRAFT: f64 = 1.0;
 
-/// The four linear factors of the surface height along a straight (x, z) segment, as values at
-/// the segment's start and end.
-fn factors(p: (f64, f64), q: (f64, f64)) -> [(f64, f64); 4] {
-    let u = |x: f64| (x - 5.0) / 6.0;
-    let w = |z: f64| z / DRAFT;
-    [
-        (1.0 - u(p.0), 1.0 - u(q.0)),
-        (1.0 + u(p.0), 1.0 + u(q.0)),
-        (1.0 - w(p.1), 1.0 - w(q.1)),
-        (1.0 + w(p.1), 1.0 + w(q.1)),
-    ]
+/// A function `c + cx·x + cz·z` on the (x, z) plane.
+#[derive(Clone, Copy, Debug)]
+struct Linear {
+    c: f64,
+    cx: f64,
+    cz: f64,
 }
 
-/// Bézier ordinates of `y(t) = B/2 Π ℓ_i(t)` on a segment: `c_k` is the blossom at k ones and
-/// 4 − k zeros, the mean over the ways to pick which k factors take their end value.
-fn lifted_ordinates(p: (f64, f64), q: (f64, f64)) -> [f64; 5] {
-    let f = factors(p, q);
-    let mut c = [0.0; 5];
-    let mut count = [0usize; 5];
-    for mask in 0u32..16 {
-        let k = mask.count_ones() as usize;
-        let prod: f64 = (0..4)
-            .map(|i| if mask & (1 << i) != 0 { f[i].1 } else { f[i].0 })
-            .product();
-        c[k] += prod;
-        count[k] += 1;
+impl Linear {
+    const ONE: Linear = Linear {
+        c: 1.0,
+        cx: 0.0,
+        cz: 0.0,
+    };
+
+    fn new(c: f64, cx: f64, cz: f64) -> Self {
+        Linear { c, cx, cz }
     }
-    for k in 0..5 {
-        c[k] *= HALF_BEAM / count[k] as f64;
+
+    /// The value at (x, z). `c + cz·z` first: a factor `x_s(z) − x` with `x_s(z) = c + cz·z`
+    /// is exactly zero at points computed as `(x_s(z), z)`.
+    fn at(self, x: f64, z: f64) -> f64 {
+        (self.c + self.cz * z) + self.cx * x
     }
-    c
 }
 
-/// The height of the hull surface at (x, z).
+/// A hull surface `y(x, z) = Σ a_i Π_j ℓ_ij(x, z)`: terms of linear factors, padded with ones
+/// to `degree` factors each.
+#[derive(Clone, Debug)]
+struct Surface {
+    degree: usize,
+    terms: Vec<(f64, Vec<Linear>)>,
+}
+
+impl Surface {
+    fn new(terms: Vec<(f64, Vec<Linear>)>) -> Self {
+        let degree = terms.iter().map(|t| t.1.len()).max().unwrap_or(0);
+        let terms = terms
+            .into_iter()
+            .map(|(a, mut f)| {
+                f.resize(degree, Linear::ONE);
+                (a, f)
+            })
+            .collect();
+        Surface { degree, terms }
+    }
+
+    /// The height of the surface at (x, z).
+    fn y(&self, x: f64, z: f64) -> f64 {
+        self.terms
+            .iter()
+            .map(|(a, f)| a * f.iter().map(|l| l.at(x, z)).product::<f64>())
+            .sum()
+    }
+
+    /// Bézier ordinates of `y` along the straight segment from `p` to `q`: `c_k` is the blossom
+    /// at k ones and `degree − k` zeros, per term the mean over the ways to pick which k factors
+    /// take their value at `q`.
+    fn ordinates(&self, p: (f64, f64), q: (f64, f64)) -> Vec<f64> {
+        let n = self.degree;
+        let mut c = vec![0.0; n + 1];
+        let mut count = vec![0usize; n + 1];
+        for mask in 0u32..(1 << n) {
+            count[mask.count_ones() as usize] += 1;
+        }
+        for (a, f) in &self.terms {
+            let ends: Vec<(f64, f64)> =
+                f.iter().map(|l| (l.at(p.0, p.1), l.at(q.0, q.1))).collect();
+            for mask in 0u32..(1 << n) {
+                let prod: f64 = (0..n)
+                    .map(|i| {
+                        if mask & (1 << i) != 0 {
+                            ends[i].1
+                        } else {
+                            ends[i].0
+                        }
+                    })
+                    .product();
+                let k = mask.count_ones() as usize;
+                c[k] += a * prod / count[k] as f64;
+            }
+        }
+        c
+    }
+}
+
+/// The Wigley-like surface of the test networks, `y = B/2 (1 − u²)(1 − w²)`.
+fn hull_surface() -> Surface {
+    Surface::new(vec![(
+        HALF_BEAM,
+        vec![
+            Linear::new(11.0 / 6.0, -1.0 / 6.0, 0.0),
+            Linear::new(1.0 / 6.0, 1.0 / 6.0, 0.0),
+            Linear::new(1.0, 0.0, -1.0 / DRAFT),
+            Linear::new(1.0, 0.0, 1.0 / DRAFT),
+        ],
+    )])
+}
+
+/// The height of the test networks' hull surface at (x, z).
 fn surface_y(x: f64, z: f64) -> f64 {
-    let f = factors((x, z), (x, z));
-    HALF_BEAM * f.iter().map(|v| v.0).product::<f64>()
+    hull_surface().y(x, z)
 }
 
-/// A designer curve that is the (x, z) polyline `pts` lifted onto the hull surface: a degree-4
-/// B-spline, one Bézier piece per polyline segment, exact.
-fn lifted(name: &str, role: Role, pts: &[(f64, f64)]) -> NetworkCurve {
+/// A designer curve that is the (x, z) polyline `pts` lifted onto the surface `on(p, q)` of
+/// each segment: a B-spline of the surfaces' degree, one Bézier piece per segment, exact.
+fn lifted_on<'s>(
+    name: &str,
+    role: Role,
+    pts: &[(f64, f64)],
+    on: impl Fn((f64, f64), (f64, f64)) -> &'s Surface,
+) -> NetworkCurve {
     let mut points = Vec::new();
-    let mut knots = vec![0.0; 5];
+    let degree = on(pts[0], pts[1]).degree;
+    let mut knots = vec![0.0; degree + 1];
     for (s, w) in pts.windows(2).enumerate() {
         let (p, q) = (w[0], w[1]);
-        let ys = lifted_ordinates(p, q);
+        let surface = on(p, q);
+        assert_eq!(surface.degree, degree, "one degree along a curve");
+        let ys = surface.ordinates(p, q);
         let first = if s == 0 { 0 } else { 1 };
         for (k, y) in ys.iter().enumerate().skip(first) {
-            let f = k as f64 / 4.0;
+            let f = k as f64 / degree as f64;
             points.push(DVec3::new(p.0 + f * (q.0 - p.0), *y, p.1 + f * (q.1 - p.1)));
         }
-        let reps = if s + 2 == pts.len() { 5 } else { 4 };
+        let reps = if s + 2 == pts.len() {
+            degree + 1
+        } else {
+            degree
+        };
         knots.extend(std::iter::repeat_n((s + 1) as f64, reps));
     }
-    let curve = NurbsCurve::try_new(4, knots, points, None).expect("a valid lifted curve");
+    let curve = NurbsCurve::try_new(degree, knots, points, None).expect("a valid lifted curve");
     NetworkCurve {
         name: name.to_owned(),
         role,
         curve,
     }
+}
+
+/// A designer curve that is the (x, z) polyline `pts` lifted onto the test networks' surface: a
+/// degree-4 B-spline, one Bézier piece per polyline segment, exact.
+fn lifted(name: &str, role: Role, pts: &[(f64, f64)]) -> NetworkCurve {
+    let surface = hull_surface();
+    lifted_on(name, role, pts, |_, _| &surface)
 }
 
 fn network(curves: Vec<NetworkCurve>) -> Network {
@@ -341,36 +427,150 @@ fn a_t_joint_side_is_one_side_of_two_edges() {
     assert_eq!(wl_side.edges.len(), 2, "composite side");
 }
 
-/// The frigate-like network of the H-rep paper (§5.2, Fig. 13): 13 curves with a fore-ship
-/// knuckle ending on an ordinate (T-joint), an aft partial waterline ending on an ordinate
-/// (T-joint), and a stem-rounding transition curve from the CWL to the stem between CWL and
-/// knuckle, which makes a five-sided face (CWL, stem, rounding, knuckle, foremost ordinate).
-fn frigate() -> Network {
-    let stem_x = |z: f64| 9.4 + 0.6 * (z + 1.0);
-    let mut c = vec![
-        lifted("keel", Role::Keel, &[(0.0, -1.0), (9.4, -1.0)]),
-        lifted("stem", Role::Stem, &[(9.4, -1.0), (10.0, 0.0)]),
-        lifted("deck", Role::Deck, &[(0.0, 0.0), (10.0, 0.0)]),
-        lifted("transom", Role::Transom, &[(0.0, -1.0), (0.0, 0.0)]),
-        lifted("cwl", Role::Free, &[(0.0, -0.4), (stem_x(-0.4), -0.4)]),
-        lifted(
-            "knuckle",
-            Role::Knuckle,
-            &[(6.0, -0.2), (stem_x(-0.2), -0.2)],
+// The frigate, at full scale in metres: x forward from the transom (x = 0), z up from the keel
+// (z = 0), y to port.
+
+/// Transom to stem head, along the deck.
+const FRIGATE_LENGTH: f64 = 120.0;
+/// Keel to deck.
+const FRIGATE_DEPTH: f64 = 9.6;
+/// Keel to design waterline (the CWL).
+const FRIGATE_DRAFT: f64 = 4.8;
+/// Largest half-breadth of the design waterline.
+const FRIGATE_HALF_BEAM: f64 = 7.25;
+/// Where the raked stem leaves the keel.
+const FRIGATE_FOREFOOT: f64 = 114.0;
+/// Stem rake: run forward per metre of height.
+const FRIGATE_RAKE: f64 = (FRIGATE_LENGTH - FRIGATE_FOREFOOT) / FRIGATE_DEPTH;
+/// The waterlines are parabolas through the stem and this far aft of the transom, so the
+/// transom keeps a real width.
+const FRIGATE_STERN_ROOT: f64 = 30.0;
+/// Height where the sections' round-bilge cubic `S(z) = 1 − (1 − z/z₀)³` stands vertical (a
+/// stationary inflection): bilge below, flare above.
+const FRIGATE_BILGE: f64 = 7.2;
+/// The knuckle runs from the ordinate at this x (`st6`) to the stem …
+const FRIGATE_KNUCKLE_X: f64 = 72.0;
+/// … at this height.
+const FRIGATE_KNUCKLE_Z: f64 = 7.2;
+/// Largest jump of the section slope dy/dz across the knuckle (the flare above it).
+const FRIGATE_KNUCKLE_FLARE: f64 = 0.3;
+
+/// Where the stem is at height z (a straight raked stem).
+fn frigate_stem_x(z: f64) -> f64 {
+    FRIGATE_FOREFOOT + FRIGATE_RAKE * z
+}
+
+/// The frigate's hull surface below the knuckle, and above it forward of `st6`:
+///
+/// `y = C (x + a) (x_s(z) − x) S(z)`, `S(z) = 1 − (1 − ζ)³ = 3ζ(1 − ζ) + ζ³`, `ζ = z/z₀`,
+///
+/// which is zero on the keel (z = 0) and on the stem (`x = x_s(z)`), exactly: every term has
+/// both factors. Above the knuckle and forward of `st6` the flare term
+/// `K (z − z_k)(x − x_k)² (x_s(z) − x)` is added: zero on the knuckle (a crease, G0, dying out
+/// at both ends) and on the stem, and tangent to zero at `st6` (G1 there). Both are of degree 5,
+/// so every straight (x, z) segment lifts to a quintic. `C` makes the CWL's largest
+/// half-breadth `FRIGATE_HALF_BEAM` (at `x = (x_s(T) − a)/2`); `K` makes the largest slope jump
+/// at the knuckle (at two thirds of its length) `FRIGATE_KNUCKLE_FLARE`.
+fn frigate_surfaces() -> (Surface, Surface) {
+    let (a, z0) = (FRIGATE_STERN_ROOT, FRIGATE_BILGE);
+    let (xk, zk) = (FRIGATE_KNUCKLE_X, FRIGATE_KNUCKLE_Z);
+    let bilge = |z: f64| 1.0 - (1.0 - z / z0).powi(3);
+    let widest = 0.5 * (frigate_stem_x(FRIGATE_DRAFT) + a);
+    let c = FRIGATE_HALF_BEAM / (widest * widest * bilge(FRIGATE_DRAFT));
+    let k = FRIGATE_KNUCKLE_FLARE / (4.0 / 27.0 * (frigate_stem_x(zk) - xk).powi(3));
+    let stem = Linear::new(FRIGATE_FOREFOOT, -1.0, FRIGATE_RAKE);
+    let stern = Linear::new(a, 1.0, 0.0);
+    let zeta = Linear::new(0.0, 0.0, 1.0 / z0);
+    let lower = vec![
+        (
+            3.0 * c,
+            vec![zeta, Linear::new(1.0, 0.0, -1.0 / z0), stern, stem],
         ),
-        lifted("wl_aft", Role::Free, &[(0.0, -0.7), (2.0, -0.7)]),
-        lifted(
+        (c, vec![zeta, zeta, zeta, stern, stem]),
+    ];
+    let mut upper = lower.clone();
+    let aft = Linear::new(-xk, 1.0, 0.0);
+    upper.push((k, vec![Linear::new(-zk, 0.0, 1.0), aft, aft, stem]));
+    (Surface::new(lower), Surface::new(upper))
+}
+
+/// Is (x, z) on the frigate's upper surface (above the knuckle, forward of `st6`)?
+fn frigate_upper(p: (f64, f64)) -> bool {
+    p.0 > FRIGATE_KNUCKLE_X && p.1 > FRIGATE_KNUCKLE_Z
+}
+
+/// The height of the frigate's hull surface at (x, z).
+fn frigate_y(x: f64, z: f64) -> f64 {
+    let (lower, upper) = frigate_surfaces();
+    if frigate_upper((x, z)) {
+        upper.y(x, z)
+    } else {
+        lower.y(x, z)
+    }
+}
+
+/// The (x, z) polyline `pts` lifted onto the frigate's surface; every segment lies on one side
+/// of the knuckle and of `st6`.
+fn frigate_lifted(name: &str, role: Role, pts: &[(f64, f64)]) -> NetworkCurve {
+    let (lower, upper) = frigate_surfaces();
+    let on_or_above = |p: (f64, f64)| p.0 >= FRIGATE_KNUCKLE_X && p.1 >= FRIGATE_KNUCKLE_Z;
+    lifted_on(name, role, pts, |p, q| {
+        let mid = (0.5 * (p.0 + q.0), 0.5 * (p.1 + q.1));
+        if frigate_upper(mid) {
+            assert!(on_or_above(p) && on_or_above(q), "{name}: {p:?}–{q:?}");
+            &upper
+        } else {
+            assert!(
+                !frigate_upper(p) && !frigate_upper(q),
+                "{name}: {p:?}–{q:?}"
+            );
+            &lower
+        }
+    })
+}
+
+/// The frigate-like network of the H-rep paper (§5.2, Fig. 13), at full scale (120 m from
+/// transom to stem head, 14.5 m beam on a 4.8 m design waterline, 9.6 m deep): 13 curves with
+/// a fore-ship knuckle ending on an ordinate (T-joint), an aft partial waterline ending on an
+/// ordinate (T-joint), and a stem-rounding transition curve from the CWL to the stem between
+/// CWL and knuckle, which makes a five-sided face (CWL, stem, rounding, knuckle, foremost
+/// ordinate). The ordinates keep the paper's names (`st1` … `st8`, at 12 m per unit).
+fn frigate() -> Network {
+    let (d, t) = (FRIGATE_DEPTH, FRIGATE_DRAFT);
+    let (xk, zk) = (FRIGATE_KNUCKLE_X, FRIGATE_KNUCKLE_Z);
+    let xs = frigate_stem_x;
+    let rounding_z = 6.6;
+    let mut c = vec![
+        frigate_lifted("keel", Role::Keel, &[(0.0, 0.0), (xs(0.0), 0.0)]),
+        frigate_lifted(
+            "stem",
+            Role::Stem,
+            &[(xs(0.0), 0.0), (xs(zk), zk), (xs(d), d)],
+        ),
+        frigate_lifted("deck", Role::Deck, &[(0.0, d), (xk, d), (xs(d), d)]),
+        frigate_lifted("transom", Role::Transom, &[(0.0, 0.0), (0.0, d)]),
+        frigate_lifted("cwl", Role::Free, &[(0.0, t), (xs(t), t)]),
+        frigate_lifted("knuckle", Role::Knuckle, &[(xk, zk), (xs(zk), zk)]),
+        frigate_lifted("wl_aft", Role::Free, &[(0.0, 2.4), (24.0, 2.4)]),
+        frigate_lifted(
             "rounding",
             Role::Free,
-            &[(9.6, -0.4), (stem_x(-0.25), -0.25)],
+            &[(xs(t) - 2.0, t), (xs(rounding_z), rounding_z)],
         ),
     ];
-    for x in [1.0, 2.0, 4.0, 6.0, 8.0] {
-        c.push(lifted(
-            &format!("st{x}"),
-            Role::Free,
-            &[(x, -1.0), (x, 0.0)],
-        ));
+    for (name, x) in [
+        ("st1", 12.0),
+        ("st2", 24.0),
+        ("st4", 48.0),
+        ("st6", xk),
+        ("st8", 96.0),
+    ] {
+        let pts: &[(f64, f64)] = if x > xk {
+            &[(x, 0.0), (x, zk), (x, d)]
+        } else {
+            &[(x, 0.0), (x, d)]
+        };
+        c.push(frigate_lifted(name, Role::Free, pts));
     }
     Network::try_new("frigate", c).expect("unique names")
 }
@@ -397,6 +597,78 @@ fn frigate_faces() -> Vec<(usize, Vec<String>)> {
     ];
     v.sort();
     v
+}
+
+#[test]
+fn frigate_is_a_full_scale_hull_with_a_stem_and_a_transom() {
+    let net = frigate();
+    let curve = |name: &str| {
+        &net.curves()
+            .iter()
+            .find(|c| c.name == name)
+            .expect("a frigate curve")
+            .curve
+    };
+    let samples = |name: &str| {
+        let c = curve(name);
+        let (a, b) = c.domain();
+        (0..=200)
+            .map(|i| c.point(a + (b - a) * i as f64 / 200.0))
+            .collect::<Vec<DVec3>>()
+    };
+    for c in net.curves() {
+        for p in samples(&c.name) {
+            assert_near!(
+                p.y,
+                frigate_y(p.x, p.z),
+                1e-9,
+                "{} on the surface at {p}",
+                c.name
+            );
+        }
+    }
+    // Keel and raked stem on the centreplane, exactly: the bow is a stem, not a slab.
+    for name in ["keel", "stem"] {
+        assert!(
+            curve(name).control_points().iter().all(|p| p.y == 0.0),
+            "{name} on y = 0"
+        );
+    }
+    let stem = samples("stem");
+    let (foot, head) = (stem[0], stem[stem.len() - 1]);
+    assert_eq!((foot.z, head.z), (0.0, FRIGATE_DEPTH), "keel to deck");
+    assert!(head.x - foot.x > 0.3 * FRIGATE_DEPTH, "a raked stem");
+    assert_eq!(head.x, FRIGATE_LENGTH, "the stem head is the bow");
+    // Proportions on the design waterline: a frigate's L/B ≈ 8 and B/T ≈ 3.
+    let cwl = samples("cwl");
+    let lwl = cwl.iter().map(|p| p.x).fold(0.0, f64::max);
+    let beam = 2.0 * cwl.iter().map(|p| p.y).fold(0.0, f64::max);
+    assert_near!(beam, 2.0 * FRIGATE_HALF_BEAM, 1e-3, "design beam");
+    assert!((7.5..8.5).contains(&(lwl / beam)), "L/B {}", lwl / beam);
+    assert!(
+        (2.8..3.3).contains(&(beam / FRIGATE_DRAFT)),
+        "B/T {}",
+        beam / FRIGATE_DRAFT
+    );
+    // A transom with a real width, and flare: the deck is wider than the waterline amidships,
+    // and the bow sections flare out more above the knuckle than below it.
+    assert!(
+        cwl[0].y > 0.5 * FRIGATE_HALF_BEAM,
+        "transom at the CWL {}",
+        cwl[0].y
+    );
+    let mid = 0.5 * (frigate_stem_x(FRIGATE_DRAFT) - FRIGATE_STERN_ROOT);
+    assert!(
+        frigate_y(mid, FRIGATE_DEPTH) > FRIGATE_HALF_BEAM,
+        "flare amidships"
+    );
+    let (x, z, h) = (103.0, FRIGATE_KNUCKLE_Z, 1e-6);
+    let below = (frigate_y(x, z) - frigate_y(x, z - h)) / h;
+    let above = (frigate_y(x, z + h) - frigate_y(x, z)) / h;
+    assert!(
+        above > below + 0.25,
+        "knuckle flare: slope {below} below, {above} above"
+    );
 }
 
 #[test]
@@ -963,4 +1235,32 @@ fn a_face_with_many_corners_is_flagged() {
     let d = t.diagnostics_of("unusual_face");
     assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
     assert_eq!(d[0].curves().len(), 11, "names every curve of the face");
+}
+
+#[test]
+fn node_kinds_tell_t_joints_from_stations_landing_on_the_keel() {
+    use batten_core::NodeKind;
+    let count =
+        |t: &Topology, kind: NodeKind| t.node_kinds().iter().filter(|&&k| k == kind).count();
+    // The T-joint grid: the partial station ends on the waterline, which runs on through it.
+    let t = build(&network(t_joint_curves()));
+    assert_eq!(count(&t, NodeKind::TJoint), 1, "the partial station's foot");
+    assert_eq!(count(&t, NodeKind::Crossing), 1, "st5 × wl");
+    assert_eq!(count(&t, NodeKind::EndToEnd), 4, "the four corners");
+    assert_eq!(count(&t, NodeKind::FreeEnd), 0, "no dangling end");
+    // st5 and wl end on the boundary curves where every face has a corner, and the partial
+    // station's head ends on the deck the same way.
+    assert_eq!(count(&t, NodeKind::EndOnCurve), 5, "ends on the boundary");
+    // The frigate: the knuckle ends on st6, wl_aft on st2 and the rounding on the cwl.
+    let f = build(&frigate());
+    let kinds = f.node_kinds();
+    assert_eq!(kinds.len(), f.node_count(), "one kind per node");
+    assert_eq!(count(&f, NodeKind::TJoint), 3, "three T-joints");
+    assert_eq!(count(&f, NodeKind::Crossing), 7, "crossings");
+    assert_eq!(count(&f, NodeKind::EndToEnd), 4, "corners of the network");
+    assert_eq!(
+        count(&f, NodeKind::EndOnCurve),
+        15,
+        "curve ends on the boundary curves"
+    );
 }
