@@ -110,6 +110,18 @@ impl BezierPiece {
         (point, d1, d2)
     }
 
+    /// Point, first and second derivative at the curve parameter `t` (with respect to `t`) of a
+    /// polynomial piece, by de Casteljau; `None` for a rational piece.
+    pub fn derivs_at(&self, t: f64) -> Option<(DVec3, DVec3, DVec3)> {
+        let w0 = self.cw[0].w;
+        if self.cw.iter().any(|c| c.w != w0) {
+            return None;
+        }
+        let h = self.t1 - self.t0;
+        let (c, d1, d2) = self.local_derivs((t - self.t0) / h);
+        Some((c, d1 / h, d2 / (h * h)))
+    }
+
     /// The closest point to `q` on a piece where [`BezierPiece::distance_convex`] holds:
     /// the root of `g(u) = C′(u)·(C(u) − q)`, which increases along the piece, by Newton's
     /// method kept inside a bisection bracket (or an end, where `g` does not change sign).

@@ -40,6 +40,19 @@ pub struct FairnessMetrics {
 /// `|C′ × C″| / |C′|³` (the fairness criteria of the H-rep paper §4 and of Dierckx 1993 §5.1).
 pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
     let n = best_fit_normal(&curve.control_points());
+    let bez = curve.bezier_decomposition();
+    // First and second derivative at t in the span starting at t0: on its Bézier piece when
+    // that is polynomial (de Casteljau, no basis-function tables), else from the NURBS.
+    let derivs = |t0: f64, t: f64| -> (DVec3, DVec3) {
+        let k = bez.pieces.partition_point(|piece| piece.t0 < t0);
+        match bez.pieces.get(k).and_then(|piece| piece.derivs_at(t)) {
+            Some((_, d1, d2)) => (d1, d2),
+            None => {
+                let d = curve.derivs(t);
+                (d.d1, d.d2)
+            }
+        }
+    };
     let p = curve.degree();
     let knots = curve.knots();
     let (start, end) = curve.domain();
@@ -52,7 +65,7 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
         if t0 >= start && t1 <= end && t1 > t0 {
             let spans = pieces.last_mut().expect("one piece at least");
             spans.push((t0, t1));
-            energy += span_energy(curve, t0, t1);
+            energy += span_energy(&derivs, t0, t1);
             let mult = knots.iter().filter(|&&u| u == t1).count();
             if t1 < end && mult >= p {
                 pieces.push(Vec::new());
@@ -67,10 +80,10 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
         for &(t0, t1) in spans {
             for j in 0..SAMPLES_PER_SPAN {
                 let t = t0 + (t1 - t0) * (j as f64 + 0.5) / SAMPLES_PER_SPAN as f64;
-                let d = curve.derivs(t);
-                let speed = d.d1.length();
+                let (d1, d2) = derivs(t0, t);
+                let speed = d1.length();
                 let k = if speed > 0.0 {
-                    d.d1.cross(d.d2).dot(n) / speed.powi(3)
+                    d1.cross(d2).dot(n) / speed.powi(3)
                 } else {
                     0.0
                 };
@@ -94,16 +107,16 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
     }
 }
 
-fn span_energy(curve: &NurbsCurve, t0: f64, t1: f64) -> f64 {
+fn span_energy(derivs: &impl Fn(f64, f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
     // Two Gauss–Legendre panels per span: κ²|C′| is smooth but not polynomial.
     let mut total = 0.0;
     for (a, b) in [(t0, 0.5 * (t0 + t1)), (0.5 * (t0 + t1), t1)] {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
         for &(x, w) in &GL8 {
-            let d = curve.derivs(mid + half * x);
-            let speed = d.d1.length();
+            let (d1, d2) = derivs(t0, mid + half * x);
+            let speed = d1.length();
             if speed > 0.0 {
-                let k2 = d.d1.cross(d.d2).length_squared() / speed.powi(6);
+                let k2 = d1.cross(d2).length_squared() / speed.powi(6);
                 total += w * k2 * speed * half;
             }
         }
@@ -285,24 +298,50 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
     };
     let mut sum2 = 0.0;
     let mut last_t: Option<f64> = None;
+    let mut lower = vec![0.0; bez.pieces.len()];
     for (i, q) in points.iter().enumerate() {
-        // An upper bound of the distance: a curve point near q.
-        let mut upper = last_t.map_or(f64::INFINITY, |t| (curve.point(t) - *q).length());
-        for (_, a, b, _) in &bounds {
-            upper = upper.min((*a - *q).length()).min((*b - *q).length());
-        }
-        sub.pieces.clear();
-        for (piece, (boxed, a, b, flat)) in bez.pieces.iter().zip(&bounds) {
-            let lower = boxed
+        for (l, (boxed, a, b, flat)) in lower.iter_mut().zip(&bounds) {
+            *l = boxed
                 .distance_to(*q)
                 .max(segment_distance(*q, *a, *b) - flat);
-            if lower <= upper {
-                sub.pieces.push(piece.clone());
-            }
         }
-        let near = sub.nearest(*q, accuracy)?;
-        last_t = Some(near.t);
-        let d = near.distance;
+        // Fast path: the piece of the previous point's foot, when the distance is convex on
+        // it (one minimum, found exactly) and no other piece can come closer.
+        let k = last_t.map_or(0, |t| {
+            bez.pieces
+                .partition_point(|p| p.t1 < t)
+                .min(bez.pieces.len() - 1)
+        });
+        let piece = &bez.pieces[k];
+        let local = piece.distance_convex(*q).then(|| {
+            let (t, point) = piece.convex_foot(*q);
+            (t, (point - *q).length())
+        });
+        let proven = local.filter(|&(_, d)| {
+            lower
+                .iter()
+                .enumerate()
+                .all(|(j, &l)| j == k || l >= d - accuracy)
+        });
+        let (t, d) = match proven {
+            Some(found) => found,
+            None => {
+                // An upper bound of the distance: a curve point near q.
+                let mut upper = last_t.map_or(f64::INFINITY, |t| (curve.point(t) - *q).length());
+                for (_, a, b, _) in &bounds {
+                    upper = upper.min((*a - *q).length()).min((*b - *q).length());
+                }
+                sub.pieces.clear();
+                for (piece, &l) in bez.pieces.iter().zip(&lower) {
+                    if l <= upper {
+                        sub.pieces.push(piece.clone());
+                    }
+                }
+                let near = sub.nearest(*q, accuracy)?;
+                (near.t, near.distance)
+            }
+        };
+        last_t = Some(t);
         sum2 += d * d;
         if d > out.max {
             out.max = d;
