@@ -11,8 +11,13 @@ the fit from the TRUE curve, inflections of the fit (batten's counter on both).
 from __future__ import annotations
 
 import json
+import os
 import time
 from pathlib import Path
+
+# FITPACK and batten's fitting are single-threaded; idle OpenBLAS worker threads spin after
+# numpy calls and steal a core from both (2-core machines gave +-30 % run to run).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import batten_native as bn
 import numpy as np
