@@ -109,7 +109,6 @@ pub(crate) fn fit_smooth(
             accept: s.accept * factor,
         };
         let exact = iterations >= relaxed;
-
         // A fit to S searches p, from the p of the fit before (the data barely moved).
         let search_p = exact.then(|| last.as_ref().map(|(sp, _)| sp.p));
         let Some(spline) =
