@@ -3,9 +3,47 @@
 
 use glam::{DVec3, DVec4};
 
+use super::basis::MAX_ORDER;
 use super::bbox::Aabb;
 use super::nurbs::NurbsCurve;
 use crate::error::CurveError;
+
+/// Work arrays of this size cover the usual degrees (up to 7) without touching a full
+/// [`MAX_ORDER`] array.
+const SMALL_ORDER: usize = 8;
+
+/// Homogeneous point, first and second derivative (with respect to the local parameter
+/// `u ∈ [0, 1]`) of a rational Bézier piece, by de Casteljau down to three points.
+fn casteljau_derivs(cw: &[DVec4], work: &mut [DVec4], u: f64) -> (DVec4, DVec4, DVec4) {
+    let n = cw.len();
+    let p = (n - 1) as f64;
+    work[..n].copy_from_slice(cw);
+    let stop = n.min(3);
+    for level in 1..=n - stop {
+        for i in 0..n - level {
+            work[i] = work[i].lerp(work[i + 1], u);
+        }
+    }
+    if stop == 3 {
+        let (q0, q1, q2) = (work[0], work[1], work[2]);
+        let h = q0 * ((1.0 - u) * (1.0 - u)) + q1 * (2.0 * u * (1.0 - u)) + q2 * (u * u);
+        let d1 = ((q1 - q0) * (1.0 - u) + (q2 - q1) * u) * p;
+        let d2 = (q2 - q1 * 2.0 + q0) * (p * (p - 1.0));
+        (h, d1, d2)
+    } else {
+        let (q0, q1) = (work[0], work[1]);
+        (q0.lerp(q1, u), q1 - q0, DVec4::ZERO)
+    }
+}
+
+/// Point, first and second derivative from their homogeneous forms (the quotient rule).
+fn cartesian((h, d1, d2): (DVec4, DVec4, DVec4)) -> (DVec3, DVec3, DVec3) {
+    let w = h.w;
+    let c = h.truncate() / w;
+    let c1 = (d1.truncate() - d1.w * c) / w;
+    let c2 = (d2.truncate() - 2.0 * d1.w * c1 - d2.w * c) / w;
+    (c, c1, c2)
+}
 
 /// One rational Bézier piece: `degree + 1` homogeneous control points on `[t0, t1]` of the
 /// original curve's parameter.
@@ -83,43 +121,29 @@ impl BezierPiece {
         speed * speed > accel * reach
     }
 
-    /// Point, first and second derivative (with respect to the piece's local parameter
-    /// `u ∈ [0, 1]`) of a polynomial piece (equal weights), by de Casteljau down to three
-    /// points.
-    fn local_derivs(&self, u: f64) -> (DVec3, DVec3, DVec3) {
-        let n = self.cw.len();
-        let w = self.cw[0].w;
-        let mut work = [DVec3::ZERO; super::basis::MAX_ORDER];
-        for (slot, c) in work.iter_mut().zip(&self.cw) {
-            *slot = c.truncate() / w;
+    /// Homogeneous point, first and second derivative with respect to the local parameter
+    /// `u ∈ [0, 1]`.
+    fn homogeneous_derivs(&self, u: f64) -> (DVec4, DVec4, DVec4) {
+        if self.cw.len() <= SMALL_ORDER {
+            casteljau_derivs(&self.cw, &mut [DVec4::ZERO; SMALL_ORDER], u)
+        } else {
+            casteljau_derivs(&self.cw, &mut [DVec4::ZERO; MAX_ORDER], u)
         }
-        let deg = (n - 1) as f64;
-        if n < 3 {
-            let d = work[1] - work[0];
-            return (work[0] + d * u, d, DVec3::ZERO);
-        }
-        for level in 1..=n - 3 {
-            for i in 0..n - level {
-                work[i] = work[i].lerp(work[i + 1], u);
-            }
-        }
-        let (q0, q1, q2) = (work[0], work[1], work[2]);
-        let point = q0 * ((1.0 - u) * (1.0 - u)) + q1 * (2.0 * u * (1.0 - u)) + q2 * (u * u);
-        let d1 = ((q1 - q0) * (1.0 - u) + (q2 - q1) * u) * deg;
-        let d2 = (q2 - q1 * 2.0 + q0) * (deg * (deg - 1.0));
-        (point, d1, d2)
     }
 
-    /// Point, first and second derivative at the curve parameter `t` (with respect to `t`) of a
-    /// polynomial piece, by de Casteljau; `None` for a rational piece.
-    pub fn derivs_at(&self, t: f64) -> Option<(DVec3, DVec3, DVec3)> {
-        let w0 = self.cw[0].w;
-        if self.cw.iter().any(|c| c.w != w0) {
-            return None;
-        }
-        let h = self.t1 - self.t0;
-        let (c, d1, d2) = self.local_derivs((t - self.t0) / h);
-        Some((c, d1 / h, d2 / (h * h)))
+    /// Point, first and second derivative with respect to the local parameter `u ∈ [0, 1]`.
+    fn local_derivs(&self, u: f64) -> (DVec3, DVec3, DVec3) {
+        cartesian(self.homogeneous_derivs(u))
+    }
+
+    /// Point, first and second derivative at the curve parameter `t` (clamped into the piece),
+    /// with respect to `t`, by homogeneous de Casteljau: no allocation and no basis-function
+    /// tables.
+    pub fn derivs_at(&self, t: f64) -> (DVec3, DVec3, DVec3) {
+        let len = self.t1 - self.t0;
+        let u = ((t - self.t0) / len).clamp(0.0, 1.0);
+        let (h, d1, d2) = self.homogeneous_derivs(u);
+        cartesian((h, d1 * (1.0 / len), d2 * (1.0 / (len * len))))
     }
 
     /// The closest point to `q` on a piece where [`BezierPiece::distance_convex`] holds:
@@ -207,6 +231,17 @@ pub struct BezierDecomposition {
 }
 
 impl BezierDecomposition {
+    /// The index of the piece holding `t`; at a piece boundary, the piece after it when
+    /// `after` is true (the one a curve leaves the knot on), else the piece before it.
+    pub(crate) fn piece_at(&self, t: f64, after: bool) -> usize {
+        if after {
+            self.pieces.partition_point(|p| p.t1 <= t)
+        } else {
+            self.pieces.partition_point(|p| p.t1 < t)
+        }
+        .min(self.pieces.len() - 1)
+    }
+
     /// Decompose by inserting every knot of the domain to multiplicity `degree` (A5.1 repeated):
     /// each non-empty span's `degree + 1` control points are then its Bézier points.
     pub fn new(curve: &NurbsCurve) -> BezierDecomposition {

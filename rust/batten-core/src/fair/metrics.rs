@@ -41,17 +41,11 @@ pub struct FairnessMetrics {
 pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
     let n = best_fit_normal(&curve.control_points());
     let bez = curve.bezier_decomposition();
-    // First and second derivative at t in the span starting at t0: on its Bézier piece when
-    // that is polynomial (de Casteljau, no basis-function tables), else from the NURBS.
-    let derivs = |t0: f64, t: f64| -> (DVec3, DVec3) {
-        let k = bez.pieces.partition_point(|piece| piece.t0 < t0);
-        match bez.pieces.get(k).and_then(|piece| piece.derivs_at(t)) {
-            Some((_, d1, d2)) => (d1, d2),
-            None => {
-                let d = curve.derivs(t);
-                (d.d1, d.d2)
-            }
-        }
+    // First and second derivative on the Bézier piece holding t (de Casteljau, no
+    // basis-function tables); t is always inside a span here.
+    let derivs = |t: f64| -> (DVec3, DVec3) {
+        let (_, d1, d2) = bez.pieces[bez.piece_at(t, false)].derivs_at(t);
+        (d1, d2)
     };
     let p = curve.degree();
     let knots = curve.knots();
@@ -80,7 +74,7 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
         for &(t0, t1) in spans {
             for j in 0..SAMPLES_PER_SPAN {
                 let t = t0 + (t1 - t0) * (j as f64 + 0.5) / SAMPLES_PER_SPAN as f64;
-                let (d1, d2) = derivs(t0, t);
+                let (d1, d2) = derivs(t);
                 let speed = d1.length();
                 let k = if speed > 0.0 {
                     d1.cross(d2).dot(n) / speed.powi(3)
@@ -107,13 +101,13 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
     }
 }
 
-fn span_energy(derivs: &impl Fn(f64, f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
+fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
     // Two Gauss–Legendre panels per span: κ²|C′| is smooth but not polynomial.
     let mut total = 0.0;
     for (a, b) in [(t0, 0.5 * (t0 + t1)), (0.5 * (t0 + t1), t1)] {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
         for &(x, w) in &GL8 {
-            let (d1, d2) = derivs(t0, mid + half * x);
+            let (d1, d2) = derivs(mid + half * x);
             let speed = d1.length();
             if speed > 0.0 {
                 let k2 = d1.cross(d2).length_squared() / speed.powi(6);
@@ -307,11 +301,7 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
         }
         // Fast path: the piece of the previous point's foot, when the distance is convex on
         // it (one minimum, found exactly) and no other piece can come closer.
-        let k = last_t.map_or(0, |t| {
-            bez.pieces
-                .partition_point(|p| p.t1 < t)
-                .min(bez.pieces.len() - 1)
-        });
+        let k = last_t.map_or(0, |t| bez.piece_at(t, false));
         let piece = &bez.pieces[k];
         let local = piece.distance_convex(*q).then(|| {
             let (t, point) = piece.convex_foot(*q);

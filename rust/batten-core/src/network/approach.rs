@@ -117,36 +117,9 @@ pub(crate) struct Approach {
     pub tangents: (DVec3, DVec3),
 }
 
-/// Work arrays of this size cover the usual degrees (up to 7) without touching a full
-/// [`SEG_ORDER`] array.
-const SMALL_ORDER: usize = 8;
-
-/// Homogeneous point, first and second derivative (with respect to the local parameter
-/// `u ∈ [0, 1]`) of a rational Bézier piece, by de Casteljau down to three points.
-fn casteljau_derivs(cw: &[DVec4], work: &mut [DVec4], u: f64) -> (DVec4, DVec4, DVec4) {
-    let n = cw.len();
-    let p = (n - 1) as f64;
-    work[..n].copy_from_slice(cw);
-    let stop = n.min(3);
-    for level in 1..=n - stop {
-        for i in 0..n - level {
-            work[i] = work[i].lerp(work[i + 1], u);
-        }
-    }
-    if stop == 3 {
-        let (q0, q1, q2) = (work[0], work[1], work[2]);
-        let h = q0 * ((1.0 - u) * (1.0 - u)) + q1 * (2.0 * u * (1.0 - u)) + q2 * (u * u);
-        let d1 = ((q1 - q0) * (1.0 - u) + (q2 - q1) * u) * p;
-        let d2 = (q2 - q1 * 2.0 + q0) * (p * (p - 1.0));
-        (h, d1, d2)
-    } else {
-        let (q0, q1) = (work[0], work[1]);
-        (q0.lerp(q1, u), q1 - q0, DVec4::ZERO)
-    }
-}
-
-/// A curve as its Bézier pieces, evaluated with derivatives by homogeneous de Casteljau: no
-/// allocation and no basis-function tables, for the inner loop of Newton's method.
+/// A curve as its Bézier pieces, evaluated with derivatives by homogeneous de Casteljau
+/// (`BezierPiece::derivs_at`), for the inner loop of Newton's
+/// method.
 pub(crate) struct PieceCurve<'a> {
     decomposition: &'a BezierDecomposition,
 }
@@ -170,33 +143,12 @@ impl<'a> PieceCurve<'a> {
 
     /// The index of the piece [`PieceCurve::eval_side`] evaluates at `t`.
     pub fn piece_at(&self, t: f64, after: bool) -> usize {
-        let pieces = &self.decomposition.pieces;
-        if after {
-            pieces.partition_point(|p| p.t1 <= t)
-        } else {
-            pieces.partition_point(|p| p.t1 < t)
-        }
-        .min(pieces.len() - 1)
+        self.decomposition.piece_at(t, after)
     }
 
     /// C(t), C'(t) and C''(t) of piece `k` (t clamped into it).
     pub fn eval_in(&self, k: usize, t: f64) -> (DVec3, DVec3, DVec3) {
-        let piece = &self.decomposition.pieces[k];
-        let len = piece.t1 - piece.t0;
-        let u = ((t - piece.t0) / len).clamp(0.0, 1.0);
-        let (h, d1, d2) = if piece.cw.len() <= SMALL_ORDER {
-            let mut work = [DVec4::ZERO; SMALL_ORDER];
-            casteljau_derivs(&piece.cw, &mut work, u)
-        } else {
-            let mut work = [DVec4::ZERO; SEG_ORDER];
-            casteljau_derivs(&piece.cw, &mut work, u)
-        };
-        let (d1, d2) = (d1 * (1.0 / len), d2 * (1.0 / (len * len)));
-        let w = h.w;
-        let c = h.truncate() / w;
-        let c1 = (d1.truncate() - d1.w * c) / w;
-        let c2 = (d2.truncate() - 2.0 * d1.w * c1 - d2.w * c) / w;
-        (c, c1, c2)
+        self.decomposition.pieces[k].derivs_at(t)
     }
 
     /// C(t).
