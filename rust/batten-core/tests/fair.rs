@@ -163,11 +163,10 @@ fn noisy_arc_and_wigley_fits_add_no_inflection() {
     }
 }
 
-/// Known gap: the S-bend fits of 4 of the 8 seeds have an extra sign change of curvature in
-/// the last few percent of the curve next to an end (the interpolated end point lets the end
-/// span bend; J only penalises jumps at interior knots).
+/// The S-bend's true end curvature (0.066 /m, an eighth of its largest) is within the scatter
+/// of a free end span's curvature at this noise, so without the end-curl refit 3 of these 8
+/// seeds bent the wrong way in the last percent of the curve.
 #[test]
-#[ignore = "known gap: end-span curvature wiggle on noisy S-bend (see doc comment)"]
 fn noisy_s_bend_fit_adds_no_inflection() {
     let (_, truth, normal, sigma) = cases().into_iter().nth(2).unwrap();
     let truth_inflections = fairness_metrics(&truth).inflections;
@@ -177,6 +176,46 @@ fn noisy_s_bend_fit_adds_no_inflection() {
         let fit = fair_points(&noisy, &options(Smoothing::Noise(sigma))).unwrap();
         let got = fit.report.metrics.inflections;
         assert!(got <= truth_inflections, "seed {seed}: {got} inflections");
+    }
+}
+
+/// An inflection the data demand is kept: the S-bend from just before its inflection (7 % of
+/// the length in, end curvature a tenth of the largest), so the true sign change lies in the
+/// first knot span of the fit, where the end-curl refit looks; at σ = 2 mm the data reject
+/// zero end curvature. (At σ = 5 mm they do not, and the fit may lose it: 4 of these seeds.)
+#[test]
+fn an_inflection_next_to_an_end_is_kept() {
+    let full = sbend();
+    let (a, b) = full.domain();
+    let t0 = a + 0.46 * (b - a);
+    let truth_pts: Vec<DVec3> = (0..=400)
+        .map(|i| full.point(t0 + (b - t0) * f64::from(i) / 400.0))
+        .collect();
+    let truth = fair_points(&truth_pts, &options(Smoothing::MaxDeviation(1e-6)))
+        .unwrap()
+        .curve;
+    assert_eq!(
+        fairness_metrics(&truth).inflections,
+        1,
+        "the truth bends once"
+    );
+    for seed in SEEDS {
+        let sigma = 0.002;
+        let noisy = sample(&truth, M, sigma, DVec3::Z, seed);
+        let fit = fair_points(&noisy, &options(Smoothing::Noise(sigma))).unwrap();
+        let kn = &fit.report.knots;
+        let first = kn.iter().copied().find(|&t| t > 0.0).unwrap();
+        let (fa, fb) = fit.curve.domain();
+        println!(
+            "seed {seed}: {} inflections, first knot at {:.3} of the curve",
+            fit.report.metrics.inflections,
+            (first - fa) / (fb - fa)
+        );
+        assert_eq!(fit.report.metrics.inflections, 1, "seed {seed}");
+        assert!(
+            distance_to_truth(&fit.curve, &truth) <= 3.0 * sigma,
+            "seed {seed}"
+        );
     }
 }
 

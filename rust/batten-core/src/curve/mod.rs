@@ -18,7 +18,7 @@ mod nurbs;
 pub(crate) use arclen::GL8;
 pub use basis::MAX_DEGREE;
 // The fairing module builds least-squares rows from the same basis functions.
-pub(crate) use basis::{basis_funs, find_span, MAX_ORDER};
+pub(crate) use basis::{basis_funs, ders_basis_funs, find_span, MAX_ORDER};
 pub use bbox::Aabb;
 pub(crate) use bezier::segment_distance;
 pub use bezier::BezierDecomposition;

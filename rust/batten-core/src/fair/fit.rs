@@ -40,6 +40,18 @@ pub(crate) struct Ends {
     pub end_derivative: Option<DVec3>,
 }
 
+/// A linear condition on the fit at one end of the piece: `w · C″(end) = 0`, which makes the
+/// curvature there zero in the plane with in-plane normal `w` (for `w ⊥ C′(end)`; the
+/// condition is linear in the coefficients, so the constrained fit is a least-squares problem
+/// with one equality, solved by a Lagrange correction).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EndCurvature {
+    /// True for the start of the piece, false for its end.
+    pub at_start: bool,
+    /// The direction `w` whose component of `C″` is held at zero.
+    pub w: DVec3,
+}
+
 /// The smoothing factor S, and the value of `F(∞)` at which knot insertion may stop (`≥ s`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Target {
@@ -295,6 +307,85 @@ impl<'a> System<'a> {
         self.merge_from(first);
     }
 
+    /// The row `g` (over the free coefficients) and the fixed coefficients' part `r0` of the
+    /// condition `Σⱼ N″ⱼ(end)·(cⱼ · w) = 0`.
+    fn condition(&self, c: &EndCurvature) -> (Vec<f64>, f64) {
+        let k = self.degree;
+        let (span, t) = if c.at_start {
+            (k, self.knots[k])
+        } else {
+            (self.n - 1, self.knots[self.n])
+        };
+        let mut d = [[0.0; crate::curve::MAX_ORDER]; 4];
+        crate::curve::ders_basis_funs(&self.knots, span, t, k, 2, &mut d);
+        let mut g = vec![0.0; self.ls.unknowns()];
+        let mut r0 = 0.0;
+        for (j, &b) in d[2].iter().enumerate().take(k + 1) {
+            let col = span - k + j;
+            if let Some(&(_, v)) = self.fixed.iter().find(|(fc, _)| *fc == col) {
+                r0 += b * v.dot(c.w);
+            } else {
+                g[col - self.first_free] = b;
+            }
+        }
+        (g, r0)
+    }
+
+    /// The free coefficients `x` of the least-squares problem with triangle `tri`, corrected
+    /// to the minimiser of the same problem under the end conditions `cons` (Lagrange
+    /// multipliers: `X = X* − Σᵢ (AᵀA)⁻¹gᵢ λᵢ wᵢᵀ` with `Σⱼ (gᵢᵀ(AᵀA)⁻¹gⱼ)(wᵢ·wⱼ) λⱼ = rᵢ`,
+    /// `rᵢ` the condition's value at `X*`; Lawson & Hanson 1974 ch. 20). `None` when the
+    /// conditions cannot be imposed (no free coefficient in them, or they are dependent).
+    fn constrain(
+        &self,
+        tri: &BandedQr,
+        mut x: Vec<DVec3>,
+        cons: &[EndCurvature],
+    ) -> Option<Vec<DVec3>> {
+        if cons.is_empty() {
+            return Some(x);
+        }
+        let rows: Vec<(Vec<f64>, f64)> = cons.iter().map(|c| self.condition(c)).collect();
+        let ys: Vec<Vec<f64>> = rows
+            .iter()
+            .map(|(g, _)| tri.solve_normal(g))
+            .collect::<Option<_>>()?;
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
+        let r: Vec<f64> = rows
+            .iter()
+            .zip(cons)
+            .map(|((g, r0), c)| {
+                g.iter()
+                    .zip(&x)
+                    .map(|(gj, xj)| gj * xj.dot(c.w))
+                    .sum::<f64>()
+                    + r0
+            })
+            .collect();
+        let h = |i: usize, j: usize| dot(&rows[i].0, &ys[j]) * cons[i].w.dot(cons[j].w);
+        let lambda: Vec<f64> = match cons.len() {
+            1 => {
+                let d = h(0, 0);
+                (d > 0.0).then(|| vec![r[0] / d])?
+            }
+            2 => {
+                let (a, b, c, d) = (h(0, 0), h(0, 1), h(1, 0), h(1, 1));
+                let det = a * d - b * c;
+                if det.is_nan() || det.abs() <= 1e-12 * (a * d).abs() {
+                    return None;
+                }
+                vec![(d * r[0] - b * r[1]) / det, (a * r[1] - c * r[0]) / det]
+            }
+            _ => return None,
+        };
+        for ((y, l), c) in ys.iter().zip(&lambda).zip(cons) {
+            for (xj, yj) in x.iter_mut().zip(y) {
+                *xj -= c.w * (yj * l);
+            }
+        }
+        Some(x)
+    }
+
     /// All coefficients from the free ones.
     fn full(&self, free: &[DVec3]) -> Vec<DVec3> {
         let mut c = vec![DVec3::ZERO; self.n];
@@ -316,12 +407,25 @@ impl<'a> System<'a> {
 
     /// The least-squares spline (p = ∞).
     fn least_squares(&self) -> Option<Vec<DVec3>> {
-        Some(self.full(&self.ls.solve()?))
+        self.least_squares_with(&[])
     }
 
-    /// The smoothing spline for `p` > 0: the least-squares triangle with the jump rows, scaled
-    /// by 1/p, rotated in (fpcurf part 2).
-    fn smoothing(&self, p: f64) -> Option<Vec<DVec3>> {
+    /// The least-squares spline under the end conditions `cons`.
+    fn least_squares_with(&self, cons: &[EndCurvature]) -> Option<Vec<DVec3>> {
+        let x = self.constrain(&self.ls, self.ls.solve()?, cons)?;
+        Some(self.full(&x))
+    }
+
+    /// The smoothing spline for `p` > 0 under the end conditions `cons` (none: fpcurf part 2).
+    fn smoothing(&self, p: f64, cons: &[EndCurvature]) -> Option<Vec<DVec3>> {
+        let g = self.smoothing_triangle(p);
+        let x = self.constrain(&g, g.solve()?, cons)?;
+        Some(self.full(&x))
+    }
+
+    /// The least-squares triangle with the jump rows, scaled by 1/p, rotated in (fpcurf
+    /// part 2).
+    fn smoothing_triangle(&self, p: f64) -> BandedQr {
         let k = self.degree;
         let pinv = 1.0 / p;
         let mut g = self.ls.widened(k + 2);
@@ -348,7 +452,7 @@ impl<'a> System<'a> {
                 g.add_row(lo - self.first_free, &mut h[..len], rhs);
             }
         }
-        Some(self.full(&g.solve()?))
+        g
     }
 
     fn spline(&self, coefs: Vec<DVec3>, p: f64, fp: f64, s: f64) -> Spline {
@@ -484,8 +588,25 @@ pub(crate) fn smoothing_spline_from(
     } else {
         fp0.expect("set on the first pass")
     };
+    find_p(&system, s, fp0, (ls_coefs, fp_inf), p_start, &[])
+}
+
+/// The smoothing spline of `system` with `F(p) = S` under the end conditions `cons` (fpcurf
+/// part 2): p by Dierckx's rational interpolation (`fprati`) between `F(0) = fp0` and the
+/// least-squares spline `(coefs, F(∞))`, starting from `p_start` or fpcurf's first guess.
+/// Returns the feasible result (`E ≤ S` within tolerance) with the smallest p found, the
+/// least-squares spline if no other is.
+fn find_p(
+    system: &System,
+    s: f64,
+    fp0: f64,
+    (ls_coefs, fp_inf): (Vec<DVec3>, f64),
+    p_start: Option<f64>,
+    cons: &[EndCurvature],
+) -> Option<Spline> {
+    let acc = REL_ACC * s;
     let eval = |p: f64| -> Option<(Vec<DVec3>, f64)> {
-        let c = system.smoothing(p)?;
+        let c = system.smoothing(p, cons)?;
         let fp = system.residuals2(&c).iter().sum();
         Some((c, fp))
     };
@@ -551,6 +672,52 @@ pub(crate) fn smoothing_spline_from(
     Some(system.spline(coefs, p, fp, s))
 }
 
+/// The smoothing spline on the given interior knots (no knot is added) under the end
+/// conditions `cons`, with `E ≤ target.s` when the constrained least-squares spline can reach
+/// it (p searched from `p_start`), otherwise that least-squares spline when its E is within
+/// `target.accept`. `None` when neither is possible, when the conditions cannot be imposed, or
+/// when they raise the least-squares E by more than `max_increase` (the data reject them).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn constrained_fit(
+    points: &[DVec3],
+    params: &[f64],
+    degree: usize,
+    target: Target,
+    ends: &Ends,
+    interior: &[f64],
+    cons: &[EndCurvature],
+    p_start: Option<f64>,
+    max_increase: f64,
+) -> Option<Spline> {
+    let k = degree;
+    let s = target.s;
+    let m = points.len();
+    let (a, b) = (params[0], params[m - 1]);
+    if !schoenberg_whitney(&clamped(k, a, b, interior), k, params) {
+        return None;
+    }
+    let system = System::new(k, clamped(k, a, b, interior), points, params, ends);
+    let coefs = system.least_squares_with(cons)?;
+    let fp_inf: f64 = system.residuals2(&coefs).iter().sum();
+    let free = system.least_squares()?;
+    if fp_inf - system.residuals2(&free).iter().sum::<f64>() > max_increase {
+        return None;
+    }
+    if fp_inf > s * (1.0 + REL_ACC) || (fp_inf - s).abs() < REL_ACC * s || interior.is_empty() {
+        return (fp_inf <= target.accept * (1.0 + REL_ACC))
+            .then(|| system.spline(coefs, f64::INFINITY, fp_inf, target.accept));
+    }
+    // F(0): the constrained polynomial (or, if the conditions fix it completely or cannot be
+    // imposed on it, the free one; F(0) only starts the bracket on p).
+    let cold = initial_interior(k, ends, params);
+    let poly = System::new(k, clamped(k, a, b, &cold), points, params, ends);
+    let c0 = poly
+        .least_squares_with(cons)
+        .or_else(|| poly.least_squares())?;
+    let fp0: f64 = poly.residuals2(&c0).iter().sum();
+    find_p(&system, s, fp0.max(fp_inf), (coefs, fp_inf), p_start, cons)
+}
+
 /// Dierckx's `fprati`: the zero of the rational function `R(p) = (u·p + v)/(p + w)` through
 /// `(p1, f1)`, `(p2, f2)`, `(p3, f3)` (`p3 < 0` meaning ∞), then narrowing the bracket so that
 /// `f1 > 0 > f3`.
@@ -576,6 +743,7 @@ fn fprati(p1: &mut f64, f1: &mut f64, p2: f64, f2: f64, p3: &mut f64, f3: &mut f
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::curve::NurbsCurve;
 
     fn ends(points: &[DVec3]) -> Ends {
         Ends {
@@ -631,6 +799,75 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    #[test]
+    fn end_curvature_conditions_are_met_by_the_closest_fit() {
+        // Noisy data on a bent curve; the fit with zero end curvature along w at both ends must
+        // meet the conditions (checked on the curve itself), and every feasible change of its
+        // coefficients must raise E (it is the constrained minimiser).
+        let params: Vec<f64> = (0..90).map(|i| f64::from(i) / 89.0).collect();
+        let points: Vec<DVec3> = params
+            .iter()
+            .enumerate()
+            .map(|(i, &u)| {
+                let wobble = 0.01 * ((i * 7 % 5) as f64 - 2.0);
+                DVec3::new(3.0 * u, (2.5 * u).sin() + wobble, 0.4 * u * u)
+            })
+            .collect();
+        let e = ends(&points);
+        let interior = [0.2, 0.45, 0.7, 0.85];
+        let sys = System::new(3, clamped(3, 0.0, 1.0, &interior), &points, &params, &e);
+        let cons = [
+            EndCurvature {
+                at_start: true,
+                w: DVec3::new(0.0, 1.0, 0.2).normalize(),
+            },
+            EndCurvature {
+                at_start: false,
+                w: DVec3::new(-0.3, 1.0, 0.0).normalize(),
+            },
+        ];
+        let energy = |c: &[DVec3]| -> f64 { sys.residuals2(c).iter().sum() };
+        for p in [f64::INFINITY, 30.0] {
+            let c = if p.is_infinite() {
+                sys.least_squares_with(&cons)
+            } else {
+                sys.smoothing(p, &cons)
+            }
+            .expect("fits");
+            let curve = NurbsCurve::try_new(3, sys.knots.clone(), c.clone(), None).unwrap();
+            for (con, t) in cons.iter().zip([0.0, 1.0]) {
+                let d2 = curve.derivs(t).d2;
+                assert!(
+                    d2.dot(con.w).abs() < 1e-9 * d2.length().max(1.0),
+                    "p {p}: w·C'' = {} at {t}",
+                    d2.dot(con.w)
+                );
+            }
+            if p.is_finite() {
+                continue;
+            }
+            // Feasible perturbations: along a direction orthogonal to both w, or along w on a
+            // coefficient the conditions do not involve (the middle ones).
+            let base = energy(&c);
+            let across = cons[0].w.cross(cons[1].w).normalize();
+            for j in 1..c.len() - 1 {
+                let mut dirs = vec![across];
+                if (3..c.len() - 3).contains(&j) {
+                    dirs.extend([cons[0].w, cons[1].w]);
+                }
+                for d in dirs {
+                    for eps in [1e-3, -1e-3] {
+                        let mut moved = c.clone();
+                        moved[j] += d * eps;
+                        assert!(energy(&moved) > base, "coefficient {j} moved lowers E");
+                    }
+                }
+            }
+            let free = sys.least_squares().expect("fits");
+            assert!(energy(&free) < base, "the conditions cost something here");
         }
     }
 

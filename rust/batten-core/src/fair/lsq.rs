@@ -87,7 +87,9 @@ impl BandedQr {
 
     /// Rotate the row with entries `h` in columns `first..first + h.len()` and right-hand side
     /// `rhs` into the triangle (Dierckx `fpgivs` + `fprota`). `h` is used as scratch space.
-    /// Entries at columns `>= n` must be zero.
+    /// Entries at columns `>= n` must be zero. As in Dierckx's ordered processing, the
+    /// triangle rows the row meets must have no entries beyond its last column (true when rows
+    /// come with non-decreasing last columns, as observations in span order do).
     pub fn add_row(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
         let len = h.len();
         debug_assert!(len <= self.band, "row wider than the band");
@@ -139,6 +141,43 @@ impl BandedQr {
         Some(c)
     }
 
+    /// `(RᵀR)⁻¹ g`, i.e. `(AᵀA)⁻¹ g` for the rows `A` rotated in so far: a forward
+    /// substitution with `Rᵀ` and a back substitution with `R` (for the Lagrange correction of
+    /// a linearly constrained fit, Lawson & Hanson 1974 ch. 20). `None` on a negligible pivot,
+    /// as [`BandedQr::solve`].
+    pub fn solve_normal(&self, g: &[f64]) -> Option<Vec<f64>> {
+        let n = self.n;
+        let b = self.band;
+        debug_assert_eq!(g.len(), n, "one entry per unknown");
+        let scale = (0..n).map(|i| self.r[i * b].abs()).fold(0.0, f64::max);
+        let tiny = scale * 1e-13;
+        // Rᵀ v = g: column j of R holds R[i][j] = r[i·b + (j − i)] for j − b < i ≤ j.
+        let mut v = vec![0.0; n];
+        for j in 0..n {
+            let d = self.r[j * b];
+            if d.abs() <= tiny || d.is_nan() {
+                return None;
+            }
+            let mut acc = g[j];
+            let lo = j.saturating_sub(b - 1);
+            for (i, vi) in v.iter().enumerate().take(j).skip(lo) {
+                acc -= self.r[i * b + (j - i)] * vi;
+            }
+            v[j] = acc / d;
+        }
+        // R y = v.
+        let mut y = vec![0.0; n];
+        for i in (0..n).rev() {
+            let row = &self.r[i * b..(i + 1) * b];
+            let mut acc = v[i];
+            for l in 1..b.min(n - i) {
+                acc -= y[i + l] * row[l];
+            }
+            y[i] = acc / row[0];
+        }
+        Some(y)
+    }
+
     /// Sum of the diagonal entries (Dierckx's initial value for p is `n / Σ diag`).
     pub fn diagonal_sum(&self) -> f64 {
         (0..self.n).map(|i| self.r[i * self.band]).sum()
@@ -170,6 +209,37 @@ mod tests {
         let a = (sy - b * sx) / n;
         assert!((c[0].x - a).abs() < 1e-12, "intercept {} vs {a}", c[0].x);
         assert!((c[1].x - b).abs() < 1e-12, "slope {} vs {b}", c[1].x);
+    }
+
+    #[test]
+    fn solve_normal_inverts_the_normal_matrix() {
+        // Rows of a banded 5-unknown problem (in column order, as `add_row` needs); check
+        // (AᵀA) y = g with AᵀA formed by hand.
+        let rows: Vec<(usize, [f64; 3])> = (0..12)
+            .map(|i| {
+                let x = f64::from(i) * 0.37;
+                (
+                    (i as usize) / 4,
+                    [1.0 + x.sin(), 0.5 * x.cos(), 0.2 + 0.1 * x],
+                )
+            })
+            .collect();
+        let mut qr = BandedQr::new(5, 3);
+        let mut ata = [[0.0; 5]; 5];
+        for (first, h) in &rows {
+            for (a, &ha) in h.iter().enumerate() {
+                for (b, &hb) in h.iter().enumerate() {
+                    ata[first + a][first + b] += ha * hb;
+                }
+            }
+            qr.add_row(*first, &mut h.clone(), DVec3::ZERO);
+        }
+        let g = [0.3, -1.0, 2.0, 0.0, 0.7];
+        let y = qr.solve_normal(&g).expect("full rank");
+        for (i, row) in ata.iter().enumerate() {
+            let back: f64 = row.iter().zip(&y).map(|(a, y)| a * y).sum();
+            assert!((back - g[i]).abs() < 1e-11, "row {i}: {back} vs {}", g[i]);
+        }
     }
 
     #[test]

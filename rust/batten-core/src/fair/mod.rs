@@ -12,6 +12,7 @@
 //! pieces joined with a knot of multiplicity `degree`, so the curve stays sharp there.
 
 mod clean;
+mod end_curl;
 mod error;
 mod fit;
 mod knots;
@@ -269,24 +270,30 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
 
     let (knots, coefs, corner_parameters) = join(&pieces, k);
     let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
-    // A single piece whose fit measured its deviation (tolerance mode) is the curve itself:
-    // its parameters start at 0, so joining leaves knots and control points as they were.
-    let dev = match pieces.as_slice() {
-        [p] if p.deviation.is_some()
-            && p.curve.knots() == curve.knots()
+    // A single piece is the curve itself (its parameters start at 0, so joining leaves knots
+    // and control points as they were): what its fit measured holds for the curve.
+    let single = match pieces.as_slice() {
+        [p] if p.curve.knots() == curve.knots()
             && p.curve.control_points() == curve.control_points() =>
         {
-            p.deviation.expect("checked")
+            Some(p)
         }
-        _ => metrics::deviation(&curve, pts)?,
+        _ => None,
     };
+    let dev = match single.and_then(|p| p.deviation) {
+        Some(dev) => dev,
+        None => metrics::deviation(&curve, pts)?,
+    };
+    let fairness = single
+        .and_then(|p| p.metrics)
+        .unwrap_or_else(|| fairness_metrics(&curve));
     let report = FairReport {
         control_points: curve.control_point_count(),
         knots,
         max_deviation: dev.max,
         max_deviation_index: cleaned.index[dev.max_index],
         rms_deviation: dev.rms,
-        metrics: fairness_metrics(&curve),
+        metrics: fairness,
         smoothing_factor: pieces.iter().map(|p| p.s).sum(),
         dropped_duplicates: cleaned.dropped,
         corners: corners.iter().map(|&c| cleaned.index[c]).collect(),

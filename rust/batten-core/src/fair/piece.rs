@@ -3,9 +3,10 @@
 
 use glam::DVec3;
 
+use super::end_curl::straighten;
 use super::error::FairError;
 use super::fit::{smoothing_spline, smoothing_spline_from, Ends, Spline, Target};
-use super::metrics::{deviation, Deviation};
+use super::metrics::{deviation, Deviation, FairnessMetrics};
 use super::param::{chord_length, reproject};
 use crate::curve::NurbsCurve;
 
@@ -51,6 +52,8 @@ pub(crate) struct PieceFit {
     pub settled: bool,
     /// The deviation of the piece's points from `curve`, when the fit already measured it.
     pub deviation: Option<Deviation>,
+    /// The fairness metrics of `curve`, when the fit already measured them.
+    pub metrics: Option<FairnessMetrics>,
 }
 
 /// End directions (unit vectors) of the piece, if fixed.
@@ -136,6 +139,21 @@ pub(crate) fn fit_smooth(
             speed = length / domain;
         }
     }
+    // A hook at an end that the data do not demand is refitted away (see `end_curl`).
+    let mut metrics = None;
+    if let Some((sp, curve)) = &last {
+        let ends = Ends {
+            start: pts[0],
+            end: pts[m - 1],
+            start_derivative: dirs.start.map(|d| d * speed),
+            end_derivative: dirs.end.map(|d| d * speed),
+        };
+        let (straight, m) = straighten(&pts, &u, s, &ends, sp, curve);
+        if straight.is_some() {
+            last = straight;
+        }
+        metrics = Some(m);
+    }
     let (spline, curve) = match last {
         Some(fit) => fit,
         // Chord-length parameters of distinct points always determine the polynomial; this is
@@ -149,6 +167,7 @@ pub(crate) fn fit_smooth(
         iterations,
         settled,
         deviation: None,
+        metrics,
     })
 }
 
@@ -213,6 +232,7 @@ fn short_piece(points: &[DVec3], degree: usize) -> Result<PieceFit, FairError> {
             iterations: 0,
             settled: true,
             deviation: None,
+            metrics: None,
         },
         degree,
     ))
