@@ -146,6 +146,35 @@ impl BezierPiece {
         cartesian((h, d1 * (1.0 / len), d2 * (1.0 / (len * len))))
     }
 
+    /// [`BezierPiece::convex_foot`] starting from the global parameter `hint` (a nearby
+    /// point's foot): plain Newton, which from a close start needs two or three steps and no
+    /// end evaluations; where it would leave the piece (the foot may be an end), the
+    /// bracketed search of `convex_foot`. The same foot: `g` increases along the piece, so a
+    /// root inside it is the only one.
+    pub fn convex_foot_near(&self, q: DVec3, hint: f64) -> (f64, DVec3) {
+        let len = self.t1 - self.t0;
+        let mut u = (hint - self.t0) / len;
+        if u > 0.0 && u < 1.0 {
+            for _ in 0..8 {
+                let (c, d1, d2) = self.local_derivs(u);
+                let r = c - q;
+                let (gu, dg) = (d1.dot(r), d2.dot(r) + d1.length_squared());
+                if dg <= 0.0 {
+                    break;
+                }
+                let next = u - gu / dg;
+                if !(next > 0.0 && next < 1.0) {
+                    break;
+                }
+                if (next - u).abs() <= 4.0 * f64::EPSILON {
+                    return (self.t0 + next * len, self.local_derivs(next).0);
+                }
+                u = next;
+            }
+        }
+        self.convex_foot(q)
+    }
+
     /// The closest point to `q` on a piece where [`BezierPiece::distance_convex`] holds:
     /// the root of `g(u) = C′(u)·(C(u) − q)`, which increases along the piece, by Newton's
     /// method kept inside a bisection bracket (or an end, where `g` does not change sign).
@@ -400,6 +429,24 @@ mod tests {
             !piece.distance_convex(below),
             "beyond the centre of curvature"
         );
+    }
+
+    #[test]
+    fn convex_foot_from_a_hint_is_the_same_foot() {
+        let piece = arch();
+        for (q, hint) in [
+            (DVec3::new(0.37, 0.2, 0.0), 2.9),
+            (DVec3::new(0.37, 0.2, 0.0), 2.01),
+            (DVec3::new(0.9, 0.1, 0.0), 3.5),
+            (DVec3::new(-0.3, -0.2, 0.0), 2.5), // foot at the start: Newton leaves the piece
+            (DVec3::new(1.3, -0.2, 0.0), 2.5),  // foot at the end
+        ] {
+            assert!(piece.distance_convex(q), "convex at {q}");
+            let (t0, p0) = piece.convex_foot(q);
+            let (t1, p1) = piece.convex_foot_near(q, hint);
+            assert!((t0 - t1).abs() < 1e-12, "q {q}: {t1} vs {t0}");
+            assert!((p0 - p1).length() < 1e-12, "q {q}: point");
+        }
     }
 
     #[test]

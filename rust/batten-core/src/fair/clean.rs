@@ -78,6 +78,16 @@ pub(crate) fn check_order(points: &[DVec3]) -> Result<(), FairError> {
             jump_index = i;
         }
     }
+    // Any tour from the first point reaches the point farthest from it, so it is at least that
+    // far: when the polyline is within the ratio of that, it is within the ratio of the tour
+    // too (the usual case, a curve that does not turn back on itself, decided in O(m)).
+    let reach = points
+        .iter()
+        .map(|p| (*p - points[0]).length())
+        .fold(0.0, f64::max);
+    if path_length <= ORDER_RATIO * reach {
+        return Ok(());
+    }
     let ordered_length = nearest_neighbour_tour(points);
     if path_length > ORDER_RATIO * ordered_length {
         return Err(FairError::OutOfOrder {
@@ -224,6 +234,30 @@ pub fn corner_indices(points: &[DVec3], min_angle: f64) -> Vec<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn order_check_accepts_curves_that_turn_back_and_rejects_shuffles() {
+        // 200 points round 330° of a circle: the polyline is 2.9 times as long as the farthest
+        // point is from the first, so the tour itself decides (and accepts); an open quarter
+        // circle is decided by the farthest point alone; both shuffled are rejected.
+        for sweep in [330f64, 90.0] {
+            let pts: Vec<DVec3> = (0..200)
+                .map(|i| {
+                    let a = (sweep * f64::from(i) / 199.0).to_radians();
+                    DVec3::new(a.cos(), a.sin(), 0.0) * 10.0
+                })
+                .collect();
+            assert!(check_order(&pts).is_ok(), "{sweep}° in order");
+            let mut shuffled = pts.clone();
+            for i in 1..shuffled.len() {
+                shuffled.swap(i, (i * 7919) % pts.len());
+            }
+            assert!(
+                matches!(check_order(&shuffled), Err(FairError::OutOfOrder { .. })),
+                "{sweep}° shuffled"
+            );
+        }
+    }
 
     #[test]
     fn grid_tour_is_the_scanned_tour() {

@@ -196,6 +196,15 @@ impl<'a> System<'a> {
         let from = span.partition_point(|&s| s < l);
         let to = span.partition_point(|&s| s <= l);
         let mut h = [0.0; crate::curve::MAX_ORDER];
+        if width == k + 1 {
+            // Every coefficient of the span is free (the fixed ones are those outside
+            // `first_free..last_free`): the rows are the basis values as they are.
+            for i in from..to {
+                h[..=k].copy_from_slice(&self.design.basis[i][..=k]);
+                qr.add_row(0, &mut h[..=k], self.points[i]);
+            }
+            return (base, qr);
+        }
         for i in from..to {
             let b = &self.design.basis[i];
             let mut rhs = self.points[i];

@@ -292,6 +292,7 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
     };
     let mut sum2 = 0.0;
     let mut last_t: Option<f64> = None;
+    let mut step: Option<f64> = None;
     let mut lower = vec![0.0; bez.pieces.len()];
     for (i, q) in points.iter().enumerate() {
         for (l, (boxed, a, b, flat)) in lower.iter_mut().zip(&bounds) {
@@ -304,7 +305,11 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
         let k = last_t.map_or(0, |t| bez.piece_at(t, false));
         let piece = &bez.pieces[k];
         let local = piece.distance_convex(*q).then(|| {
-            let (t, point) = piece.convex_foot(*q);
+            // Newton from the previous foot moved on by the last step along the curve.
+            let (t, point) = match (last_t, step) {
+                (Some(t), Some(dt)) => piece.convex_foot_near(*q, t + dt),
+                _ => piece.convex_foot(*q),
+            };
             (t, (point - *q).length())
         });
         let proven = local.filter(|&(_, d)| {
@@ -331,6 +336,7 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
                 (near.t, near.distance)
             }
         };
+        step = last_t.map(|l| t - l);
         last_t = Some(t);
         sum2 += d * d;
         if d > out.max {
