@@ -164,7 +164,7 @@ fn noisy_arc_and_wigley_fits_add_no_inflection() {
 }
 
 /// The S-bend's true end curvature (0.066 /m, an eighth of its largest) is within the scatter
-/// of a free end span's curvature at this noise, so without the end-curl refit 3 of these 8
+/// of a free end span's curvature at this noise, so without lobe flattening 3 of these 8
 /// seeds bent the wrong way in the last percent of the curve.
 #[test]
 fn noisy_s_bend_fit_adds_no_inflection() {
@@ -179,9 +179,27 @@ fn noisy_s_bend_fit_adds_no_inflection() {
     }
 }
 
+/// Over 40 seeds the S-bend fits bend the wrong way in at most one: a wiggle about the true
+/// inflection or a hook at an end, flattened where the data allow it (before lobe flattening
+/// 9 of these 40 had extra inflections; the one left, seed 13, is a knot cluster on a noise
+/// cluster that the data then do support).
+#[test]
+fn noisy_s_bend_extra_inflections_are_rare() {
+    let (_, truth, normal, sigma) = cases().into_iter().nth(2).unwrap();
+    let extra: Vec<u64> = (1..=40)
+        .filter(|&seed| {
+            let noisy = sample(&truth, M, sigma, normal, seed);
+            let fit = fair_points(&noisy, &options(Smoothing::Noise(sigma))).unwrap();
+            fit.report.metrics.inflections > 1
+        })
+        .collect();
+    println!("seeds with extra inflections: {extra:?}");
+    assert!(extra.len() <= 1, "seeds {extra:?}");
+}
+
 /// An inflection the data demand is kept: the S-bend from just before its inflection (7 % of
 /// the length in, end curvature a tenth of the largest), so the true sign change lies in the
-/// first knot span of the fit, where the end-curl refit looks; at σ = 2 mm the data reject
+/// first knot span of the fit, an end lobe flattening tries; at σ = 2 mm the data reject
 /// zero end curvature. (At σ = 5 mm they do not, and the fit may lose it: 4 of these seeds.)
 #[test]
 fn an_inflection_next_to_an_end_is_kept() {

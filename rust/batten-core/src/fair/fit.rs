@@ -40,15 +40,15 @@ pub(crate) struct Ends {
     pub end_derivative: Option<DVec3>,
 }
 
-/// A linear condition on the fit at one end of the piece: `w · C″(end) = 0`, which makes the
-/// curvature there zero in the plane with in-plane normal `w` (for `w ⊥ C′(end)`; the
-/// condition is linear in the coefficients, so the constrained fit is a least-squares problem
-/// with one equality, solved by a Lagrange correction).
+/// A linear condition on the fit: `w · C″(t) = 0`, which makes the curvature at `t` zero in
+/// the plane with in-plane normal `w` (for `w ⊥ C′(t)`). The condition is linear in the
+/// coefficients, so the constrained fit is a least-squares problem with equality
+/// constraints, solved by a Lagrange correction.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct EndCurvature {
-    /// True for the start of the piece, false for its end.
-    pub at_start: bool,
-    /// The direction `w` whose component of `C″` is held at zero.
+pub(crate) struct ZeroCurvature {
+    /// The parameter (inside the piece's domain).
+    pub t: f64,
+    /// The direction `w` whose component of `C″(t)` is held at zero.
     pub w: DVec3,
 }
 
@@ -92,7 +92,7 @@ pub(crate) struct Spline {
 /// that later blocks can still change (`checkpoints`, one per span). The triangle is then bit
 /// for bit the one [`System::new`] builds on the new knots, at the cost of `2k` spans of
 /// data and `n − s` small blocks instead of all the data.
-struct System<'a> {
+pub(crate) struct System {
     degree: usize,
     knots: Vec<f64>,
     n: usize,
@@ -100,8 +100,8 @@ struct System<'a> {
     first_free: usize,
     fixed: Vec<(usize, DVec3)>,
     design: Design,
-    points: &'a [DVec3],
-    params: &'a [f64],
+    points: Vec<DVec3>,
+    params: Vec<f64>,
     ends: Ends,
     /// One past the last free coefficient.
     last_free: usize,
@@ -113,6 +113,9 @@ struct System<'a> {
     /// exist) and their right-hand sides before block `l` is merged.
     cp_rows: Vec<f64>,
     cp_z: Vec<DVec3>,
+    /// `F(0)`, the least-squares polynomial's E, once a search for p has needed it (NaN
+    /// before).
+    f_zero: f64,
 }
 
 /// The fixed coefficients for `knots`: end points, and the neighbours fixed by end derivatives.
@@ -142,14 +145,8 @@ fn fixed_coefficients(
     (fixed, first_free, last_free)
 }
 
-impl<'a> System<'a> {
-    fn new(
-        degree: usize,
-        knots: Vec<f64>,
-        points: &'a [DVec3],
-        params: &'a [f64],
-        ends: &Ends,
-    ) -> Self {
+impl System {
+    fn new(degree: usize, knots: Vec<f64>, points: &[DVec3], params: &[f64], ends: &Ends) -> Self {
         let k = degree;
         let n = knots.len() - k - 1;
         let (fixed, first_free, last_free) = fixed_coefficients(&knots, k, ends);
@@ -162,14 +159,15 @@ impl<'a> System<'a> {
             first_free,
             fixed,
             design,
-            points,
-            params,
+            points: points.to_vec(),
+            params: params.to_vec(),
             ends: *ends,
             last_free,
             ls: BandedQr::new(free, k + 1),
             blocks: Vec::new(),
             cp_rows: Vec::new(),
             cp_z: Vec::new(),
+            f_zero: f64::NAN,
         };
         sys.blocks = (0..n).map(|l| sys.block(l)).collect();
         sys.merge_from(0);
@@ -286,7 +284,8 @@ impl<'a> System<'a> {
         for l in &mut span[to..] {
             *l += 1;
         }
-        self.design.update_range(&self.knots, self.params, from, to);
+        self.design
+            .update_range(&self.knots, &self.params, from, to);
         let old = std::mem::take(&mut self.blocks);
         let mut blocks = Vec::with_capacity(self.n);
         blocks.extend(old[..first].iter().cloned());
@@ -317,16 +316,12 @@ impl<'a> System<'a> {
     }
 
     /// The row `g` (over the free coefficients) and the fixed coefficients' part `r0` of the
-    /// condition `Σⱼ N″ⱼ(end)·(cⱼ · w) = 0`.
-    fn condition(&self, c: &EndCurvature) -> (Vec<f64>, f64) {
+    /// condition `Σⱼ N″ⱼ(t)·(cⱼ · w) = 0`.
+    fn condition(&self, c: &ZeroCurvature) -> (Vec<f64>, f64) {
         let k = self.degree;
-        let (span, t) = if c.at_start {
-            (k, self.knots[k])
-        } else {
-            (self.n - 1, self.knots[self.n])
-        };
+        let span = crate::curve::find_span(&self.knots, k, self.n, c.t);
         let mut d = [[0.0; crate::curve::MAX_ORDER]; 4];
-        crate::curve::ders_basis_funs(&self.knots, span, t, k, 2, &mut d);
+        crate::curve::ders_basis_funs(&self.knots, span, c.t, k, 2, &mut d);
         let mut g = vec![0.0; self.ls.unknowns()];
         let mut r0 = 0.0;
         for (j, &b) in d[2].iter().enumerate().take(k + 1) {
@@ -349,7 +344,7 @@ impl<'a> System<'a> {
         &self,
         tri: &BandedQr,
         mut x: Vec<DVec3>,
-        cons: &[EndCurvature],
+        cons: &[ZeroCurvature],
     ) -> Option<Vec<DVec3>> {
         if cons.is_empty() {
             return Some(x);
@@ -371,28 +366,30 @@ impl<'a> System<'a> {
                     + r0
             })
             .collect();
-        let h = |i: usize, j: usize| dot(&rows[i].0, &ys[j]) * cons[i].w.dot(cons[j].w);
-        let lambda: Vec<f64> = match cons.len() {
-            1 => {
-                let d = h(0, 0);
-                (d > 0.0).then(|| vec![r[0] / d])?
+        let q = cons.len();
+        let mut h = vec![0.0; q * q];
+        for i in 0..q {
+            for j in 0..q {
+                h[i * q + j] = dot(&rows[i].0, &ys[j]) * cons[i].w.dot(cons[j].w);
             }
-            2 => {
-                let (a, b, c, d) = (h(0, 0), h(0, 1), h(1, 0), h(1, 1));
-                let det = a * d - b * c;
-                if det.is_nan() || det.abs() <= 1e-12 * (a * d).abs() {
-                    return None;
-                }
-                vec![(d * r[0] - b * r[1]) / det, (a * r[1] - c * r[0]) / det]
-            }
-            _ => return None,
-        };
+        }
+        let lambda = cholesky_solve(&mut h, r)?;
         for ((y, l), c) in ys.iter().zip(&lambda).zip(cons) {
             for (xj, yj) in x.iter_mut().zip(y) {
                 *xj -= c.w * (yj * l);
             }
         }
         Some(x)
+    }
+
+    /// `F(0)` as found by the search for p (NaN when there was none).
+    pub fn f_zero(&self) -> f64 {
+        self.f_zero
+    }
+
+    /// Number of data points.
+    pub fn data_count(&self) -> usize {
+        self.points.len()
     }
 
     /// All coefficients from the free ones.
@@ -420,13 +417,13 @@ impl<'a> System<'a> {
     }
 
     /// The least-squares spline under the end conditions `cons`.
-    fn least_squares_with(&self, cons: &[EndCurvature]) -> Option<Vec<DVec3>> {
+    fn least_squares_with(&self, cons: &[ZeroCurvature]) -> Option<Vec<DVec3>> {
         let x = self.constrain(&self.ls, self.ls.solve()?, cons)?;
         Some(self.full(&x))
     }
 
     /// The smoothing spline for `p` > 0 under the end conditions `cons` (none: fpcurf part 2).
-    fn smoothing(&self, p: f64, cons: &[EndCurvature]) -> Option<Vec<DVec3>> {
+    fn smoothing(&self, p: f64, cons: &[ZeroCurvature]) -> Option<Vec<DVec3>> {
         let g = self.smoothing_triangle(p);
         let x = self.constrain(&g, g.solve()?, cons)?;
         Some(self.full(&x))
@@ -525,6 +522,25 @@ pub(crate) fn smoothing_spline_from(
     warm: &[f64],
     search_p: Option<Option<f64>>,
 ) -> Option<Spline> {
+    fit_with_system(points, params, degree, target, ends, warm, search_p, None).map(|(sp, _)| sp)
+}
+
+/// [`smoothing_spline_from`], also returning the least-squares system of the result's knots
+/// (for a refit under conditions on the same knots and data, [`constrained_fit`]); the system
+/// is `None` only when the spline is the last good one before a numerically singular step.
+/// `f_zero`: `F(0)` of a previous fit to nearly the same data, to start the search for p
+/// without fitting the polynomial again.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit_with_system(
+    points: &[DVec3],
+    params: &[f64],
+    degree: usize,
+    target: Target,
+    ends: &Ends,
+    warm: &[f64],
+    search_p: Option<Option<f64>>,
+    f_zero: Option<f64>,
+) -> Option<(Spline, Option<System>)> {
     let k = degree;
     let s = target.s;
     let m = points.len();
@@ -544,11 +560,11 @@ pub(crate) fn smoothing_spline_from(
     let mut fp0: Option<f64> = None;
     let mut previous: Option<Spline> = None;
     let mut system = System::new(k, clamped(k, a, b, &interior), points, params, ends);
-    let (system, ls_coefs, fp_inf) = loop {
+    let (mut system, ls_coefs, fp_inf) = loop {
         // Knots are only added where Schoenberg–Whitney holds, so this fails only when
         // rounding makes the system numerically singular: keep the last good spline then.
         let Some(coefs) = system.least_squares() else {
-            return previous;
+            return previous.map(|sp| (sp, None));
         };
         let r2 = system.residuals2(&coefs);
         let fp: f64 = r2.iter().sum();
@@ -556,7 +572,8 @@ pub(crate) fn smoothing_spline_from(
             fp0 = Some(fp);
             if fp <= s && !warm_started {
                 // The least-squares polynomial is smooth enough (fpcurf ier = -2).
-                return Some(system.spline(coefs, 0.0, fp, s));
+                let sp = system.spline(coefs, 0.0, fp, s);
+                return Some((sp, Some(system)));
             }
         }
         if (fp - s).abs() < acc || fp < s {
@@ -564,13 +581,23 @@ pub(crate) fn smoothing_spline_from(
         }
         if fp <= target.accept {
             // Within the accepted range above S: the least-squares spline.
-            return Some(system.spline(coefs, f64::INFINITY, fp, target.accept));
+            let sp = system.spline(coefs, f64::INFINITY, fp, target.accept);
+            return Some((sp, Some(system)));
         }
         // One knot at a time (the paper's rule; see the module note on fpcurf's nplus).
-        let ts = next_knots(&system.knots, k, &system.design, &r2, params, 1);
+        let ts = next_knots(
+            &system.knots,
+            k,
+            &system.design,
+            &r2,
+            params,
+            1,
+            s / m as f64,
+        );
         if ts.is_empty() {
             // No span can take a knot: the least-squares spline is the closest we get.
-            return Some(system.spline(coefs, f64::INFINITY, fp, s));
+            let sp = system.spline(coefs, f64::INFINITY, fp, s);
+            return Some((sp, Some(system)));
         }
         for &t in &ts {
             let pos = interior.partition_point(|&u| u < t);
@@ -582,22 +609,28 @@ pub(crate) fn smoothing_spline_from(
         }
     };
     let Some(p_start) = search_p else {
-        return Some(system.spline(ls_coefs, f64::INFINITY, fp_inf, s));
+        let sp = system.spline(ls_coefs, f64::INFINITY, fp_inf, s);
+        return Some((sp, Some(system)));
     };
     if (fp_inf - s).abs() < acc || interior.is_empty() {
-        return Some(system.spline(ls_coefs, f64::INFINITY, fp_inf, s));
+        let sp = system.spline(ls_coefs, f64::INFINITY, fp_inf, s);
+        return Some((sp, Some(system)));
     }
 
     // Part 2: p with F(p) = S by rational interpolation (fpcurf, fprati).
     // F(0): the least-squares polynomial's E (the first pass of a cold start).
-    let fp0 = if warm_started {
-        let poly = System::new(k, clamped(k, a, b, &cold), points, params, ends);
-        let c = poly.least_squares()?;
-        poly.residuals2(&c).iter().sum()
-    } else {
-        fp0.expect("set on the first pass")
+    let fp0 = match (warm_started, f_zero) {
+        (true, Some(f)) if f.is_finite() => f,
+        (true, _) => {
+            let poly = System::new(k, clamped(k, a, b, &cold), points, params, ends);
+            let c = poly.least_squares()?;
+            poly.residuals2(&c).iter().sum()
+        }
+        (false, _) => fp0.expect("set on the first pass"),
     };
-    find_p(&system, s, fp0, (ls_coefs, fp_inf), p_start, &[])
+    system.f_zero = fp0;
+    let sp = find_p(&system, s, fp0, (ls_coefs, fp_inf), p_start, &[])?;
+    Some((sp, Some(system)))
 }
 
 /// The smoothing spline of `system` with `F(p) = S` under the end conditions `cons` (fpcurf
@@ -611,7 +644,7 @@ fn find_p(
     fp0: f64,
     (ls_coefs, fp_inf): (Vec<DVec3>, f64),
     p_start: Option<f64>,
-    cons: &[EndCurvature],
+    cons: &[ZeroCurvature],
 ) -> Option<Spline> {
     let acc = REL_ACC * s;
     let eval = |p: f64| -> Option<(Vec<DVec3>, f64)> {
@@ -681,50 +714,92 @@ fn find_p(
     Some(system.spline(coefs, p, fp, s))
 }
 
-/// The smoothing spline on the given interior knots (no knot is added) under the end
+/// The smoothing spline of `system` (its knots and data; no knot is added) under the
 /// conditions `cons`, with `E ≤ target.s` when the constrained least-squares spline can reach
 /// it (p searched from `p_start`), otherwise that least-squares spline when its E is within
 /// `target.accept`. `None` when neither is possible, when the conditions cannot be imposed, or
 /// when they raise the least-squares E by more than `max_increase` (the data reject them).
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn constrained_fit(
-    points: &[DVec3],
-    params: &[f64],
-    degree: usize,
+    system: &System,
     target: Target,
-    ends: &Ends,
-    interior: &[f64],
-    cons: &[EndCurvature],
+    cons: &[ZeroCurvature],
     p_start: Option<f64>,
     max_increase: f64,
 ) -> Option<Spline> {
-    let k = degree;
     let s = target.s;
-    let m = points.len();
-    let (a, b) = (params[0], params[m - 1]);
-    if !schoenberg_whitney(&clamped(k, a, b, interior), k, params) {
-        return None;
-    }
-    let system = System::new(k, clamped(k, a, b, interior), points, params, ends);
+    let free = system.least_squares()?;
     let coefs = system.least_squares_with(cons)?;
     let fp_inf: f64 = system.residuals2(&coefs).iter().sum();
-    let free = system.least_squares()?;
     if fp_inf - system.residuals2(&free).iter().sum::<f64>() > max_increase {
         return None;
     }
-    if fp_inf > s * (1.0 + REL_ACC) || (fp_inf - s).abs() < REL_ACC * s || interior.is_empty() {
+    let k = system.degree;
+    let interior = system.knots.len() - 2 * (k + 1);
+    if fp_inf > s * (1.0 + REL_ACC) || (fp_inf - s).abs() < REL_ACC * s || interior == 0 {
         return (fp_inf <= target.accept * (1.0 + REL_ACC))
             .then(|| system.spline(coefs, f64::INFINITY, fp_inf, target.accept));
     }
-    // F(0): the constrained polynomial (or, if the conditions fix it completely or cannot be
-    // imposed on it, the free one; F(0) only starts the bracket on p).
-    let cold = initial_interior(k, ends, params);
-    let poly = System::new(k, clamped(k, a, b, &cold), points, params, ends);
+    // F(0) only starts the bracket on p: the free polynomial's of the fit, if it had one (the
+    // constrained polynomial's is no smaller), else the constrained polynomial's (or, if the
+    // conditions fix it completely or cannot be imposed on it, the free one's).
+    if system.f_zero.is_finite() {
+        let f0 = system.f_zero.max(fp_inf);
+        return find_p(system, s, f0, (coefs, fp_inf), p_start, cons);
+    }
+    let params = &system.params;
+    let (a, b) = (params[0], params[params.len() - 1]);
+    let cold = initial_interior(k, &system.ends, params);
+    let poly = System::new(
+        k,
+        clamped(k, a, b, &cold),
+        &system.points,
+        params,
+        &system.ends,
+    );
     let c0 = poly
         .least_squares_with(cons)
         .or_else(|| poly.least_squares())?;
     let fp0: f64 = poly.residuals2(&c0).iter().sum();
-    find_p(&system, s, fp0.max(fp_inf), (coefs, fp_inf), p_start, cons)
+    find_p(system, s, fp0.max(fp_inf), (coefs, fp_inf), p_start, cons)
+}
+
+/// Solve `H x = b` for a small symmetric positive definite `H` (row-major, overwritten by
+/// its Cholesky factor); `None` when `H` is not positive definite to working accuracy (the
+/// conditions are dependent).
+fn cholesky_solve(h: &mut [f64], mut b: Vec<f64>) -> Option<Vec<f64>> {
+    let q = b.len();
+    let scale = (0..q).map(|i| h[i * q + i]).fold(0.0, f64::max);
+    for j in 0..q {
+        let mut d = h[j * q + j];
+        for l in 0..j {
+            d -= h[j * q + l] * h[j * q + l];
+        }
+        if d.is_nan() || d <= 1e-12 * scale {
+            return None;
+        }
+        let d = d.sqrt();
+        h[j * q + j] = d;
+        for i in j + 1..q {
+            let mut v = h[i * q + j];
+            for l in 0..j {
+                v -= h[i * q + l] * h[j * q + l];
+            }
+            h[i * q + j] = v / d;
+        }
+    }
+    for i in 0..q {
+        for l in 0..i {
+            b[i] -= h[i * q + l] * b[l];
+        }
+        b[i] /= h[i * q + i];
+    }
+    for i in (0..q).rev() {
+        for l in i + 1..q {
+            b[i] -= h[l * q + i] * b[l];
+        }
+        b[i] /= h[i * q + i];
+    }
+    Some(b)
 }
 
 /// Dierckx's `fprati`: the zero of the rational function `R(p) = (u·p + v)/(p + w)` through
@@ -829,12 +904,12 @@ mod tests {
         let interior = [0.2, 0.45, 0.7, 0.85];
         let sys = System::new(3, clamped(3, 0.0, 1.0, &interior), &points, &params, &e);
         let cons = [
-            EndCurvature {
-                at_start: true,
+            ZeroCurvature {
+                t: 0.0,
                 w: DVec3::new(0.0, 1.0, 0.2).normalize(),
             },
-            EndCurvature {
-                at_start: false,
+            ZeroCurvature {
+                t: 1.0,
                 w: DVec3::new(-0.3, 1.0, 0.0).normalize(),
             },
         ];

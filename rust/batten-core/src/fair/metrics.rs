@@ -39,6 +39,31 @@ pub struct FairnessMetrics {
 /// span, and ∫κ² ds by 8-point Gauss–Legendre per span with the space curvature
 /// `|C′ × C″| / |C′|³` (the fairness criteria of the H-rep paper §4 and of Dierckx 1993 §5.1).
 pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
+    curvature_samples(curve, true).metrics
+}
+
+/// One sample of the signed in-plane curvature.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CurvatureSample {
+    /// Curve parameter.
+    pub t: f64,
+    /// Signed curvature in the best-fit plane.
+    pub kappa: f64,
+    /// Arc length the sample stands for (`|C′|·Δt`).
+    pub ds: f64,
+}
+
+/// The samples [`fairness_metrics`] counts on, per smooth piece, with the metrics.
+pub(crate) struct CurvatureSamples {
+    pub pieces: Vec<Vec<CurvatureSample>>,
+    pub metrics: FairnessMetrics,
+}
+
+/// The curvature samples of `curve` ([`SAMPLES_PER_SPAN`] per knot span, at the middles of
+/// equal parameter steps, split into smooth pieces at knots of multiplicity ≥ degree) and its
+/// [`FairnessMetrics`]; `fairness_energy` is left 0 unless `energy`.
+pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSamples {
+    let with_energy = energy;
     let n = best_fit_normal(&curve.control_points());
     let bez = curve.bezier_decomposition();
     // First and second derivative on the Bézier piece holding t (de Casteljau, no
@@ -59,7 +84,9 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
         if t0 >= start && t1 <= end && t1 > t0 {
             let spans = pieces.last_mut().expect("one piece at least");
             spans.push((t0, t1));
-            energy += span_energy(&derivs, t0, t1);
+            if with_energy {
+                energy += span_energy(&derivs, t0, t1);
+            }
             let mult = knots.iter().filter(|&&u| u == t1).count();
             if t1 < end && mult >= p {
                 pieces.push(Vec::new());
@@ -67,37 +94,50 @@ pub fn fairness_metrics(curve: &NurbsCurve) -> FairnessMetrics {
         }
         i += 1;
     }
-    let mut kappa: Vec<Vec<f64>> = Vec::with_capacity(pieces.len());
+    let mut samples: Vec<Vec<CurvatureSample>> = Vec::with_capacity(pieces.len());
     let mut kmax: f64 = 0.0;
     for spans in &pieces {
         let mut ks = Vec::with_capacity(spans.len() * SAMPLES_PER_SPAN);
         for &(t0, t1) in spans {
+            let dt = (t1 - t0) / SAMPLES_PER_SPAN as f64;
             for j in 0..SAMPLES_PER_SPAN {
-                let t = t0 + (t1 - t0) * (j as f64 + 0.5) / SAMPLES_PER_SPAN as f64;
+                let t = t0 + dt * (j as f64 + 0.5);
                 let (d1, d2) = derivs(t);
                 let speed = d1.length();
-                let k = if speed > 0.0 {
+                let kappa = if speed > 0.0 {
                     d1.cross(d2).dot(n) / speed.powi(3)
                 } else {
                     0.0
                 };
-                kmax = kmax.max(k.abs());
-                ks.push(k);
+                kmax = kmax.max(kappa.abs());
+                ks.push(CurvatureSample {
+                    t,
+                    kappa,
+                    ds: speed * dt,
+                });
             }
         }
-        kappa.push(ks);
+        samples.push(ks);
     }
     let infl_thr = INFLECTION_THRESHOLD * kmax;
     let ext_thr = EXTREMUM_THRESHOLD * kmax;
-    FairnessMetrics {
-        inflections: kappa
+    let kappas = |ks: &Vec<CurvatureSample>| ks.iter().map(|s| s.kappa).collect::<Vec<f64>>();
+    let metrics = FairnessMetrics {
+        inflections: samples
             .iter()
-            .map(|ks| count_sign_changes(ks, infl_thr))
+            .map(|ks| count_sign_changes(&kappas(ks), infl_thr))
             .sum(),
-        curvature_extrema: kappa.iter().map(|ks| count_extrema(ks, ext_thr)).sum(),
+        curvature_extrema: samples
+            .iter()
+            .map(|ks| count_extrema(&kappas(ks), ext_thr))
+            .sum(),
         fairness_energy: energy,
         max_curvature: kmax,
         plane_normal: n,
+    };
+    CurvatureSamples {
+        pieces: samples,
+        metrics,
     }
 }
 

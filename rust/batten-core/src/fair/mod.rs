@@ -10,12 +10,19 @@
 //! chord lengths and are corrected by foot-point projection until they settle. End points are
 //! interpolated, end tangents may be fixed, and corners (knuckle points) split the fit into
 //! pieces joined with a knot of multiplicity `degree`, so the curve stays sharp there.
+//!
+//! Two refinements for fairness (both measured in `tests/fair.rs` and
+//! `blender_scripts/bench_fairing.py`): once some span's residuals are significantly more
+//! than noise explains, knots go where that excess is largest (bias) rather than where the
+//! plain sum is (`knots::next_knots`); and small curvature lobes that the data do not demand
+//! (a hook at a free end, ripples on a flat) are flattened by refits with zero curvature at
+//! their peaks, each accepted by a likelihood-ratio test (`lobes`).
 
 mod clean;
-mod end_curl;
 mod error;
 mod fit;
 mod knots;
+mod lobes;
 mod lsq;
 mod metrics;
 mod param;

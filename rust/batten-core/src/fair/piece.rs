@@ -3,9 +3,9 @@
 
 use glam::DVec3;
 
-use super::end_curl::straighten;
 use super::error::FairError;
-use super::fit::{smoothing_spline, smoothing_spline_from, Ends, Spline, Target};
+use super::fit::{fit_with_system, smoothing_spline, Ends, Spline, System, Target};
+use super::lobes::flatten;
 use super::metrics::{deviation, Deviation, FairnessMetrics};
 use super::param::{chord_length, reproject};
 use crate::curve::NurbsCurve;
@@ -95,6 +95,7 @@ pub(crate) fn fit_smooth(
         0
     };
     let mut interior: Vec<f64> = Vec::new();
+    let mut last_system = None;
     loop {
         let ends = Ends {
             start: pts[0],
@@ -114,8 +115,9 @@ pub(crate) fn fit_smooth(
         let exact = iterations >= relaxed;
         // A fit to S searches p, from the p of the fit before (the data barely moved).
         let search_p = exact.then(|| last.as_ref().map(|(sp, _)| sp.p));
-        let Some(spline) =
-            smoothing_spline_from(&pts, &u, degree, round, &ends, &interior, search_p)
+        let f_zero = last_system.as_ref().map(|sys: &System| sys.f_zero());
+        let Some((spline, system)) =
+            fit_with_system(&pts, &u, degree, round, &ends, &interior, search_p, f_zero)
         else {
             break;
         };
@@ -124,6 +126,7 @@ pub(crate) fn fit_smooth(
         let curve = NurbsCurve::try_new(degree, spline.knots.clone(), spline.coefs.clone(), None)?;
         if exact {
             last = Some((spline, curve.clone()));
+            last_system = system;
             if iterations >= max_iter {
                 break;
             }
@@ -139,18 +142,13 @@ pub(crate) fn fit_smooth(
             speed = length / domain;
         }
     }
-    // A hook at an end that the data do not demand is refitted away (see `end_curl`).
+    // Curvature lobes the data do not demand are flattened (see `lobes`), on the knots and
+    // data parameters of the last fit.
     let mut metrics = None;
-    if let Some((sp, curve)) = &last {
-        let ends = Ends {
-            start: pts[0],
-            end: pts[m - 1],
-            start_derivative: dirs.start.map(|d| d * speed),
-            end_derivative: dirs.end.map(|d| d * speed),
-        };
-        let (straight, m) = straighten(&pts, &u, s, &ends, sp, curve);
-        if straight.is_some() {
-            last = straight;
+    if let (Some((sp, curve)), Some(system)) = (&last, &last_system) {
+        let (flat, m) = flatten(system, s, sp, curve);
+        if flat.is_some() {
+            last = flat;
         }
         metrics = Some(m);
     }
