@@ -22,7 +22,9 @@
 use glam::DVec3;
 
 use super::fit::{constrained_fit, Spline, System, Target, ZeroCurvature};
-use super::metrics::{curvature_samples, CurvatureSamples, FairnessMetrics, INFLECTION_THRESHOLD};
+use super::metrics::{
+    bending_energy, curvature_samples, CurvatureSamples, FairnessMetrics, INFLECTION_THRESHOLD,
+};
 use crate::curve::NurbsCurve;
 
 /// The 99 % quantiles of χ² with 1..=8 degrees of freedom: the largest rise of E, in units of
@@ -105,9 +107,11 @@ pub(crate) fn flatten(
     fit: &Spline,
     curve: &NurbsCurve,
 ) -> (Option<(Spline, NurbsCurve)>, FairnessMetrics) {
-    let mut samples = curvature_samples(curve, true);
+    // Energy only once, for the curve that is kept.
+    let mut samples = curvature_samples(curve, false);
     let mut kept: Option<(Spline, NurbsCurve)> = None;
     if fit.degree < 2 || samples.metrics.inflections == 0 {
+        samples.metrics.fairness_energy = bending_energy(curve);
         return (kept, samples.metrics);
     }
     let k = fit.degree;
@@ -150,10 +154,8 @@ pub(crate) fn flatten(
         }
         break;
     }
-    let metrics = match &kept {
-        Some((_, c)) => curvature_samples(c, true).metrics,
-        None => samples.metrics,
-    };
+    let mut metrics = samples.metrics;
+    metrics.fairness_energy = bending_energy(kept.as_ref().map_or(curve, |(_, c)| c));
     (kept, metrics)
 }
 

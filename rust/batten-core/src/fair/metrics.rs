@@ -141,6 +141,23 @@ pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSa
     }
 }
 
+/// The bending energy ∫κ² ds of `curve` alone (the `fairness_energy` of
+/// [`fairness_metrics`]).
+pub(crate) fn bending_energy(curve: &NurbsCurve) -> f64 {
+    let bez = curve.bezier_decomposition();
+    let derivs = |t: f64| -> (DVec3, DVec3) {
+        let (_, d1, d2) = bez.pieces[bez.piece_at(t, false)].derivs_at(t);
+        (d1, d2)
+    };
+    let (start, end) = curve.domain();
+    curve
+        .knots()
+        .windows(2)
+        .filter(|w| w[0] >= start && w[1] <= end && w[1] > w[0])
+        .map(|w| span_energy(&derivs, w[0], w[1]))
+        .sum()
+}
+
 fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
     // Two Gauss–Legendre panels per span: κ²|C′| is smooth but not polynomial.
     let mut total = 0.0;
@@ -405,6 +422,18 @@ mod tests {
             .collect();
         let got = best_fit_normal(&pts);
         assert!(got.cross(n).length() < 1e-10, "normal {got} vs {n}");
+    }
+
+    #[test]
+    fn bending_energy_is_the_metrics_energy() {
+        let pts: Vec<DVec3> = (0..7)
+            .map(|i| DVec3::new(f64::from(i), (f64::from(i) * 0.9).sin(), 0.1 * f64::from(i)))
+            .collect();
+        let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.8, 1., 1., 1., 1.];
+        let curve = NurbsCurve::try_new(3, knots, pts, None).unwrap();
+        let e = fairness_metrics(&curve).fairness_energy;
+        assert!(e > 0.0, "a bent curve");
+        assert_eq!(bending_energy(&curve), e, "the same sum");
     }
 
     #[test]
