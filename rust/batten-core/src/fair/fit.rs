@@ -501,35 +501,23 @@ pub(crate) fn smoothing_spline(
     target: Target,
     ends: &Ends,
 ) -> Option<Spline> {
-    smoothing_spline_from(points, params, degree, target, ends, &[], Some(None))
+    fit_with_system(points, params, degree, target, ends, &[], Some(None), None).map(|(sp, _)| sp)
 }
 
 /// [`smoothing_spline`] starting from the interior knots `warm` instead of none (they are
-/// kept; knots are only added). `search_p`: `None` stops at the least-squares spline once
-/// `F(∞)` is within the target (part 1 only); `Some(start)` searches p from `start` (the p
-/// of a previous fit to nearly the same data) or, when that is `None`, from fpcurf's first
-/// guess.
+/// kept; knots are only added), returning with it the least-squares system of its knots (for
+/// a refit under conditions on the same knots and data, [`constrained_fit`]; `None` only when
+/// the spline is the last good one before a numerically singular step).
+///
+/// `search_p`: `None` stops at the least-squares spline once `F(∞)` is within the target
+/// (part 1 only); `Some(start)` searches p from `start` (the p of a previous fit to nearly
+/// the same data) or, when that is `None`, from fpcurf's first guess. `f_zero`: `F(0)` of a
+/// previous fit to nearly the same data, to start that search without fitting the
+/// polynomial again.
 ///
 /// `warm` is used only when the Schoenberg–Whitney conditions hold for it at `params`
 /// (parameters moved by a correction can leave a span without data); otherwise the search
 /// starts from no knots.
-pub(crate) fn smoothing_spline_from(
-    points: &[DVec3],
-    params: &[f64],
-    degree: usize,
-    target: Target,
-    ends: &Ends,
-    warm: &[f64],
-    search_p: Option<Option<f64>>,
-) -> Option<Spline> {
-    fit_with_system(points, params, degree, target, ends, warm, search_p, None).map(|(sp, _)| sp)
-}
-
-/// [`smoothing_spline_from`], also returning the least-squares system of the result's knots
-/// (for a refit under conditions on the same knots and data, [`constrained_fit`]); the system
-/// is `None` only when the spline is the last good one before a numerically singular step.
-/// `f_zero`: `F(0)` of a previous fit to nearly the same data, to start the search for p
-/// without fitting the polynomial again.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_with_system(
     points: &[DVec3],
