@@ -91,43 +91,30 @@ impl BandedQr {
     /// triangle rows the row meets must have no entries beyond its last column (true when rows
     /// come with non-decreasing last columns, as observations in span order do).
     pub fn add_row(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
-        // Fixed-length copies of the loop for the common widths, so that they unroll.
+        // The common widths pass through an array, so that the inlined loop has a constant
+        // length and unrolls.
         match h.len() {
-            4 => self.add_row_n::<4>(first, h.try_into().expect("length 4"), rhs),
-            5 => self.add_row_n::<5>(first, h.try_into().expect("length 5"), rhs),
-            3 => self.add_row_n::<3>(first, h.try_into().expect("length 3"), rhs),
-            _ => self.add_row_any(first, h, rhs),
+            3 => self.rotate_in(
+                first,
+                &mut <&mut [f64; 3]>::try_from(h).expect("3")[..],
+                rhs,
+            ),
+            4 => self.rotate_in(
+                first,
+                &mut <&mut [f64; 4]>::try_from(h).expect("4")[..],
+                rhs,
+            ),
+            5 => self.rotate_in(
+                first,
+                &mut <&mut [f64; 5]>::try_from(h).expect("5")[..],
+                rhs,
+            ),
+            _ => self.rotate_in(first, h, rhs),
         }
     }
 
     #[inline(always)]
-    fn add_row_n<const L: usize>(&mut self, first: usize, h: &mut [f64; L], rhs: DVec3) {
-        debug_assert!(L <= self.band, "row wider than the band");
-        let mut y = rhs;
-        for i in 0..L {
-            let j = first + i;
-            if j >= self.n {
-                break;
-            }
-            let piv = h[i];
-            if piv == 0.0 {
-                continue;
-            }
-            let row = &mut self.r[j * self.band..(j + 1) * self.band];
-            let (c, s, d) = givens(piv, row[0]);
-            row[0] = d;
-            let zj = self.z[j];
-            self.z[j] = zj * c + y * s;
-            y = y * c - zj * s;
-            for l in i + 1..L {
-                let (a, b) = (h[l], row[l - i]);
-                row[l - i] = c * b + s * a;
-                h[l] = c * a - s * b;
-            }
-        }
-    }
-
-    fn add_row_any(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
+    fn rotate_in(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
         let len = h.len();
         debug_assert!(len <= self.band, "row wider than the band");
         let mut y = rhs;
