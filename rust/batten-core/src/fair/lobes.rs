@@ -13,11 +13,16 @@
 //!
 //! The lobes are tried smallest first (by `∫|κ| ds`), at most [`MAX_TRIES`] refits. A
 //! condition is kept when the data do not reject it and the refit has fewer inflections; then
-//! the lobes of the refit are tried in turn. "Not rejected" is the likelihood-ratio test of the linear model (e.g. Seber &
-//! Lee, *Linear Regression Analysis*, 2003, §4.3): on the same knots, the q conditions
-//! together raise the least-squares E by at most the 99 % quantile of χ² with q degrees of
-//! freedom times the noise variance `S/M`; and the refit must still meet the smoothing target
-//! (E ≤ S, or the accepted range above S).
+//! the lobes of the refit are tried in turn. "Not rejected" is the likelihood-ratio test of
+//! the linear model (e.g. Seber & Lee, *Linear Regression Analysis*, 2003, §4.3): on the same
+//! knots, the q conditions together raise the least-squares E by at most the 99 % quantile of
+//! χ² with q degrees of freedom times the noise variance `S/M`; and the refit must still meet
+//! the smoothing target (E ≤ S, or the accepted range above S).
+//!
+//! Not removed: ringing after a jump in curvature, such as the negative lobe a cubic spline
+//! puts on a flat side just past the bilge radius of a midship section (line, arc, line). The
+//! data reject zero curvature there on the fit's knots; a fair fit needs knots placed for
+//! the jump.
 
 use glam::DVec3;
 
