@@ -183,7 +183,7 @@ const BIAS_Z: f64 = 3.0;
 /// knot goes where the fit is biased; otherwise (noise alone) the plain sum, which spreads
 /// knots evenly. Choice: on the KCS benchmark (2,000 points) the plain rule also spread the
 /// knots evenly while the bilge was still biased, 32 interior knots and 12 inflections left
-/// on the flat bottom after lobe flattening; with the excess 30 and 2 (truth 6). A lower
+/// on the flat bottom after lobe flattening; with the excess 30 and 2 (truth 4). A lower
 /// threshold (2σ) split noise clusters in 3 of 40 noisy S-bends, 3σ in 1.
 pub(crate) fn next_knots(
     knots: &[f64],
