@@ -382,6 +382,16 @@ impl System {
         Some(x)
     }
 
+    /// The system of the same data and end conditions on the knots of a cold start (none, or
+    /// the few the end conditions need): the least-squares polynomial, whose E is `F(0)`.
+    fn polynomial(&self) -> System {
+        let params = &self.params;
+        let (a, b) = (params[0], params[params.len() - 1]);
+        let cold = initial_interior(self.degree, &self.ends, params);
+        let knots = clamped(self.degree, a, b, &cold);
+        System::new(self.degree, knots, &self.points, params, &self.ends)
+    }
+
     /// `F(0)` as found by the search for p (NaN when there was none).
     pub fn f_zero(&self) -> f64 {
         self.f_zero
@@ -610,7 +620,7 @@ pub(crate) fn fit_with_system(
     let fp0 = match (warm_started, f_zero) {
         (true, Some(f)) if f.is_finite() => f,
         (true, _) => {
-            let poly = System::new(k, clamped(k, a, b, &cold), points, params, ends);
+            let poly = system.polynomial();
             let c = poly.least_squares()?;
             poly.residuals2(&c).iter().sum()
         }
@@ -734,16 +744,7 @@ pub(crate) fn constrained_fit(
         let f0 = system.f_zero.max(fp_inf);
         return find_p(system, s, f0, (coefs, fp_inf), p_start, cons);
     }
-    let params = &system.params;
-    let (a, b) = (params[0], params[params.len() - 1]);
-    let cold = initial_interior(k, &system.ends, params);
-    let poly = System::new(
-        k,
-        clamped(k, a, b, &cold),
-        &system.points,
-        params,
-        &system.ends,
-    );
+    let poly = system.polynomial();
     let c0 = poly
         .least_squares_with(cons)
         .or_else(|| poly.least_squares())?;
