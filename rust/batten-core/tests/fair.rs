@@ -630,6 +630,17 @@ fn kvlcc2_sections_fit_within_5_mm() {
     fit_hull("kvlcc2");
 }
 
+/// The planar cubic B-spline with control points `(2i, ys[i], 0)`, the random curves of the
+/// property tests.
+fn planar_cubic(ys: &[f64]) -> NurbsCurve {
+    let ctrl: Vec<DVec3> = ys
+        .iter()
+        .enumerate()
+        .map(|(i, &y)| DVec3::new(2.0 * i as f64, y, 0.0))
+        .collect();
+    NurbsCurve::from_layout(&ctrl, None, 4, KnotLayout::Endpoint, false).unwrap()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
 
@@ -644,12 +655,7 @@ proptest! {
         degree in 2usize..=5,
         seed in 1u64..1000,
     ) {
-        let ctrl: Vec<DVec3> = ys
-            .iter()
-            .enumerate()
-            .map(|(i, &y)| DVec3::new(2.0 * i as f64, y, 0.0))
-            .collect();
-        let truth = NurbsCurve::from_layout(&ctrl, None, 4, KnotLayout::Endpoint, false).unwrap();
+        let truth = planar_cubic(&ys);
         let sigma = 0.01;
         let m = 150;
         let pts = sample(&truth, m, sigma, DVec3::Z, seed);
@@ -671,12 +677,7 @@ proptest! {
         tol in 1e-3f64..1e-2,
         shift in prop::array::uniform3(-100.0f64..100.0),
     ) {
-        let ctrl: Vec<DVec3> = ys
-            .iter()
-            .enumerate()
-            .map(|(i, &y)| DVec3::new(2.0 * i as f64, y, 0.0))
-            .collect();
-        let truth = NurbsCurve::from_layout(&ctrl, None, 4, KnotLayout::Endpoint, false).unwrap();
+        let truth = planar_cubic(&ys);
         let pts = sample(&truth, 60, 0.0, DVec3::Z, 0);
         let o = options(Smoothing::MaxDeviation(tol));
         let a = fair_points(&pts, &o).unwrap();
