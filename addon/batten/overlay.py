@@ -102,19 +102,22 @@ def _draw():
     # Thick lines need the polyline shader (core-profile GPU backends ignore line_width_set).
     wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
     wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
-    for source, lines in knuckle_lines(context).items():
-        if len(lines):
-            color, width = KNUCKLE_STYLES[source]
-            wide.uniform_float("lineWidth", width)
-            wide.uniform_float("color", color)
-            batch_for_shader(wide, "LINES", {"pos": lines}).draw(wide)
+    _draw_styled(wide, "LINES", "lineWidth", knuckle_lines(context), KNUCKLE_STYLES)
     dots = gpu.shader.from_builtin("POINT_UNIFORM_COLOR")
-    for kind, pts in markers(context).items():
-        if len(pts):
-            color, size = MARKER_STYLES[kind]
-            dots.uniform_float("size", size)
-            dots.uniform_float("color", color)
-            batch_for_shader(dots, "POINTS", {"pos": pts}).draw(dots)
+    _draw_styled(dots, "POINTS", "size", markers(context), MARKER_STYLES)
+
+
+def _draw_styled(shader, primitive: str, size_uniform: str, groups: dict, styles: dict):
+    """Draw each non-empty group of positions with its style's colour and size (line width
+    or point size, set through ``size_uniform``)."""
+    from gpu_extras.batch import batch_for_shader
+
+    for kind, pos in groups.items():
+        if len(pos):
+            color, size = styles[kind]
+            shader.uniform_float(size_uniform, size)
+            shader.uniform_float("color", color)
+            batch_for_shader(shader, primitive, {"pos": pos}).draw(shader)
 
 
 def register():
