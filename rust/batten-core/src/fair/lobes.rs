@@ -28,7 +28,8 @@ use glam::DVec3;
 
 use super::fit::{constrained_fit, Spline, System, Target, ZeroCurvature};
 use super::metrics::{
-    bending_energy, curvature_samples, CurvatureSamples, FairnessMetrics, INFLECTION_THRESHOLD,
+    bending_energy, curvature_samples, sign_changes, CurvatureSamples, FairnessMetrics,
+    INFLECTION_THRESHOLD,
 };
 use crate::curve::NurbsCurve;
 
@@ -54,45 +55,30 @@ struct Lobe {
 fn lobes(samples: &CurvatureSamples, domain: (f64, f64), thr: f64) -> Vec<Lobe> {
     let mut out: Vec<Lobe> = Vec::new();
     for piece in &samples.pieces {
-        let Some(first) = piece.first() else { continue };
         let from = out.len();
-        let mut current = Lobe {
-            peak: first.t,
-            size: 0.0,
-        };
-        let mut peak_k = 0.0;
-        let mut state = 0i8;
-        for s in piece {
-            let sign = if s.kappa > thr {
-                1
-            } else if s.kappa < -thr {
-                -1
-            } else {
-                0
+        let mut cuts = sign_changes(piece.iter().map(|s| s.kappa), thr);
+        cuts.push(piece.len());
+        let mut start = 0;
+        for end in cuts {
+            let run = &piece[start..end];
+            // The first of equal peaks.
+            let Some(peak) = run
+                .iter()
+                .reduce(|a, b| if b.kappa.abs() > a.kappa.abs() { b } else { a })
+            else {
+                continue;
             };
-            if sign != 0 && state != 0 && sign != state {
-                out.push(current);
-                current = Lobe {
-                    peak: s.t,
-                    size: 0.0,
-                };
-                peak_k = 0.0;
-            }
-            if sign != 0 {
-                state = sign;
-            }
-            current.size += s.kappa.abs() * s.ds;
-            if s.kappa.abs() > peak_k {
-                peak_k = s.kappa.abs();
-                current.peak = s.t;
-            }
+            out.push(Lobe {
+                peak: peak.t,
+                size: run.iter().map(|s| s.kappa.abs() * s.ds).sum(),
+            });
+            start = end;
         }
-        out.push(current);
         // An end lobe whose |κ| peaks at the piece's first (last) sample peaks at the end
         // itself: it is flattened there, where the curvature is least determined.
-        let last = out.len() - 1;
+        let last = out.len().saturating_sub(1);
         if last > from {
-            if out[from].peak == first.t {
+            if piece.first().is_some_and(|s| out[from].peak == s.t) {
                 out[from].peak = domain.0;
             }
             if piece.last().is_some_and(|s| out[last].peak == s.t) {

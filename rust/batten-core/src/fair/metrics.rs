@@ -125,7 +125,7 @@ pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSa
     let metrics = FairnessMetrics {
         inflections: samples
             .iter()
-            .map(|ks| count_sign_changes(&kappas(ks), infl_thr))
+            .map(|ks| sign_changes(ks.iter().map(|s| s.kappa), infl_thr).len())
             .sum(),
         curvature_extrema: samples
             .iter()
@@ -175,25 +175,26 @@ fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64
     total
 }
 
-/// Sign changes with hysteresis: a change counts when κ goes from below −thr to above +thr or
-/// back.
-fn count_sign_changes(ks: &[f64], thr: f64) -> usize {
+/// The indices at which a sign change completes, with hysteresis: a change counts when κ goes
+/// from below −thr to above +thr or back (the first sample beyond the threshold on the new
+/// side).
+pub(crate) fn sign_changes(ks: impl IntoIterator<Item = f64>, thr: f64) -> Vec<usize> {
     let mut state = 0i8;
-    let mut count = 0;
-    for &k in ks {
-        if k > thr {
-            if state < 0 {
-                count += 1;
-            }
-            state = 1;
+    let mut at = Vec::new();
+    for (i, k) in ks.into_iter().enumerate() {
+        let sign = if k > thr {
+            1
         } else if k < -thr {
-            if state > 0 {
-                count += 1;
-            }
-            state = -1;
+            -1
+        } else {
+            continue;
+        };
+        if state != 0 && sign != state {
+            at.push(i);
         }
+        state = sign;
     }
-    count
+    at
 }
 
 /// Interior extrema with hysteresis `thr`: a maximum counts once κ has fallen `thr` below it,
@@ -439,7 +440,11 @@ mod tests {
     #[test]
     fn hysteresis_counts() {
         let ks = [1.0, 0.5, 0.001, -0.001, 0.002, -0.5, -1.0, -0.2, 0.3];
-        assert_eq!(count_sign_changes(&ks, 0.01), 2, "two real changes");
+        assert_eq!(
+            sign_changes(ks, 0.01),
+            [5, 8],
+            "two real changes, where they complete"
+        );
         let ks = [0.0, 1.0, 2.0, 1.0, 1.01, 0.0, 0.5];
         assert_eq!(count_extrema(&ks, 0.1), 2, "max at 2, min at 0");
     }
