@@ -63,30 +63,19 @@ pub(crate) struct CurvatureSamples {
 /// equal parameter steps, split into smooth pieces at knots of multiplicity ≥ degree) and its
 /// [`FairnessMetrics`]; `fairness_energy` is left 0 unless `energy`.
 pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSamples {
-    let with_energy = energy;
     let n = best_fit_normal(&curve.control_points());
     let bez = curve.bezier_decomposition();
-    // First and second derivative on the Bézier piece holding t (de Casteljau, no
-    // basis-function tables); t is always inside a span here.
-    let derivs = |t: f64| -> (DVec3, DVec3) {
-        let (_, d1, d2) = bez.pieces[bez.piece_at(t, false)].derivs_at(t);
-        (d1, d2)
-    };
     let p = curve.degree();
     let knots = curve.knots();
     let (start, end) = curve.domain();
     // Smooth pieces: split where a knot's multiplicity reaches the degree (C0 or worse).
     let mut pieces: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-    let mut energy = 0.0;
     let mut i = p;
     while i < knots.len() - p - 1 {
         let (t0, t1) = (knots[i], knots[i + 1]);
         if t0 >= start && t1 <= end && t1 > t0 {
             let spans = pieces.last_mut().expect("one piece at least");
             spans.push((t0, t1));
-            if with_energy {
-                energy += span_energy(&derivs, t0, t1);
-            }
             let mult = knots.iter().filter(|&&u| u == t1).count();
             if t1 < end && mult >= p {
                 pieces.push(Vec::new());
@@ -102,7 +91,7 @@ pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSa
             let dt = (t1 - t0) / SAMPLES_PER_SPAN as f64;
             for j in 0..SAMPLES_PER_SPAN {
                 let t = t0 + dt * (j as f64 + 0.5);
-                let (d1, d2) = derivs(t);
+                let (d1, d2) = piece_derivs(&bez, t);
                 let speed = d1.length();
                 let kappa = if speed > 0.0 {
                     d1.cross(d2).dot(n) / speed.powi(3)
@@ -131,7 +120,7 @@ pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSa
             .iter()
             .map(|ks| count_extrema(&kappas(ks), ext_thr))
             .sum(),
-        fairness_energy: energy,
+        fairness_energy: if energy { energy_on(&bez, curve) } else { 0.0 },
         max_curvature: kmax,
         plane_normal: n,
     };
@@ -144,18 +133,25 @@ pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSa
 /// The bending energy ∫κ² ds of `curve` alone (the `fairness_energy` of
 /// [`fairness_metrics`]).
 pub(crate) fn bending_energy(curve: &NurbsCurve) -> f64 {
-    let bez = curve.bezier_decomposition();
-    let derivs = |t: f64| -> (DVec3, DVec3) {
-        let (_, d1, d2) = bez.pieces[bez.piece_at(t, false)].derivs_at(t);
-        (d1, d2)
-    };
+    energy_on(&curve.bezier_decomposition(), curve)
+}
+
+/// ∫κ² ds of `curve` span by span, evaluated on its Bézier decomposition `bez`.
+fn energy_on(bez: &BezierDecomposition, curve: &NurbsCurve) -> f64 {
     let (start, end) = curve.domain();
     curve
         .knots()
         .windows(2)
         .filter(|w| w[0] >= start && w[1] <= end && w[1] > w[0])
-        .map(|w| span_energy(&derivs, w[0], w[1]))
+        .map(|w| span_energy(&|t| piece_derivs(bez, t), w[0], w[1]))
         .sum()
+}
+
+/// First and second derivative at `t` on the Bézier piece holding it (de Casteljau, no
+/// basis-function tables); `t` is inside a span.
+fn piece_derivs(bez: &BezierDecomposition, t: f64) -> (DVec3, DVec3) {
+    let (_, d1, d2) = bez.pieces[bez.piece_at(t, false)].derivs_at(t);
+    (d1, d2)
 }
 
 fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
@@ -426,15 +422,32 @@ mod tests {
     }
 
     #[test]
-    fn bending_energy_is_the_metrics_energy() {
-        let pts: Vec<DVec3> = (0..7)
-            .map(|i| DVec3::new(f64::from(i), (f64::from(i) * 0.9).sin(), 0.1 * f64::from(i)))
-            .collect();
-        let knots = vec![0., 0., 0., 0., 0.3, 0.5, 0.8, 1., 1., 1., 1.];
-        let curve = NurbsCurve::try_new(3, knots, pts, None).unwrap();
-        let e = fairness_metrics(&curve).fairness_energy;
-        assert!(e > 0.0, "a bent curve");
-        assert_eq!(bending_energy(&curve), e, "the same sum");
+    fn bending_energy_of_a_circular_arc_is_its_angle_over_the_radius() {
+        // A quarter circle of radius r (exact rational quadratic), split at a knot: κ = 1/r
+        // over length πr/2, so ∫κ² ds = π/(2r). The reported metrics carry the same sum.
+        let r = 2.0;
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let quarter = NurbsCurve::try_new(
+            2,
+            vec![0., 0., 0., 1., 1., 1.],
+            vec![
+                DVec3::new(r, 0., 0.),
+                DVec3::new(r, r, 0.),
+                DVec3::new(0., r, 0.),
+            ],
+            Some(vec![1., w, 1.]),
+        )
+        .unwrap();
+        let arc = quarter.insert_knot(0.4, 1).unwrap();
+        assert_eq!(arc.knots().len(), 7, "two spans");
+        let e = bending_energy(&arc);
+        let exact = std::f64::consts::PI / (2.0 * r);
+        assert!((e - exact).abs() < 1e-9 * exact, "{e} vs {exact}");
+        assert_eq!(
+            fairness_metrics(&arc).fairness_energy,
+            e,
+            "the metrics' energy"
+        );
     }
 
     #[test]
