@@ -8,6 +8,7 @@
 //! The public API is flat: every type is re-exported here and the modules stay private.
 
 mod curve;
+mod diagnostic;
 mod error;
 mod fair;
 mod hull;
@@ -19,6 +20,7 @@ mod topo;
 pub use curve::{
     Aabb, BezierDecomposition, CurveDerivs, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
 };
+pub use diagnostic::Diagnostic;
 pub use error::{CurveError, Error};
 pub use fair::{
     corner_indices, fair_points, fairness_metrics, FairError, FairOptions, FairReport, FairedCurve,
@@ -39,7 +41,7 @@ pub use patch::{
 };
 pub use tolerance::Tolerance;
 pub use topo::{
-    BoundaryLoop, Brep, Diagnostic, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId,
+    BoundaryLoop, Brep, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId,
     FaceSide, HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, NodeKind, Shell, ShellId,
     TopoFace, Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,

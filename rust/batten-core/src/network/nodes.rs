@@ -10,7 +10,7 @@ use super::Network;
 use crate::curve::{Aabb, BezierDecomposition, NurbsCurve};
 use crate::error::Error;
 use crate::tolerance::Tolerance;
-use crate::topo::Diagnostic;
+use crate::diagnostic::Diagnostic;
 
 /// A segment pair is a leaf (handed to Newton) once their tangent cones are separated by more
 /// than this angle (radians, 5°): two pieces whose tangents can never be parallel approach each

@@ -5,7 +5,6 @@
 mod adjacency;
 mod brep;
 mod checks;
-mod diagnostic;
 mod faces;
 mod node_kind;
 mod rotation;
@@ -19,13 +18,13 @@ pub use brep::{
     VertexId,
 };
 pub use checks::{EdgeFacesError, EulerPoincareError, NextPrevError, TwinError, ValidationError};
-pub use diagnostic::Diagnostic;
 pub use faces::{FaceSide, CORNER_ANGLE_DEGREES};
 pub use node_kind::NodeKind;
 
 use adjacency::Adjacency;
 
 use crate::curve::BezierDecomposition;
+use crate::diagnostic::Diagnostic;
 use crate::error::Error;
 use crate::network::{Network, PieceCurve};
 use crate::tolerance::Tolerance;
