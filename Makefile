@@ -48,10 +48,14 @@ $(VENV)/.installed: requirements-dev.txt
 sysdeps:
 	bash blender_scripts/system_deps.sh
 
-lint: venv
+## Lints: rustfmt, clippy (also with the test hooks), ruff, and stubtest (the .pyi of
+## batten_native must match the built module).
+lint: venv native
 	cargo fmt --all --check
 	cargo clippy --workspace --all-targets --quiet -- -D warnings
+	cargo clippy -p batten-py --features test-hooks --quiet -- -D warnings
 	$(VPY) -m ruff check --quiet addon tests blender_scripts examples rust/batten-py/python
+	cd $(NATIVE_DIR) && $(abspath $(VPY)) -m mypy.stubtest batten_native
 
 fmt: venv
 	cargo fmt --all

@@ -1,10 +1,31 @@
 """Type stubs of the compiled module batten_native._native."""
 
-from typing import Final
+from typing import Final, final
 
 import numpy as np
 import numpy.typing as npt
 
+__all__ = [
+    "Curve",
+    "DEFAULT_CORNER_ANGLE_DEG",
+    "DEFAULT_FAIR_DEGREE",
+    "DEFAULT_FAIR_TOLERANCE",
+    "DEFAULT_RESOLUTION",
+    "DEFAULT_SECTION_MODEL_TOLERANCE",
+    "DEFAULT_SECTION_TOLERANCE",
+    "DEFAULT_TOLERANCE",
+    "MAX_RESOLUTION",
+    "ROLES",
+    "__version__",
+    "_panic_for_tests",
+    "build_surface",
+    "check_lengths",
+    "fair_points",
+    "fairness",
+    "network_from_json",
+    "network_to_json",
+    "topology",
+]
 __version__: Final[str]
 DEFAULT_TOLERANCE: Final[float]
 DEFAULT_RESOLUTION: Final[int]
@@ -19,18 +40,19 @@ ROLES: Final[list[str]]
 _F64 = npt.NDArray[np.float64]
 _ArrayLike = npt.ArrayLike
 
+@final
 class Curve:
     """A designer curve: name, role and NURBS geometry (immutable; edits return new curves)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         name: str,
         degree: int,
         knots: _ArrayLike,
         points: _ArrayLike,
         weights: _ArrayLike | None = None,
         role: str = "free",
-    ) -> None: ...
+    ) -> Curve: ...
     @staticmethod
     def from_nurbs(
         name: str,
@@ -90,20 +112,22 @@ def fair_points(
     name: str,
     points: _ArrayLike,
     *,
-    degree: int = 3,
+    degree: int = ...,  # DEFAULT_FAIR_DEGREE
     tolerance: float | None = None,
     noise: float | None = None,
     smoothing_factor: float | None = None,
     corners: list[int] | None = None,
-    corner_angle_deg: float | None = 45.0,
+    corner_angle_deg: float | None = ...,  # DEFAULT_CORNER_ANGLE_DEG
     start_tangent: tuple[float, float, float] | None = None,
     end_tangent: tuple[float, float, float] | None = None,
-    model_tolerance: float = 1e-4,
-    max_parameter_iterations: int = 20,
+    model_tolerance: float = ...,  # DEFAULT_TOLERANCE
+    max_parameter_iterations: int = ...,  # 20 rounds of parameter correction
     role: str = "free",
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
-def topology(curves: list[Curve], tolerance: float = 1e-4) -> dict: ...
+def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
 def build_surface(
-    curves: list[Curve], tolerance: float = 1e-4, resolution: int = 8
+    curves: list[Curve],
+    tolerance: float = ...,  # DEFAULT_TOLERANCE
+    resolution: int = ...,  # DEFAULT_RESOLUTION
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
