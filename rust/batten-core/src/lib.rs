@@ -19,7 +19,7 @@ mod tolerance;
 mod topo;
 
 pub use curve::{
-    Aabb, BezierDecomposition, CurveDerivs, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
+    Aabb, BezierDecomposition, CurveDerivs, CurveError, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
 };
 pub use defaults::{
     DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE, DEFAULT_FAIR_TOLERANCE,
@@ -27,7 +27,7 @@ pub use defaults::{
     DEFAULT_SECTION_TOLERANCE, DEFAULT_TOLERANCE, MAX_RESOLUTION,
 };
 pub use diagnostic::Diagnostic;
-pub use error::{CurveError, Error};
+pub use error::Error;
 pub use fair::{
     corner_indices, fair_points, fairness_metrics, FairError, FairOptions, FairReport, FairedCurve,
     FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
@@ -45,7 +45,7 @@ pub use patch::{
     PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
     SideSegment, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
 };
-pub use tolerance::Tolerance;
+pub use tolerance::{InvalidTolerance, Tolerance};
 pub use topo::{
     BoundaryLoop, Brep, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId, FaceSide,
     HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, NodeKind, Shell, ShellId, TopoFace,

@@ -2,7 +2,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::Error;
+/// A tolerance that is zero, negative or not finite (the value given); it becomes
+/// [`Error::Tolerance`](crate::Error::Tolerance) with `?`.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("tolerance {0} must be a positive finite number of metres")]
+pub struct InvalidTolerance(pub f64);
 
 /// Model tolerance in metres: points closer than this are the same point.
 ///
@@ -17,11 +21,11 @@ impl Tolerance {
     pub const DEFAULT: Tolerance = Tolerance(crate::defaults::DEFAULT_TOLERANCE);
 
     /// Validated constructor: rejects zero, negative and non-finite values.
-    pub fn try_new(value: f64) -> Result<Self, Error> {
+    pub fn try_new(value: f64) -> Result<Self, InvalidTolerance> {
         if value.is_finite() && value > 0.0 {
             Ok(Tolerance(value))
         } else {
-            Err(Error::Tolerance(value))
+            Err(InvalidTolerance(value))
         }
     }
 
@@ -44,8 +48,8 @@ impl Default for Tolerance {
 }
 
 impl TryFrom<f64> for Tolerance {
-    type Error = Error;
-    fn try_from(value: f64) -> Result<Self, Error> {
+    type Error = InvalidTolerance;
+    fn try_from(value: f64) -> Result<Self, InvalidTolerance> {
         Tolerance::try_new(value)
     }
 }

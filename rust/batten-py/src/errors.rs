@@ -27,7 +27,8 @@ pyo3::import_exception!(batten_native._errors, InternalError);
 
 /// A core error as the `BattenError` subclass of its kind, with the core's message (which names
 /// the curve).
-pub(crate) fn core_err(err: Error) -> PyErr {
+pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
+    let err = err.into();
     let message = err.to_string();
     match err {
         Error::Curve { curve, .. } | Error::DuplicateName(curve) => {

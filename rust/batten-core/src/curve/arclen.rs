@@ -1,7 +1,7 @@
 //! Arc length by adaptive Gauss–Legendre quadrature of |C'(t)| over each knot span.
 
+use super::error::CurveError;
 use super::nurbs::NurbsCurve;
-use crate::error::CurveError;
 
 /// 8-point Gauss–Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun 25.4.30), with
 /// the digits as published.

@@ -5,8 +5,8 @@ use glam::{DVec3, DVec4};
 
 use super::basis::MAX_ORDER;
 use super::bbox::Aabb;
+use super::error::CurveError;
 use super::nurbs::NurbsCurve;
-use crate::error::CurveError;
 
 /// Work arrays of this size cover the usual degrees (up to 7) without touching a full
 /// [`MAX_ORDER`] array.

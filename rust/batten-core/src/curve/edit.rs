@@ -2,8 +2,8 @@
 
 use glam::DVec4;
 
+use super::error::CurveError;
 use super::nurbs::NurbsCurve;
-use crate::error::CurveError;
 
 impl NurbsCurve {
     /// Insert the knot `t` `times` times without changing the curve's shape (A5.1, applied to

@@ -5,8 +5,8 @@
 
 use glam::DVec3;
 
+use super::error::CurveError;
 use super::nurbs::NurbsCurve;
-use crate::error::CurveError;
 
 /// How a NURBS spline's knots are laid out from its control-point count and order.
 ///

@@ -7,8 +7,8 @@ use std::collections::BinaryHeap;
 use glam::DVec3;
 
 use super::bezier::{BezierDecomposition, BezierPiece};
+use super::error::CurveError;
 use super::nurbs::NurbsCurve;
-use crate::error::CurveError;
 
 /// The closest point of a curve to a query point.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -3,7 +3,7 @@
 use glam::{DVec3, DVec4};
 
 use super::basis::{basis_funs, ders_basis_funs, find_span, MAX_DEGREE, MAX_ORDER};
-use crate::error::CurveError;
+use super::error::CurveError;
 
 /// A point on a curve with its first three parametric derivatives.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-use crate::error::CurveError;
+use crate::curve::CurveError;
 
 /// What is wrong with a point sequence or with the options given to [`fair_points`].
 ///

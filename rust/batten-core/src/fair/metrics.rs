@@ -3,8 +3,8 @@
 
 use glam::DVec3;
 
+use crate::curve::CurveError;
 use crate::curve::{segment_distance, Aabb, BezierDecomposition, NurbsCurve, GL8};
-use crate::error::CurveError;
 
 /// Curvature samples per non-empty knot span for counting sign changes and extrema.
 const SAMPLES_PER_SPAN: usize = 24;

@@ -9,8 +9,9 @@ use std::collections::HashSet;
 
 use serde::{Deserialize, Serialize};
 
+use crate::curve::CurveError;
 use crate::curve::NurbsCurve;
-use crate::error::{CurveError, Error};
+use crate::error::Error;
 use crate::tolerance::Tolerance;
 
 pub(crate) use approach::PieceCurve;

@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-use crate::error::CurveError;
+use crate::curve::CurveError;
 
 /// Why a face boundary, a ribbon or a tessellation request was refused.
 ///
