@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{core_err, guard};
+use crate::errors::{core_err, guard, NoSurfaceError};
 
 /// A warning (or a topology diagnostic) as a dict: `kind`, `message`, `curves` (names),
 /// `location` ([x, y, z] or None) and `error` (`{"kind", "message"}` of the underlying face or
@@ -41,6 +41,21 @@ type MeshArrays<'py> = (
     Bound<'py, PyArray1<i32>>,
 );
 
+/// `u32` mesh indices as the `int32` Blender's mesh arrays take; a mesh whose indices do not fit
+/// is refused (`NoSurfaceError`) rather than wrapped to negative indices.
+fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
+    indices
+        .iter()
+        .map(|&i| {
+            i32::try_from(i).map_err(|_| {
+                NoSurfaceError::new_err(format!(
+                    "no surface: {what} index {i} is beyond the int32 indices of a Blender mesh"
+                ))
+            })
+        })
+        .collect()
+}
+
 /// Build the hull surface of `curves` (H-rep pipeline): returns `(arrays, report)` where arrays
 /// are `(positions (n,3), corner_vertices (m,), face_sizes (k,), face_patch (k,))` and report
 /// is a dict (node/edge/face counts, faces_by_sides, open_edges, max_gap,
@@ -70,9 +85,9 @@ pub fn build_surface<'py>(
     let rows = mesh.positions.len();
     let arrays = (
         PyArray1::from_vec(py, positions).reshape([rows, 3])?,
-        PyArray1::from_vec(py, mesh.face_vertices.iter().map(|&v| v as i32).collect()),
+        PyArray1::from_vec(py, int32_indices(&mesh.face_vertices, "vertex")?),
         PyArray1::from_vec(py, mesh.face_sizes.iter().map(|&s| i32::from(s)).collect()),
-        PyArray1::from_vec(py, mesh.face_patch.iter().map(|&p| p as i32).collect()),
+        PyArray1::from_vec(py, int32_indices(&mesh.face_patch, "patch")?),
     );
     let r = &hull.report;
     let d = PyDict::new(py);

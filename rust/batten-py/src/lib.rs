@@ -3,6 +3,10 @@
 //! Arguments are converted first, then the core runs with the GIL released; every core error is
 //! mapped in one place ([`errors`]) to a subclass of `batten_native.BattenError` (a
 //! `ValueError`) by kind, and a panic never crosses into Python ([`errors::guard`]).
+//!
+//! Indices and sizes go to Python and Blender converted, never cast: no cast may silently wrap
+//! or truncate (kurbo's stricter lints).
+#![warn(clippy::cast_possible_wrap, clippy::cast_possible_truncation)]
 
 mod curve;
 mod errors;
