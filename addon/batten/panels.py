@@ -76,10 +76,11 @@ def _draw_report(layout, text: str) -> None:
     col.label(text=f"Volume: {report['displacement_volume']:.2f} m³")
     for warning in report["warnings"]:
         row = box.row()
-        row.label(text=warning, icon="ERROR")
-        names = [n for n in report.get("warning_curves", {}).get(warning, [])]
-        if names:
-            row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(names)
+        row.label(text=warning["message"], icon="ERROR")
+        if warning["objects"]:
+            row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(
+                warning["objects"]
+            )
 
 
 def _names(names: list[str], most: int = 6) -> str:
