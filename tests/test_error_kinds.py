@@ -7,21 +7,10 @@ import bpy
 import numpy as np
 import pytest
 from helpers import new_curve
+from operator_runs import execute, new_collection
+from test_fairing import noisy_arc
 
 SQUARE = np.array([[0.0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]])
-
-
-def _noisy_arc(n: int) -> np.ndarray:
-    t = np.linspace(0.0, np.pi / 2, n)
-    pts = np.column_stack([10 * np.cos(t), 10 * np.sin(t), np.zeros(n)])
-    pts[1:-1] += np.random.default_rng(1).normal(0.0, 0.005, (n - 2, 3))
-    return pts
-
-
-def _collection(name: str):
-    coll = bpy.data.collections.new(name)
-    bpy.context.scene.collection.children.link(coll)
-    return coll
 
 
 def test_the_kinds_are_battenerrors_and_valueerrors():
@@ -61,7 +50,7 @@ def test_a_bad_spline_of_a_multi_spline_object_names_the_object():
 
 
 def test_a_zero_length_curve_is_a_curve_error_naming_its_object(tmp_path):
-    coll = _collection("hull")
+    coll = new_collection("hull")
     new_curve("keel", "POLY", SQUARE[:2], collection=coll)
     new_curve("dot", "POLY", np.ones((3, 3)), collection=coll)
     with pytest.raises(api.CurveError, match="curve 'dot'") as err:
@@ -71,7 +60,7 @@ def test_a_zero_length_curve_is_a_curve_error_naming_its_object(tmp_path):
 
 
 def test_a_failed_fit_is_a_fair_error_naming_the_object():
-    pts = _noisy_arc(40)
+    pts = noisy_arc(40)
     obj = new_curve("scrambled", "POLY", pts[np.random.default_rng(0).permutation(len(pts))])
     with pytest.raises(api.FairError, match="curve 'scrambled': the points are not in order") as err:
         api.fair_curve(obj)
@@ -86,7 +75,7 @@ def test_a_failed_fit_is_a_fair_error_naming_the_object():
 
 
 def test_bad_arguments_are_invalid_argument_errors():
-    coll = _collection("Empty hull")
+    coll = new_collection("Empty hull")
     with pytest.raises(api.InvalidArgumentError, match="collection 'Empty hull' holds no curves"):
         api.build(coll)
     with pytest.raises(api.InvalidArgumentError, match="expected a collection"):
@@ -102,7 +91,7 @@ def test_bad_arguments_are_invalid_argument_errors():
 
 
 def test_bad_settings_are_invalid_argument_errors():
-    coll = _collection("square")
+    coll = new_collection("square")
     for i in range(4):
         new_curve(f"side{i}", "POLY", np.array([SQUARE[i], SQUARE[(i + 1) % 4]]), collection=coll)
     with pytest.raises(api.InvalidArgumentError, match="resolution"):
@@ -112,11 +101,11 @@ def test_bad_settings_are_invalid_argument_errors():
     with pytest.raises(api.InvalidArgumentError, match="tolerance"):
         api.topology(coll, tolerance=0.0)
     with pytest.raises(api.InvalidArgumentError, match="tolerance"):
-        api.fair_curve(new_curve("arc", "POLY", _noisy_arc(20)), tolerance=-1.0)
+        api.fair_curve(new_curve("arc", "POLY", noisy_arc(20)), tolerance=-1.0)
 
 
 def test_curves_that_enclose_nothing_are_no_surface():
-    coll = _collection("two lines")
+    coll = new_collection("two lines")
     new_curve("a", "POLY", SQUARE[:2], collection=coll)
     new_curve("b", "POLY", SQUARE[2:], collection=coll)
     with pytest.raises(api.NoSurfaceError, match="no faces"):
@@ -156,11 +145,8 @@ def test_operators_report_the_error_and_cancel(tmp_path):
     through bpy.ops) and CANCELLED, with the file unchanged."""
     from batten import operators
 
-    reports = []
-    stub = type("Stub", (), {"report": lambda self, kind, msg: reports.append((kind, msg))})()
-    stub.run = lambda context: operators.BATTEN_OT_add_example.run(stub, context)
-    stub.example = "nope.json"
-    assert operators.BattenOperator.execute(stub, bpy.context) == {"CANCELLED"}
+    result, reports = execute(operators.BATTEN_OT_add_example, bpy.context, example="nope.json")
+    assert result == {"CANCELLED"}
     assert reports == [({"ERROR"}, "No example 'nope.json'")]
     for cls in (getattr(operators, n) for n in dir(operators) if n.startswith("BATTEN_OT_")):
         assert issubclass(cls, operators.BattenOperator), cls

@@ -12,14 +12,9 @@ import pytest
 from batten import panels
 from batten.scene_build import build_into_scene
 from helpers import new_curve
+from operator_runs import new_collection
 
 KEYS = {"kind", "message", "curves", "objects", "location", "error"}
-
-
-def _collection(name: str):
-    coll = bpy.data.collections.new(name)
-    bpy.context.scene.collection.children.link(coll)
-    return coll
 
 
 def _line(name, a, b, coll):
@@ -46,7 +41,7 @@ def spur_panel():
     """A side panel (plane y = 1) split by a station, a waterline to the station (a T-joint)
     and a spur from the station ending in the open. The keel and deck are the two splines of
     one object "rails" (curves "rails[0]", "rails[1]"); the spur's object is named "spur[1]"."""
-    coll = _collection("panel")
+    coll = new_collection("panel")
     rails = _line("rails", (0, 1, 0), (10, 1, 0), coll)
     _add_spline(rails, (0, 1, 3), (10, 1, 3))
     for name, a, b in (
@@ -91,7 +86,7 @@ def test_findings_on_a_multi_spline_object_name_the_object(spur_panel):
 def test_an_unclosed_region_names_the_curves_round_it():
     """A square inside a square, joined by one bridge: the ring between them runs along the
     bridge on both sides, so it bounds no disk and no face is made of it."""
-    coll = _collection("ring")
+    coll = new_collection("ring")
     y = 1.0
     for name, pts in (
         ("outer", [(0, 0), (4, 0), (4, 4), (0, 4)]),
@@ -110,7 +105,7 @@ def test_an_unclosed_region_names_the_curves_round_it():
 
 def test_a_non_manifold_node_names_the_curves_through_it():
     """A spine with three fins round it at 120 degrees (like a bulkhead meeting the hull)."""
-    coll = _collection("fins")
+    coll = new_collection("fins")
     p0, p1 = np.zeros(3), np.array([2.0, 0, 0])
     _line("spine", p0, p1, coll)
     for k in range(3):
@@ -131,7 +126,7 @@ def test_a_non_manifold_node_names_the_curves_through_it():
 def test_a_face_that_cannot_be_patched_carries_the_patch_error():
     """A 17-gon (more sides than the N-sided patch takes) beside a square: the square is
     built, the 17-gon is named with the patch error."""
-    coll = _collection("polygon")
+    coll = new_collection("polygon")
     n = 17
 
     def p(k):
