@@ -184,3 +184,23 @@ def test_show_curves_selects_the_objects_of_every_warning(spur_panel):
     assert any(b.names == "spur[1]" for b in buttons), "an object named with '['"
     # Names are matched exactly: "spur" is not "spur[1]", "rails[1]" is not "rails".
     assert bpy.ops.batten.select_curves(names="spur\nrails[1]") == {"CANCELLED"}
+
+
+def test_show_curves_of_found_knuckles_selects_their_object(examples_dir):
+    """The hard-chine example with its chine drawn free, as the first spline of an object
+    that holds a second, far-off spline: the knuckle edges found on "chine[0]" select the
+    object "chine"."""
+    coll = api.load_network(examples_dir / "hard_chine.json")
+    chine = coll.objects["chine"]
+    chine.batten.role = "free"
+    _add_spline(chine, (0, -5, 10), (1, -5, 10))
+    bpy.context.scene.batten.source = coll
+    report = build_into_scene(bpy.context.scene)
+    assert {k["curve"] for k in report["knuckle_edges"]} == {"chine[0]"}
+    assert panels.knuckles_found(report)[0] == ["chine[0]"]
+    assert panels.found_knuckle_objects(report) == ["chine"]
+    layout = _Layout()
+    panels._draw_report(layout, bpy.context.scene.batten.last_report)
+    assert layout.record["buttons"][0].names == "chine", "the first button: the found knuckles"
+    assert bpy.ops.batten.select_curves(names="chine") == {"FINISHED"}
+    assert [o.name for o in bpy.context.selected_objects] == ["chine"]

@@ -51,7 +51,7 @@ from batten_native import topology as _topology
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .fit_data import fit_data
-from .object_names import errors_named_by_object, with_objects
+from .object_names import errors_named_by_object, objects_of, with_objects
 
 __all__ = [
     "BuildResult",
@@ -423,12 +423,13 @@ def build(
 
     ``report`` holds: nodes, edges, node_positions, node_kinds (as in :func:`topology`),
     faces, faces_by_sides, open_edges, max_gap, max_normal_angle_deg, crease_angles_deg (per
-    knuckle curve: name, min, max), knuckle_edges (each ``curve``, ``source`` — ``"role"`` or
-    ``"auto"``, found at corners of crossing curves —, ``corner_curves``, ``crease_deg`` (min,
-    max) or None, ``points`` along the edge), volume (between the drawn half surface and the
-    centreplane), displacement_volume (both halves when mirrored), mesh_vertices, mesh_faces,
-    and warnings: each a dict with ``kind`` (``dangling_end``, ``near_miss``,
-    ``unclosed_region``, ``face_not_patched``, …), ``message``, ``curves`` (curve names),
+    knuckle curve: name, min, max), knuckle_edges (each ``curve``, ``objects`` — the object
+    it came from —, ``source`` — ``"role"`` or ``"auto"``, found at corners of crossing curves
+    —, ``corner_curves``, ``crease_deg`` (min, max) or None, ``points`` along the edge),
+    volume (between the drawn half surface and the centreplane), displacement_volume (both
+    halves when mirrored), mesh_vertices, mesh_faces, and warnings: each a dict with ``kind``
+    (``dangling_end``, ``near_miss``, ``unclosed_region``, ``face_not_patched``, …),
+    ``message``, ``curves`` (curve names),
     ``objects`` (the names of the curve objects they came from, for selecting them),
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the
     patch error as ``{"kind", "message"}``, else None).
@@ -444,4 +445,7 @@ def build(
     report["mirror"] = mirror
     report["displacement_volume"] = report["volume"] * (2.0 if mirror else 1.0)
     report["warnings"] = with_objects(report["warnings"], object_of)
+    report["knuckle_edges"] = [
+        {**k, "objects": objects_of([k["curve"]], object_of)} for k in report["knuckle_edges"]
+    ]
     return BuildResult(obj, report)
