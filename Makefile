@@ -9,6 +9,7 @@ PROFILE ?= dev
 WHEEL_DIR := build/wheels/$(PROFILE)
 NATIVE_DIR := build/native/$(PROFILE)
 EXT_DIR := build/extension/$(PROFILE)
+# Test builds (dev) carry the test hooks (`_panic_for_tests`); release builds never do.
 OUT ?= out
 
 .PHONY: demo test extension package native venv sysdeps lint fmt bench clean
@@ -34,7 +35,7 @@ package: native
 
 native: venv
 	rm -rf $(WHEEL_DIR) $(NATIVE_DIR)
-	$(VPY) -m maturin build --quiet --profile $(PROFILE) --out $(WHEEL_DIR)
+	$(VPY) -m maturin build --quiet --profile $(PROFILE) $(if $(filter dev,$(PROFILE)),--features test-hooks) --out $(WHEEL_DIR)
 	$(VPY) -m zipfile -e $(WHEEL_DIR)/*.whl $(NATIVE_DIR)
 
 venv: $(VENV)/.installed

@@ -2,6 +2,9 @@
 
 use thiserror::Error;
 
+use crate::fair::FairError;
+use crate::patch::PatchError;
+
 /// What is wrong with one curve's definition or with an operation on it.
 ///
 /// These carry the evidence (which index, which value) but not the curve's name; [`Error::Curve`]
@@ -142,9 +145,26 @@ pub enum Error {
         #[source]
         source: CurveError,
     },
-    /// The model tolerance is not a positive finite number.
+    /// Fairing the points of one named curve failed.
+    #[error("curve '{curve}': {source}")]
+    Fair {
+        /// The designer curve's name.
+        curve: String,
+        /// What is wrong with its points or the fairing options.
+        #[source]
+        source: FairError,
+    },
+    /// The model tolerance is not a positive finite number (an invalid argument).
     #[error("tolerance {0} must be a positive finite number of metres")]
     Tolerance(f64),
+    /// The tessellation resolution is outside `1..=max` (an invalid argument).
+    #[error("resolution {resolution} must be between 1 and {max} intervals per edge")]
+    Resolution {
+        /// The resolution asked for.
+        resolution: usize,
+        /// The largest accepted.
+        max: usize,
+    },
     /// Two curves in one network share a name.
     #[error("two curves are named '{0}'; curve names in a network must be unique")]
     DuplicateName(String),
@@ -159,6 +179,20 @@ pub enum Error {
     /// (H-rep paper §3: a surface needs closed regions of curves).
     #[error("no surface: {0}")]
     NoSurface(String),
+    /// The hull's patches could not be tessellated into one mesh (too many vertices for its
+    /// indices).
+    #[error("no surface: {0}")]
+    Mesh(#[from] PatchError),
+}
+
+impl FairError {
+    /// Attach the name of the designer curve whose points were being faired.
+    pub fn named(self, curve: impl Into<String>) -> Error {
+        Error::Fair {
+            curve: curve.into(),
+            source: self,
+        }
+    }
 }
 
 impl CurveError {

@@ -8,6 +8,7 @@
 //! The public API is flat: every type is re-exported here and the modules stay private.
 
 mod curve;
+mod defaults;
 mod diagnostic;
 mod error;
 mod fair;
@@ -20,6 +21,11 @@ mod topo;
 pub use curve::{
     Aabb, BezierDecomposition, CurveDerivs, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
 };
+pub use defaults::{
+    DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE, DEFAULT_FAIR_TOLERANCE,
+    DEFAULT_PARAMETER_ITERATIONS, DEFAULT_RESOLUTION, DEFAULT_SECTION_MODEL_TOLERANCE,
+    DEFAULT_SECTION_TOLERANCE, DEFAULT_TOLERANCE, MAX_RESOLUTION,
+};
 pub use diagnostic::Diagnostic;
 pub use error::{CurveError, Error};
 pub use fair::{
@@ -28,8 +34,8 @@ pub use fair::{
     MAX_FAIR_DEGREE,
 };
 pub use hull::{
-    build_hull, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
-    KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES,
+    build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
+    Warning, WarningKind, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,
@@ -41,8 +47,8 @@ pub use patch::{
 };
 pub use tolerance::Tolerance;
 pub use topo::{
-    BoundaryLoop, Brep, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId,
-    FaceSide, HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, NodeKind, Shell, ShellId,
-    TopoFace, Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
+    BoundaryLoop, Brep, Edge, EdgeFacesError, EdgeId, EulerPoincareError, Face, FaceId, FaceSide,
+    HalfEdge, HalfEdgeId, Loop, LoopId, NextPrevError, NodeKind, Shell, ShellId, TopoFace,
+    Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
 };

@@ -13,9 +13,8 @@ use crate::error::Error;
 pub struct Tolerance(f64);
 
 impl Tolerance {
-    /// The default model tolerance, 0.1 mm: well below drawing accuracy at ship scale and well
-    /// above the f64 rounding of coordinates of a few hundred metres.
-    pub const DEFAULT: Tolerance = Tolerance(1e-4);
+    /// The default model tolerance, [`DEFAULT_TOLERANCE`](crate::DEFAULT_TOLERANCE) (0.1 mm).
+    pub const DEFAULT: Tolerance = Tolerance(crate::defaults::DEFAULT_TOLERANCE);
 
     /// Validated constructor: rejects zero, negative and non-finite values.
     pub fn try_new(value: f64) -> Result<Self, Error> {

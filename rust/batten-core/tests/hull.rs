@@ -8,8 +8,9 @@ mod common;
 use std::collections::{BTreeMap, HashMap};
 
 use batten_core::{
-    build_hull, Error, HullOptions, HullReport, HullSurface, KnuckleSource, Network, NetworkCurve,
-    NurbsCurve, Role, SurfaceMesh, Tolerance, Topology, KNUCKLE_EDGE_SAMPLES,
+    build_hull, Error, FaceError, HullOptions, HullReport, HullSurface, KnuckleSource, Network,
+    NetworkCurve, NurbsCurve, Role, SurfaceMesh, Tolerance, Topology, WarningKind,
+    KNUCKLE_EDGE_SAMPLES, MAX_RESOLUTION,
 };
 use glam::DVec3;
 
@@ -695,16 +696,16 @@ fn near_miss_is_reported_and_the_rest_builds() {
     println!("near miss: faces {}, warnings {:?}", r.faces, r.warnings);
     assert_finite(&hull.mesh);
     assert!(
-        r.warnings
-            .iter()
-            .any(|w| w.contains("miss") && w.contains("station +0.00") && w.contains("keel")),
+        r.warnings.iter().any(|w| w.message.contains("miss")
+            && w.message.contains("station +0.00")
+            && w.message.contains("keel")),
         "the near miss is reported by name: {:?}",
         r.warnings
     );
     assert!(
         r.warnings
             .iter()
-            .any(|w| w.contains("miss") && w.contains("waterline 2.0833")),
+            .any(|w| w.message.contains("miss") && w.message.contains("waterline 2.0833")),
         "the lifted station also misses the lowest waterline: {:?}",
         r.warnings
     );
@@ -740,8 +741,25 @@ fn faceless_networks_are_errors() {
         ..HullOptions::default()
     };
     assert!(
-        matches!(build_hull(&wigley(7, 3), &zero), Err(Error::NoSurface(_))),
+        matches!(
+            build_hull(&wigley(7, 3), &zero),
+            Err(Error::Resolution {
+                resolution: 0,
+                max: MAX_RESOLUTION
+            })
+        ),
         "resolution 0 is refused"
+    );
+    assert!(
+        matches!(
+            HullOptions::try_new(1e-4, MAX_RESOLUTION + 1),
+            Err(Error::Resolution { .. })
+        ),
+        "a resolution above the limit is refused"
+    );
+    assert!(
+        matches!(HullOptions::try_new(-1e-4, 8), Err(Error::Tolerance(_))),
+        "a negative tolerance is refused"
     );
 }
 
@@ -775,11 +793,32 @@ fn unpatchable_face_is_skipped_and_named() {
     assert_eq!(r.faces_by_sides, BTreeMap::from([(4, 1)]), "one quad");
     assert_eq!(r.skipped_faces, 1, "the 17-gon is skipped");
     assert!(
-        r.warnings
-            .iter()
-            .any(|w| w.contains("not patched") && w.contains("side 16") && w.contains("17 sides")),
+        r.warnings.iter().any(|w| w.message.contains("not patched")
+            && w.message.contains("side 16")
+            && w.message.contains("17 sides")),
         "the skipped face is named: {:?}",
         r.warnings
+    );
+    let skipped = r
+        .warnings
+        .iter()
+        .find(|w| w.kind == WarningKind::FaceNotPatched)
+        .expect("a face_not_patched warning");
+    assert_eq!(
+        skipped.error,
+        Some(FaceError::SideCount { sides: 17 }),
+        "the underlying error is typed"
+    );
+    assert_eq!(skipped.curves.len(), 17, "the 17-gon's curves, by name");
+    assert!(
+        skipped.curves.iter().all(|c| c.starts_with("side ")),
+        "only the 17-gon's curves: {:?}",
+        skipped.curves
+    );
+    let at = skipped.location.expect("a face has a place");
+    assert!(
+        at.length() < 0.1 && at.z == 0.0,
+        "the place is the 17-gon's centre (its nodes' mean): {at}"
     );
     let topo = Topology::build(&net, Tolerance::DEFAULT).expect("topology");
     let square = topo

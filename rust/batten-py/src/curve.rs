@@ -7,7 +7,7 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use crate::errors::{curve_err, guard, msg_err};
+use crate::errors::{arg_err, curve_err, guard};
 
 /// Below this many parameters evaluation stays on one thread (spawning costs more than it saves).
 const PARALLEL_MIN: usize = 1 << 15;
@@ -21,7 +21,7 @@ pub struct Curve {
 fn parse_role(name: &str, role: &str) -> PyResult<Role> {
     Role::from_name(role).ok_or_else(|| {
         let all: Vec<_> = Role::ALL.iter().map(|r| r.name()).collect();
-        msg_err(format!(
+        arg_err(format!(
             "curve '{name}': unknown role '{role}' (one of {})",
             all.join(", ")
         ))
@@ -37,7 +37,7 @@ fn points_of(
 ) -> PyResult<Vec<DVec3>> {
     let shape = a.shape();
     if !cols.contains(&shape[1]) {
-        return Err(msg_err(format!(
+        return Err(arg_err(format!(
             "curve '{name}': {what} must have shape (n, {}), got ({}, {})",
             cols.iter()
                 .map(|c| c.to_string())
@@ -177,7 +177,7 @@ impl Curve {
         let left = points_of(name, "left handles", &left, &[3])?;
         let right = points_of(name, "right handles", &right, &[3])?;
         if left.len() != co.len() || right.len() != co.len() {
-            return Err(msg_err(format!(
+            return Err(arg_err(format!(
                 "curve '{name}': {} points but {} left and {} right handles",
                 co.len(),
                 left.len(),
@@ -279,7 +279,7 @@ impl Curve {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let ts = t
             .as_slice()
-            .map_err(|_| msg_err("t must be a contiguous 1-D float64 array"))?;
+            .map_err(|_| arg_err("t must be a contiguous 1-D float64 array"))?;
         let curve = &self.inner.curve;
         let out = py.detach(|| {
             guard(self.name(), || {
@@ -316,7 +316,7 @@ impl Curve {
     ) -> PyResult<ArrayPair<'py>> {
         let ts = t
             .as_slice()
-            .map_err(|_| msg_err("t must be a contiguous 1-D float64 array"))?;
+            .map_err(|_| arg_err("t must be a contiguous 1-D float64 array"))?;
         let curve = &self.inner.curve;
         let (pts, ks) = py.detach(|| {
             guard(self.name(), || {

@@ -1,43 +1,62 @@
 //! The one place where core errors and panics become Python exceptions.
+//!
+//! The exception classes are defined in Python (`batten_native/_errors.py`, so that
+//! `CurveError` carries a `.curve` attribute and pickles); this module raises them by kind:
+//!
+//! | core error | Python class |
+//! | --- | --- |
+//! | [`Error::Curve`], [`Error::DuplicateName`] | `CurveError` (`.curve` set) |
+//! | [`Error::Fair`] | `FairError` (a `CurveError`) |
+//! | [`Error::Format`] | `NetworkFileError` |
+//! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
+//! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], argument checks | `InvalidArgumentError` |
+//! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use batten_core::{CurveError, Error};
-use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
-use pyo3::prelude::*;
+use batten_core::{CurveError as CoreCurveError, Error};
 use pyo3::PyErr;
 
-create_exception!(
-    batten_native,
-    BattenError,
-    PyValueError,
-    "A problem with the hull's curves or settings; the message names the curve and the problem."
-);
+pyo3::import_exception!(batten_native._errors, BattenError);
+pyo3::import_exception!(batten_native._errors, CurveError);
+pyo3::import_exception!(batten_native._errors, FairError);
+pyo3::import_exception!(batten_native._errors, NetworkFileError);
+pyo3::import_exception!(batten_native._errors, NoSurfaceError);
+pyo3::import_exception!(batten_native._errors, InvalidArgumentError);
+pyo3::import_exception!(batten_native._errors, InternalError);
 
-/// A core error as `BattenError`, with the core's message (which names the curve).
-pub fn core_err(err: Error) -> PyErr {
-    BattenError::new_err(err.to_string())
+/// A core error as the `BattenError` subclass of its kind, with the core's message (which names
+/// the curve).
+pub(crate) fn core_err(err: Error) -> PyErr {
+    let message = err.to_string();
+    match err {
+        Error::Curve { curve, .. } | Error::DuplicateName(curve) => {
+            CurveError::new_err((message, curve))
+        }
+        Error::Fair { curve, .. } => FairError::new_err((message, curve)),
+        Error::Format(_) => NetworkFileError::new_err(message),
+        Error::NoSurface(_) | Error::Mesh(_) => NoSurfaceError::new_err(message),
+        Error::Tolerance(_) | Error::Resolution { .. } | Error::EmptyName(_) => {
+            InvalidArgumentError::new_err(message)
+        }
+    }
 }
 
-/// A curve error as `BattenError`, naming the curve.
-pub fn curve_err(name: &str, err: CurveError) -> PyErr {
+/// A curve kernel error as `CurveError`, naming the curve.
+pub(crate) fn curve_err(name: &str, err: CoreCurveError) -> PyErr {
     core_err(err.named(name))
 }
 
-/// Any displayable error as `BattenError`, naming the curve.
-pub fn named_err(name: &str, err: impl std::fmt::Display) -> PyErr {
-    BattenError::new_err(format!("curve '{name}': {err}"))
+/// An argument problem found in the binding while converting arguments (a wrong array shape,
+/// an unknown role, options that exclude each other) as `InvalidArgumentError`; the message
+/// names the curve where there is one.
+pub(crate) fn arg_err(msg: impl Into<String>) -> PyErr {
+    InvalidArgumentError::new_err(msg.into())
 }
 
-/// A plain message as `BattenError` (argument problems found in the binding).
-pub fn msg_err(msg: impl Into<String>) -> PyErr {
-    BattenError::new_err(msg.into())
-}
-
-/// Run core work so that a panic becomes a `BattenError` naming what was being done, never a
+/// Run core work so that a panic becomes an `InternalError` naming what was being done, never a
 /// `PanicException` or a crashed Blender.
-pub fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, PyErr>) -> Result<T, PyErr> {
+pub(crate) fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, PyErr>) -> Result<T, PyErr> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(result) => result,
         Err(payload) => {
@@ -46,15 +65,17 @@ pub fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, PyErr>) -> Result<T, P
                 .map(|s| s.to_string())
                 .or_else(|| payload.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "unknown".to_owned());
-            Err(msg_err(format!(
+            Err(InternalError::new_err(format!(
                 "{what}: internal error in batten's core ({detail}); please report it with the curves that caused it"
             )))
         }
     }
 }
 
-/// Panics inside [`guard`], so tests can prove a panic reaches Python as `BattenError`.
-#[pyfunction]
-pub fn _panic_for_tests(message: &str) -> PyResult<()> {
+/// Panics inside [`guard`], so tests can prove a panic reaches Python as `InternalError`
+/// (built only with the `test-hooks` feature, never in a release).
+#[cfg(feature = "test-hooks")]
+#[pyo3::pyfunction]
+pub(crate) fn _panic_for_tests(message: &str) -> pyo3::PyResult<()> {
     guard("panic test", || panic!("{message}"))
 }

@@ -2,6 +2,8 @@
 
 use batten_core::{
     fair_points as core_fair, fairness_metrics, FairOptions, FairnessMetrics, Smoothing, Tolerance,
+    DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE, DEFAULT_FAIR_TOLERANCE,
+    DEFAULT_PARAMETER_ITERATIONS, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
 use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
@@ -9,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{core_err, guard, msg_err, named_err};
+use crate::errors::{arg_err, core_err, guard};
 
 fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
     d.set_item("inflections", m.inflections)?;
@@ -24,9 +26,10 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 /// smoothing spline). Give at most one of `tolerance` (max deviation, m; default 1 mm),
 /// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). Returns `(Curve, report dict)`.
 #[pyfunction]
-#[pyo3(signature = (name, points, *, degree=3, tolerance=None, noise=None, smoothing_factor=None,
-    corners=None, corner_angle_deg=Some(45.0), start_tangent=None, end_tangent=None,
-    model_tolerance=1e-4, max_parameter_iterations=20, role="free"))]
+#[pyo3(signature = (name, points, *, degree=DEFAULT_FAIR_DEGREE, tolerance=None, noise=None,
+    smoothing_factor=None, corners=None, corner_angle_deg=Some(DEFAULT_CORNER_ANGLE_DEGREES),
+    start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
+    max_parameter_iterations=DEFAULT_PARAMETER_ITERATIONS, role="free"))]
 #[allow(clippy::too_many_arguments)]
 pub fn fair_points<'py>(
     py: Python<'py>,
@@ -45,7 +48,7 @@ pub fn fair_points<'py>(
     role: &str,
 ) -> PyResult<(Curve, Bound<'py, PyDict>)> {
     if points.shape()[1] != 3 {
-        return Err(msg_err(format!(
+        return Err(arg_err(format!(
             "curve '{name}': points must have shape (n, 3)"
         )));
     }
@@ -56,11 +59,11 @@ pub fn fair_points<'py>(
         .map(|r| DVec3::new(r[0], r[1], r[2]))
         .collect();
     let smoothing = match (tolerance, noise, smoothing_factor) {
-        (t, None, None) => Smoothing::MaxDeviation(t.unwrap_or(1e-3)),
+        (t, None, None) => Smoothing::MaxDeviation(t.unwrap_or(DEFAULT_FAIR_TOLERANCE)),
         (None, Some(s), None) => Smoothing::Noise(s),
         (None, None, Some(s)) => Smoothing::Factor(s),
         _ => {
-            return Err(msg_err(format!(
+            return Err(arg_err(format!(
                 "curve '{name}': give only one of tolerance, noise and smoothing_factor"
             )))
         }
@@ -77,7 +80,7 @@ pub fn fair_points<'py>(
     };
     let faired = py.detach(|| {
         guard(name, || {
-            core_fair(&pts, &options).map_err(|e| named_err(name, e))
+            core_fair(&pts, &options).map_err(|e| core_err(e.named(name)))
         })
     })?;
     let curve = Curve::from_parts(name, role, faired.curve)?;

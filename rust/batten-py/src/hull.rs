@@ -1,12 +1,36 @@
 //! The hull surface: network → topology → patches → one welded mesh, as numpy arrays.
 
-use batten_core::{build_hull, HullOptions, Network, Tolerance};
+use batten_core::{
+    build_hull, HullOptions, Network, Warning, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
+};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{core_err, guard, msg_err};
+use crate::errors::{core_err, guard};
+
+/// A warning (or a topology diagnostic) as a dict: `kind`, `message`, `curves` (names),
+/// `location` ([x, y, z] or None) and `error` (`{"kind", "message"}` of the underlying face or
+/// patch error, or None). The one shape of every finding batten reports to Python.
+pub(crate) fn warning_dict<'py>(py: Python<'py>, w: &Warning) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("kind", w.kind.as_str())?;
+    d.set_item("message", &w.message)?;
+    d.set_item("curves", &w.curves)?;
+    d.set_item("location", w.location.map(|p| p.to_array()))?;
+    let error = match &w.error {
+        Some(e) => {
+            let ed = PyDict::new(py);
+            ed.set_item("kind", e.kind())?;
+            ed.set_item("message", e.to_string())?;
+            Some(ed)
+        }
+        None => None,
+    };
+    d.set_item("error", error)?;
+    Ok(d)
+}
 
 /// Mesh arrays: positions (n, 3) float64, corner vertex indices (m,) int32, face sizes (k,)
 /// int32, the network face of each mesh face (k,) int32.
@@ -20,27 +44,20 @@ type MeshArrays<'py> = (
 /// Build the hull surface of `curves` (H-rep pipeline): returns `(arrays, report)` where arrays
 /// are `(positions (n,3), corner_vertices (m,), face_sizes (k,), face_patch (k,))` and report
 /// is a dict (node/edge/face counts, faces_by_sides, open_edges, max_gap,
-/// max_normal_angle_deg, crease_angles_deg, knuckle_edges, volume, warnings). Each knuckle edge
+/// max_normal_angle_deg, crease_angles_deg, knuckle_edges, volume, node_positions, node_kinds,
+/// warnings — each a dict, see [`warning_dict`]). Each knuckle edge
 /// is a dict: `curve`, `source` (`"role"` or `"auto"`), `corner_curves` (the curves whose
 /// corners made an automatic knuckle), `crease_deg` (`(min, max)` or None) and `points` (list
 /// of [x, y, z] along the edge). The GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=1e-4, resolution=8))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
 pub fn build_surface<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,
     resolution: usize,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
-    if resolution == 0 || resolution > 256 {
-        return Err(msg_err(format!(
-            "resolution {resolution} must be between 1 and 256"
-        )));
-    }
-    let options = HullOptions {
-        tolerance: Tolerance::try_new(tolerance).map_err(core_err)?,
-        resolution,
-    };
+    let options = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
     let network =
         Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)?;
     let hull = py.detach(|| {
@@ -84,7 +101,16 @@ pub fn build_surface<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("knuckle_edges", knuckles)?;
     d.set_item("volume", r.volume)?;
-    d.set_item("warnings", r.warnings.clone())?;
+    let nodes: Vec<[f64; 3]> = r.node_positions.iter().map(|p| p.to_array()).collect();
+    d.set_item("node_positions", nodes)?;
+    let kinds: Vec<&str> = r.node_kinds.iter().map(|k| k.as_str()).collect();
+    d.set_item("node_kinds", kinds)?;
+    let warnings = r
+        .warnings
+        .iter()
+        .map(|w| warning_dict(py, w))
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("warnings", warnings)?;
     d.set_item("mesh_vertices", rows)?;
     d.set_item("mesh_faces", mesh.face_sizes.len())?;
     Ok((arrays, d))

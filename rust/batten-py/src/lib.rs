@@ -1,8 +1,8 @@
 //! `batten_native`: the thin Python binding of batten-core.
 //!
 //! Arguments are converted first, then the core runs with the GIL released; every core error is
-//! mapped in one place ([`errors`]) to `batten_native.BattenError` (a `ValueError`), and a panic
-//! never crosses into Python ([`errors::guard`]).
+//! mapped in one place ([`errors`]) to a subclass of `batten_native.BattenError` (a
+//! `ValueError`) by kind, and a panic never crosses into Python ([`errors::guard`]).
 
 mod curve;
 mod errors;
@@ -18,13 +18,32 @@ use pyo3::prelude::*;
 #[pyo3(name = "_native")]
 fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add("BattenError", m.py().get_type::<errors::BattenError>())?;
-    m.add("DEFAULT_TOLERANCE", batten_core::Tolerance::DEFAULT.get())?;
+    m.add("DEFAULT_TOLERANCE", batten_core::DEFAULT_TOLERANCE)?;
+    m.add("DEFAULT_RESOLUTION", batten_core::DEFAULT_RESOLUTION)?;
+    m.add("MAX_RESOLUTION", batten_core::MAX_RESOLUTION)?;
+    m.add(
+        "DEFAULT_FAIR_TOLERANCE",
+        batten_core::DEFAULT_FAIR_TOLERANCE,
+    )?;
+    m.add(
+        "DEFAULT_SECTION_TOLERANCE",
+        batten_core::DEFAULT_SECTION_TOLERANCE,
+    )?;
+    m.add(
+        "DEFAULT_SECTION_MODEL_TOLERANCE",
+        batten_core::DEFAULT_SECTION_MODEL_TOLERANCE,
+    )?;
+    m.add(
+        "DEFAULT_CORNER_ANGLE_DEG",
+        batten_core::DEFAULT_CORNER_ANGLE_DEGREES,
+    )?;
+    m.add("DEFAULT_FAIR_DEGREE", batten_core::DEFAULT_FAIR_DEGREE)?;
     m.add("ROLES", batten_core::Role::ALL.map(|r| r.name()).to_vec())?;
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(network::network_to_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
+    #[cfg(feature = "test-hooks")]
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;

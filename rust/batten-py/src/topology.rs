@@ -1,11 +1,12 @@
 //! Network topology as plain Python data: counts, faces, boundary loops, diagnostics.
 
-use batten_core::{Network, Tolerance, Topology};
+use batten_core::{Network, Tolerance, Topology, Warning, DEFAULT_TOLERANCE};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
 use crate::errors::{core_err, guard};
+use crate::hull::warning_dict;
 
 /// The topology of the network of `curves` at `tolerance` (H-rep paper §3.1, §5.2): a dict
 /// with `nodes`, `edges` (counts), `node_positions` (list of [x, y, z]), `node_kinds` (one per
@@ -14,9 +15,10 @@ use crate::errors::{core_err, guard};
 /// or `free_end`), `faces` (each: `curves` (names), `corners`, `sides` (list of curve-name
 /// lists, one per side between true corners), `edges` (edge count)), `faces_by_corners`
 /// ({corners: count}), `boundary_loops` (each: `curves`, `edges`), and `diagnostics` (each:
-/// `kind`, `message`, `curves`, `location` or None).
+/// `kind`, `message`, `curves`, `location` or None, `error` None: the shape of the hull
+/// report's warnings).
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=1e-4))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE))]
 pub fn topology<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
@@ -74,14 +76,7 @@ pub fn topology<'py>(
     let diags = topo
         .diagnostics
         .iter()
-        .map(|g| {
-            let gd = PyDict::new(py);
-            gd.set_item("kind", g.kind())?;
-            gd.set_item("message", g.to_string())?;
-            gd.set_item("curves", g.curves())?;
-            gd.set_item("location", g.location().map(|p| p.to_array()))?;
-            Ok(gd)
-        })
+        .map(|g| warning_dict(py, &Warning::from(g)))
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("diagnostics", diags)?;
     Ok(d)

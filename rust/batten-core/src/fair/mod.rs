@@ -35,6 +35,10 @@ pub use error::FairError;
 pub use metrics::{fairness_metrics, FairnessMetrics, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD};
 
 use crate::curve::NurbsCurve;
+use crate::defaults::{
+    DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE, DEFAULT_FAIR_TOLERANCE,
+    DEFAULT_PARAMETER_ITERATIONS,
+};
 use crate::tolerance::Tolerance;
 use fit::Target;
 use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
@@ -90,14 +94,14 @@ pub struct FairOptions {
 impl Default for FairOptions {
     fn default() -> Self {
         FairOptions {
-            degree: 3,
-            smoothing: Smoothing::MaxDeviation(1e-3),
+            degree: DEFAULT_FAIR_DEGREE,
+            smoothing: Smoothing::MaxDeviation(DEFAULT_FAIR_TOLERANCE),
             corners: Vec::new(),
-            corner_angle: Some(45f64.to_radians()),
+            corner_angle: Some(DEFAULT_CORNER_ANGLE_DEGREES.to_radians()),
             start_tangent: None,
             end_tangent: None,
             model_tolerance: Tolerance::DEFAULT,
-            max_parameter_iterations: 20,
+            max_parameter_iterations: DEFAULT_PARAMETER_ITERATIONS,
         }
     }
 }

@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use glam::DVec3;
 use serde::Serialize;
 
-use super::build::EdgeInfo;
+use super::edges::FaceEdges;
 use crate::network::{Network, Role};
 use crate::topo::Topology;
 
@@ -96,12 +96,10 @@ pub(crate) fn corner_points(network: &Network) -> Vec<Vec<DVec3>> {
 /// every edge with an end node that lies (within the near-miss distance, 10× the tolerance) on
 /// a corner point of another curve through that node. `None` for the other edges.
 ///
-/// `at_vertex[v]` lists the face edges at node `v` as `(edge, node is the edge's start)`.
 pub(crate) fn knuckle_edges(
     network: &Network,
     topology: &Topology,
-    edges: &[Option<EdgeInfo>],
-    at_vertex: &[Vec<(usize, bool)>],
+    edges: &FaceEdges,
     near_miss: f64,
 ) -> Vec<Option<Knuckle>> {
     let corners = corner_points(network);
@@ -112,15 +110,15 @@ pub(crate) fn knuckle_edges(
         .iter()
         .enumerate()
         .map(|(k, e)| {
-            edges[k].as_ref()?;
+            edges.info[k].as_ref()?;
             if curves[e.curve].role == Role::Knuckle {
                 return Some(Knuckle::Role);
             }
             let mut by: BTreeSet<usize> = BTreeSet::new();
             for v in [e.start, e.end] {
                 let p = topology.brep.vertices[v.index()].position;
-                for &(j, _) in &at_vertex[v.index()] {
-                    let d = topology.brep.edges[j].curve;
+                for end in &edges.at_vertex[v.index()] {
+                    let d = topology.brep.edges[end.edge].curve;
                     if d != e.curve && corners[d].iter().any(|c| (*c - p).length() <= near_miss) {
                         by.insert(d);
                     }

@@ -6,15 +6,59 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::knuckles::{knuckle_report, Knuckle};
-use super::HullReport;
+use serde::Serialize;
+
+use super::knuckles::{knuckle_report, Knuckle, KnuckleEdge};
+use super::patched::{LayoutSegment, PatchedFace};
+use super::warning::Warning;
 use crate::network::Network;
 use crate::patch::{Patch, SurfaceMesh};
-use crate::topo::Topology;
+use crate::topo::{NodeKind, Topology};
 
-/// Where the edges of one patch went: per side, per segment, `(edge index, runs along the
-/// curve)`.
-pub(crate) type PatchLayout = Vec<Vec<(usize, bool)>>;
+/// What [`build_hull`] built and how good it is (H-rep paper §3–§5: counts of the topology,
+/// continuity across the network's edges, and the designer's first hydrostatic check).
+/// Serialises (serde) as a JSON object with these field names.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct HullReport {
+    /// Nodes of the topology (§3.1 vertices).
+    pub nodes: usize,
+    /// Edges of the topology (§3.1: curve stretches between nodes), including those bounding no
+    /// face.
+    pub edges: usize,
+    /// Faces that became patches (§3.2.1).
+    pub faces: usize,
+    /// Patches by number of sides: `{3: …, 4: …, 5: …}` (§3.2.1 three-, four-, N-sided).
+    pub faces_by_sides: BTreeMap<usize, usize>,
+    /// Faces of the topology that could not be patched (each is named in `warnings`).
+    pub skipped_faces: usize,
+    /// Edges used by exactly one patch: the open boundary of the surface (keel, stem, deck …).
+    pub open_edges: usize,
+    /// Largest distance (m) between a network curve and the patch side that should lie on it,
+    /// sampled along every side segment (the patches interpolate the curves, §3.2.1).
+    pub max_gap: f64,
+    /// Largest angle (degrees) between the two patches' normals across a smooth edge, sampled
+    /// along every edge shared by two patches (GC¹ of §3.2.2: ideally 0).
+    pub max_normal_angle_deg: f64,
+    /// Per knuckle curve: its name and the smallest and largest angle (degrees) between the two
+    /// patches' normals along it (the crease the designer drew, §1 "knuckles").
+    pub crease_angles_deg: Vec<(String, f64, f64)>,
+    /// Every knuckle edge (G0 crease), in the topology's edge order: its curve, whether the
+    /// designer's role or batten's corner rule made it a knuckle, its crease angles and a
+    /// polyline along it (so a front end can show which creases were found automatically).
+    pub knuckle_edges: Vec<KnuckleEdge>,
+    /// Volume (m³) between the surface and the centreplane `y = 0`, closed by lids
+    /// perpendicular to the centreplane: `|Σ ȳ·n_y·A|` over the mesh triangles (the divergence
+    /// theorem with the field `(0, y, 0)`, exact for the mesh); for the drawn half only.
+    pub volume: f64,
+    /// Position of every node of the topology (§3.1 vertices), in the topology's order.
+    pub node_positions: Vec<DVec3>,
+    /// What meets at every node (crossing, end to end, T-joint …), as
+    /// [`Topology::node_kinds`](crate::Topology::node_kinds).
+    pub node_kinds: Vec<NodeKind>,
+    /// Every topology diagnostic, every ribbon and patch warning and every skipped face, as data
+    /// naming the curves and the place (§5.2: the system tells the designer what it resolved).
+    pub warnings: Vec<Warning>,
+}
 
 /// Samples per side segment for the gap between patch and curve (ends included).
 const GAP_SAMPLES: usize = 16;
@@ -23,8 +67,23 @@ const GAP_SAMPLES: usize = 16;
 /// sides at once, are not sampled).
 const NORMAL_SAMPLES: usize = 16;
 
-/// One use of an edge by a patch: patch, side, segment, runs along the curve.
-type Use = (usize, usize, usize, bool);
+/// One use of an edge by a patch: which patch, which side and segment of it, and whether the
+/// side runs along the edge's curve.
+#[derive(Clone, Copy, Debug)]
+struct Use {
+    patch: usize,
+    side: usize,
+    segment: usize,
+    forward: bool,
+}
+
+/// The smallest and largest normal angle (degrees) sampled across one shared edge.
+#[derive(Clone, Copy, Debug)]
+struct EdgeAngles {
+    edge: usize,
+    lo: f64,
+    hi: f64,
+}
 
 /// Σ over the mesh polygons of their area vectors: the surface's mean normal times its area.
 pub(crate) fn area_vector(mesh: &SurfaceMesh) -> DVec3 {
@@ -78,42 +137,53 @@ fn edge_normal_at(patch: &Patch, side: usize, seg: usize, forward: bool, lambda:
     patch.normal(patch.domain().side_point(side, s))
 }
 
-/// Build the report from the built patches.
-#[allow(clippy::too_many_arguments)]
+/// What the build found besides the patches, for [`report`].
+pub(crate) struct Findings<'a> {
+    /// Why each edge is a knuckle (`None` for a smooth edge), in the topology's edge order.
+    pub(crate) knuckle: &'a [Option<Knuckle>],
+    /// Faces of the topology that could not be patched.
+    pub(crate) skipped_faces: usize,
+    /// The warnings gathered on the way.
+    pub(crate) warnings: Vec<Warning>,
+}
+
+/// Build the report from the built patches and the mesh.
 pub(crate) fn report(
     network: &Network,
     topology: &Topology,
-    patches: &[Patch],
-    layouts: &[PatchLayout],
-    knuckle: &[Option<Knuckle>],
+    patched: &[PatchedFace],
     mesh: &SurfaceMesh,
-    skipped_faces: usize,
-    warnings: Vec<String>,
+    findings: Findings<'_>,
 ) -> HullReport {
     let brep = &topology.brep;
     let curves = network.curves();
+    let knuckle = findings.knuckle;
     let mut faces_by_sides = BTreeMap::new();
-    for p in patches {
-        *faces_by_sides.entry(p.sides()).or_insert(0) += 1;
+    for p in patched {
+        *faces_by_sides.entry(p.patch.sides()).or_insert(0) += 1;
     }
     let mut uses: Vec<Vec<Use>> = vec![Vec::new(); brep.edges.len()];
-    for (pi, layout) in layouts.iter().enumerate() {
-        for (si, side) in layout.iter().enumerate() {
-            for (ki, &(edge, fwd)) in side.iter().enumerate() {
-                uses[edge].push((pi, si, ki, fwd));
+    for (pi, p) in patched.iter().enumerate() {
+        for (si, side) in p.layout.iter().enumerate() {
+            for (ki, seg) in side.iter().enumerate() {
+                uses[seg.edge].push(Use {
+                    patch: pi,
+                    side: si,
+                    segment: ki,
+                    forward: seg.forward,
+                });
             }
         }
     }
     let open_edges = uses.iter().filter(|u| u.len() == 1).count();
 
     // Gap between every patch side and its designer curve.
-    let max_gap = patches
+    let max_gap = patched
         .par_iter()
-        .zip(layouts.par_iter())
-        .map(|(patch, layout)| {
+        .map(|PatchedFace { patch, layout, .. }| {
             let mut worst: f64 = 0.0;
             for (si, side) in layout.iter().enumerate() {
-                for (ki, &(edge, fwd)) in side.iter().enumerate() {
+                for (ki, &LayoutSegment { edge, forward: fwd }) in side.iter().enumerate() {
                     let e = &brep.edges[edge];
                     let curve = &curves[e.curve].curve;
                     let (ta, tb) = if fwd { (e.t0, e.t1) } else { (e.t1, e.t0) };
@@ -130,18 +200,20 @@ pub(crate) fn report(
         })
         .reduce(|| 0.0, f64::max);
 
-    // Normal angles across every edge shared by two patches: (edge, min, max).
-    let angles: Vec<(usize, f64, f64)> = uses
+    // Normal angles across every edge shared by two patches.
+    let angles: Vec<EdgeAngles> = uses
         .par_iter()
         .enumerate()
         .filter(|(_, u)| u.len() == 2)
         .filter_map(|(edge, u)| {
-            let ((pa, sa, ka, fa), (pb, sb, kb, fb)) = (u[0], u[1]);
+            let normal = |u: &Use, lam| {
+                edge_normal_at(&patched[u.patch].patch, u.side, u.segment, u.forward, lam)
+            };
             let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
             for j in 0..NORMAL_SAMPLES {
                 let lam = (j as f64 + 0.5) / NORMAL_SAMPLES as f64;
-                let na = edge_normal_at(&patches[pa], sa, ka, fa, lam);
-                let nb = edge_normal_at(&patches[pb], sb, kb, fb, lam);
+                let na = normal(&u[0], lam);
+                let nb = normal(&u[1], lam);
                 if na == DVec3::ZERO || nb == DVec3::ZERO {
                     continue;
                 }
@@ -149,13 +221,13 @@ pub(crate) fn report(
                 lo = lo.min(ang);
                 hi = hi.max(ang);
             }
-            (lo <= hi).then_some((edge, lo, hi))
+            (lo <= hi).then_some(EdgeAngles { edge, lo, hi })
         })
         .collect();
     let mut max_normal_angle_deg: f64 = 0.0;
     let mut creases: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
     let mut edge_creases: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
-    for &(edge, lo, hi) in &angles {
+    for &EdgeAngles { edge, lo, hi } in &angles {
         if knuckle[edge].is_some() {
             edge_creases.insert(edge, (lo, hi));
             let c = creases
@@ -175,15 +247,17 @@ pub(crate) fn report(
     HullReport {
         nodes: topology.node_count(),
         edges: topology.edge_count(),
-        faces: patches.len(),
+        faces: patched.len(),
         faces_by_sides,
-        skipped_faces,
+        skipped_faces: findings.skipped_faces,
         open_edges,
         max_gap,
         max_normal_angle_deg,
         crease_angles_deg,
         knuckle_edges: knuckle_report(network, topology, knuckle, &edge_creases),
         volume: signed_volume(mesh).abs(),
-        warnings,
+        node_positions: brep.vertices.iter().map(|v| v.position).collect(),
+        node_kinds: topology.node_kinds(),
+        warnings: findings.warnings,
     }
 }

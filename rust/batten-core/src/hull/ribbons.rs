@@ -4,20 +4,9 @@
 
 use glam::DVec3;
 
-use super::build::EdgeInfo;
+use super::edges::{EdgeInfo, FaceEdges};
 use crate::patch::{EdgeNormal, PatchError, RibbonNode, MIN_CROSSING_ANGLE_DEGREES};
 use crate::topo::{TopoFace, Topology};
-
-/// The unit-free tangent with which edge `info` leaves its start node (`at_start`) or its end
-/// node (pointing away from the node, into the edge).
-#[inline]
-pub(crate) fn leaving_tangent(info: &EdgeInfo, at_start: bool) -> DVec3 {
-    if at_start {
-        info.start_tangent
-    } else {
-        -info.end_tangent
-    }
-}
 
 /// The ONE normal field of a smooth edge `k`, shared by both its faces (§3.2.2: the same
 /// tangent plane on both sides is GC¹): at each end node, the tangents of every other curve's
@@ -26,20 +15,23 @@ pub(crate) fn leaving_tangent(info: &EdgeInfo, at_start: bool) -> DVec3 {
 pub(crate) fn shared_normal(
     k: usize,
     topology: &Topology,
-    edges: &[Option<EdgeInfo>],
-    at_vertex: &[Vec<(usize, bool)>],
+    edges: &FaceEdges,
 ) -> Result<Option<EdgeNormal>, PatchError> {
-    let Some(info) = &edges[k] else {
+    let Some(info) = &edges.info[k] else {
         return Ok(None);
     };
     let e = &topology.brep.edges[k];
     let mut nodes = Vec::with_capacity(2);
     let (t0, t1) = (info.segment.t0, info.segment.t1);
     for (v, t) in [(e.start, t0), (e.end, t1)] {
-        let tangents: Vec<DVec3> = at_vertex[v.index()]
+        let tangents: Vec<DVec3> = edges.at_vertex[v.index()]
             .iter()
-            .filter(|&&(j, _)| topology.brep.edges[j].curve != e.curve)
-            .filter_map(|&(j, at_start)| edges[j].as_ref().map(|o| leaving_tangent(o, at_start)))
+            .filter(|end| topology.brep.edges[end.edge].curve != e.curve)
+            .filter_map(|end| {
+                edges.info[end.edge]
+                    .as_ref()
+                    .map(|o| o.leaving_tangent(end.at_start))
+            })
             .collect();
         if !tangents.is_empty() {
             nodes.push(RibbonNode { t, tangents });
@@ -85,7 +77,7 @@ pub(crate) fn one_sided_normal(
         if let Some(other) = &edges[j] {
             nodes.push(RibbonNode {
                 t,
-                tangents: vec![leaving_tangent(other, at_start)],
+                tangents: vec![other.leaving_tangent(at_start)],
             });
         }
     }

@@ -8,9 +8,9 @@ use glam::DVec3;
 use super::approach::{box_gap, closest_approach, Approach, PieceCurve, Seg};
 use super::Network;
 use crate::curve::{Aabb, BezierDecomposition, NurbsCurve};
+use crate::diagnostic::Diagnostic;
 use crate::error::Error;
 use crate::tolerance::Tolerance;
-use crate::diagnostic::Diagnostic;
 
 /// A segment pair is a leaf (handed to Newton) once their tangent cones are separated by more
 /// than this angle (radians, 5°): two pieces whose tangents can never be parallel approach each

@@ -148,6 +148,29 @@ pub enum PatchError {
     },
 }
 
+impl PatchError {
+    /// A short stable tag for the kind of error (`"segment_gap"`, `"ribbon_count"`, …), for the
+    /// binding and for filtering.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            PatchError::TooFewSides { .. } => "too_few_sides",
+            PatchError::TooManySides { .. } => "too_many_sides",
+            PatchError::EmptySide { .. } => "empty_side",
+            PatchError::BadParameter { .. } => "bad_parameter",
+            PatchError::ZeroLengthSide { .. } => "zero_length_side",
+            PatchError::SegmentGap { .. } => "segment_gap",
+            PatchError::CornerGap { .. } => "corner_gap",
+            PatchError::RibbonCount { .. } => "ribbon_count",
+            PatchError::RibbonSegments { .. } => "ribbon_segments",
+            PatchError::BadRibbonNode { .. } => "bad_ribbon_node",
+            PatchError::GregoryNeedsFourSides { .. } => "gregory_needs_four_sides",
+            PatchError::Resolution(_) => "resolution",
+            PatchError::MeshTooLarge(_) => "mesh_too_large",
+            PatchError::Curve { .. } => "curve",
+        }
+    }
+}
+
 /// Something the patch construction repaired with a documented fallback rather than refused.
 ///
 /// Warnings travel with the [`crate::Patch`] (see [`crate::Patch::warnings`]) so the add-on can

@@ -14,6 +14,7 @@
 //! no slivers for regular counts. Faces are counter-clockwise in the domain, so their normals
 //! point outwards for a counter-clockwise (seen from outside) face.
 
+use std::borrow::Borrow;
 use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
@@ -240,14 +241,18 @@ fn zipper(outer: &[(u32, f64)], inner: &[(u32, f64)], faces: &mut Vec<u32>, size
 
 /// Tessellate several patches (in parallel) into one mesh, `resolution` intervals per side
 /// segment, welding boundary vertices that are bitwise identical (shared segments and shared
-/// node positions). `face_patch` holds each face's index into `patches`.
-pub fn tessellate_patches(patches: &[Patch], resolution: usize) -> Result<SurfaceMesh, PatchError> {
+/// node positions). `face_patch` holds each face's index into `patches`. Takes anything that
+/// borrows as a [`Patch`] (patches, or values that carry one).
+pub fn tessellate_patches<P: Borrow<Patch> + Sync>(
+    patches: &[P],
+    resolution: usize,
+) -> Result<SurfaceMesh, PatchError> {
     if resolution == 0 {
         return Err(PatchError::Resolution(resolution));
     }
     let meshes: Vec<FaceMesh> = patches
         .par_iter()
-        .map(|p| p.face_mesh(resolution))
+        .map(|p| p.borrow().face_mesh(resolution))
         .collect();
     let total: usize = meshes.iter().map(|m| m.positions.len()).sum();
     if total >= u32::MAX as usize {

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use super::Topology;
 
 /// The kind of a node of the network.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(serde::Serialize, Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum NodeKind {
     /// Curves cross or pass through the node; none ends there.
     Crossing,

@@ -1,13 +1,30 @@
 """batten_native: the Rust core of batten (curves, networks, hull surfaces) for Python.
 
 Everything here is implemented in Rust (``batten_native._native``); errors are raised as
-:class:`BattenError`, a :class:`ValueError` whose message names the curve and the problem.
+subclasses of :class:`BattenError`, a :class:`ValueError` whose message names the curve and the
+problem (``batten_native._errors``: CurveError with ``.curve``, FairError, NetworkFileError,
+NoSurfaceError, InvalidArgumentError, InternalError).
 """
 
-from ._native import (
-    DEFAULT_TOLERANCE,
-    ROLES,
+from ._errors import (
     BattenError,
+    CurveError,
+    FairError,
+    InternalError,
+    InvalidArgumentError,
+    NetworkFileError,
+    NoSurfaceError,
+)
+from ._native import (
+    DEFAULT_CORNER_ANGLE_DEG,
+    DEFAULT_FAIR_DEGREE,
+    DEFAULT_FAIR_TOLERANCE,
+    DEFAULT_RESOLUTION,
+    DEFAULT_SECTION_MODEL_TOLERANCE,
+    DEFAULT_SECTION_TOLERANCE,
+    DEFAULT_TOLERANCE,
+    MAX_RESOLUTION,
+    ROLES,
     Curve,
     __version__,
     build_surface,
@@ -20,9 +37,22 @@ from ._native import (
 )
 
 __all__ = [
+    "DEFAULT_CORNER_ANGLE_DEG",
+    "DEFAULT_FAIR_DEGREE",
+    "DEFAULT_FAIR_TOLERANCE",
+    "DEFAULT_RESOLUTION",
+    "DEFAULT_SECTION_MODEL_TOLERANCE",
+    "DEFAULT_SECTION_TOLERANCE",
     "DEFAULT_TOLERANCE",
+    "MAX_RESOLUTION",
     "ROLES",
     "BattenError",
+    "CurveError",
+    "FairError",
+    "InternalError",
+    "InvalidArgumentError",
+    "NetworkFileError",
+    "NoSurfaceError",
     "Curve",
     "__version__",
     "build_surface",

@@ -7,10 +7,14 @@ import numpy.typing as npt
 
 __version__: Final[str]
 DEFAULT_TOLERANCE: Final[float]
+DEFAULT_RESOLUTION: Final[int]
+MAX_RESOLUTION: Final[int]
+DEFAULT_FAIR_TOLERANCE: Final[float]
+DEFAULT_SECTION_TOLERANCE: Final[float]
+DEFAULT_SECTION_MODEL_TOLERANCE: Final[float]
+DEFAULT_CORNER_ANGLE_DEG: Final[float]
+DEFAULT_FAIR_DEGREE: Final[int]
 ROLES: Final[list[str]]
-
-class BattenError(ValueError):
-    """A problem with the hull's curves or settings; the message names the curve and the problem."""
 
 _F64 = npt.NDArray[np.float64]
 _ArrayLike = npt.ArrayLike
@@ -81,7 +85,7 @@ class Curve:
 def network_to_json(name: str, curves: list[Curve]) -> str: ...
 def network_from_json(text: str) -> tuple[str, list[Curve]]: ...
 def check_lengths(curves: list[Curve], tolerance: float) -> None: ...
-def _panic_for_tests(message: str) -> None: ...
+def _panic_for_tests(message: str) -> None: ...  # dev builds only (cargo feature test-hooks)
 def fair_points(
     name: str,
     points: _ArrayLike,

@@ -1,0 +1,55 @@
+"""The exceptions of batten, one class per kind of problem a script may want to catch.
+
+All derive from :class:`BattenError`, a :class:`ValueError`; the message always names the curve
+(or the file) and the problem. The Rust binding raises these same classes.
+"""
+
+from __future__ import annotations
+
+
+class BattenError(ValueError):
+    """A problem with the hull's curves, files or settings; the message names the curve and the problem."""
+
+
+class CurveError(BattenError):
+    """A problem with one designer curve; ``.curve`` is the curve object's (or spline's) name."""
+
+    curve: str
+
+    def __init__(self, message: str, curve: str) -> None:
+        super().__init__(message, curve)
+        self.curve = curve
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+class FairError(CurveError):
+    """Fairing the points of a curve failed (too few points, bad tolerance, bad tangents …)."""
+
+
+class NetworkFileError(BattenError):
+    """A network, section or offsets file could not be read (missing, malformed, newer version)."""
+
+
+class NoSurfaceError(BattenError):
+    """The network gives no hull surface: no closed region, or no face could be patched."""
+
+
+class InvalidArgumentError(BattenError):
+    """An argument is out of range or of the wrong kind (resolution 0, negative tolerance, unknown role …)."""
+
+
+class InternalError(BattenError):
+    """A defect of batten (a caught panic of the core); please report it with the curves that caused it."""
+
+
+__all__ = [
+    "BattenError",
+    "CurveError",
+    "FairError",
+    "InternalError",
+    "InvalidArgumentError",
+    "NetworkFileError",
+    "NoSurfaceError",
+]
