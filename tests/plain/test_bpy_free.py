@@ -2,8 +2,9 @@
 
 import subprocess
 import sys
+from pathlib import Path
 
-from conftest import ADDON
+ADDON = Path(__file__).resolve().parents[2] / "addon"
 
 BPY_FREE = (
     "batten",
