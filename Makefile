@@ -21,6 +21,7 @@ demo: venv sysdeps
 test: venv sysdeps lint
 	cargo test -p batten-core
 	$(MAKE) --no-print-directory package PROFILE=dev
+	PYTHONPATH=build/native/dev $(VPY) -m pytest -q tests/plain
 	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \
 	  PYTHONPATH=build/native/dev:addon $(VPY) -m pytest -q tests
 

@@ -1,21 +1,27 @@
 """batten: smooth ship hull surfaces from networks of designer curves.
 
 The add-on is a thin front end: geometry runs in the Rust module ``batten_native``; the
-scripting API is :mod:`batten.api`; operators and panels only call it.
+scripting API is :mod:`batten.api`; operators and panels only call it. Importing the package
+needs no Blender (its Blender modules load in :func:`register`), so the bpy-free modules
+(:mod:`batten.fit_data`, :mod:`batten.object_names`, :mod:`batten.network_markers`,
+:mod:`batten.atomic_write`) can be used and tested without it.
 """
 
-from . import live, operators, overlay, panels, properties
 
-_MODULES = (properties, operators, panels, overlay, live)
+def _modules():
+    """The Blender modules, in registration order."""
+    from . import live, operators, overlay, panels, properties
+
+    return (properties, operators, panels, overlay, live)
 
 
 def register():
     """Register properties, operators and panels (safe to call twice)."""
-    for module in _MODULES:
+    for module in _modules():
         module.register()
 
 
 def unregister():
     """Remove everything :func:`register` added, in reverse order (safe to call twice)."""
-    for module in reversed(_MODULES):
+    for module in reversed(_modules()):
         module.unregister()

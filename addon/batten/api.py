@@ -1,8 +1,12 @@
 """batten's scripting API: the calls the panel and operators use, for scripts and headless runs.
 
 Every function takes Blender data (a collection, a list of curve objects, or one object) and
-raises :class:`BattenError` (a ``ValueError``) with a message naming the curve and the problem.
-A failed call leaves the file as it was: nothing half-written, no source curve changed.
+raises :class:`BattenError` (a ``ValueError``) with a message naming the curve and the problem,
+as one of its kinds a script can catch: :class:`CurveError` (``.curve`` is the curve object's
+name; :class:`FairError` when fairing fails), :class:`NetworkFileError` (a network or section
+file that cannot be read or written), :class:`NoSurfaceError`, :class:`InvalidArgumentError`
+(a bad argument value or source) and :class:`InternalError` (a bug in batten's core). A failed
+call leaves the file as it was: nothing half-written, no source curve changed.
 
     import batten.api as api
     curves = api.read_curves(bpy.data.collections["Hull"])
@@ -12,8 +16,6 @@ A failed call leaves the file as it was: nothing half-written, no source curve c
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Iterable
 from pathlib import Path
 from typing import NamedTuple
@@ -21,11 +23,24 @@ from typing import NamedTuple
 import bpy
 import numpy as np
 from batten_native import (
+    DEFAULT_CORNER_ANGLE_DEG,
+    DEFAULT_FAIR_DEGREE,
+    DEFAULT_FAIR_TOLERANCE,
+    DEFAULT_RESOLUTION,
+    DEFAULT_SECTION_MODEL_TOLERANCE,
+    DEFAULT_SECTION_TOLERANCE,
     DEFAULT_TOLERANCE,
     ROLES,
     BattenError,
     Curve,
+    CurveError,
+    FairError,
+    InternalError,
+    InvalidArgumentError,
+    NetworkFileError,
+    NoSurfaceError,
     build_surface,
+    check_lengths,
     fair_points,
     fairness,
     network_from_json,
@@ -33,7 +48,10 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
+from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
+from .fit_data import fit_data
+from .object_names import errors_named_by_object, objects_of, with_objects
 
 __all__ = [
     "BuildResult",
@@ -42,18 +60,30 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "ROLES",
     "BattenError",
+    "CurveError",
+    "FairError",
+    "InternalError",
+    "InvalidArgumentError",
+    "NetworkFileError",
+    "NoSurfaceError",
     "Curve",
     "curvature_comb",
     "curve_objects",
+    "example_files",
     "export_network",
     "fair_curve",
+    "fair_curves",
     "fairness",
     "import_sections",
+    "load_example",
     "load_network",
     "read_curves",
     "set_role",
     "topology",
 ]
+
+#: Display resolution (segments per span) of the curve objects batten draws.
+CURVE_RESOLUTION = 16
 
 
 #: Custom property marking a mesh object as the surface batten built, holding the source's name.
@@ -70,7 +100,8 @@ def curve_objects(source) -> list:
     """The objects of ``source``: a collection (with its child collections), an iterable of
     objects, or one object, in a stable order (by name).
 
-    Raises BattenError when there is nothing, or when an object is not a curve (naming it).
+    Raises InvalidArgumentError when ``source`` is none of these or holds nothing, and
+    CurveError (naming the object) when an object is not a curve.
     """
     if isinstance(source, bpy.types.Collection):
         objects = list(source.all_objects)
@@ -82,18 +113,20 @@ def curve_objects(source) -> list:
         objects = list(source)
         where = "the given objects"
     else:
-        raise BattenError(
+        raise InvalidArgumentError(
             f"expected a collection, a curve object or a list of them, got {type(source).__name__}"
         )
     # The hull surface batten built from these curves may sit beside them: it is output, not input.
     objects = [o for o in objects if not (isinstance(o, bpy.types.Object) and o.get(SURFACE_TAG))]
     if not objects:
-        raise BattenError(f"{where} holds no curves")
+        raise InvalidArgumentError(f"{where} holds no curves")
     for obj in objects:
         if not isinstance(obj, bpy.types.Object):
-            raise BattenError(f"{where}: {obj!r} is not a Blender object")
+            raise InvalidArgumentError(f"{where}: {obj!r} is not a Blender object")
         if obj.type != "CURVE":
-            raise BattenError(f"{where}: object '{obj.name}' is a {obj.type.lower()}, not a curve object")
+            raise CurveError(
+                f"{where}: object '{obj.name}' is a {obj.type.lower()}, not a curve object", obj.name
+            )
     return sorted(objects, key=lambda o: o.name)
 
 
@@ -101,55 +134,58 @@ def read_curves(source) -> list[Curve]:
     """Every spline of the curve objects in ``source`` as :class:`Curve` (world coordinates,
     roles from the objects). See :mod:`batten.bridge.curves_in` for how each spline type is read.
     """
+    return _read_source(source).curves
+
+
+class _SourceCurves(NamedTuple):
+    """The curves of a source, and the name of the object each one came from."""
+
+    curves: list[Curve]
+    object_of: dict[str, str]
+
+
+def _read_source(source) -> _SourceCurves:
     curves: list[Curve] = []
+    object_of: dict[str, str] = {}
     for obj in curve_objects(source):
-        curves.extend(curves_in.read_object(obj))
-    return curves
-
-
-def _write_atomically(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+        read = curves_in.read_object(obj)
+        curves.extend(read)
+        object_of.update((c.name, obj.name) for c in read)
+    return _SourceCurves(curves, object_of)
 
 
 def export_network(source, path, *, name: str | None = None, tolerance: float = DEFAULT_TOLERANCE) -> Path:
     """Write the curves of ``source`` to ``path`` as a batten network (versioned JSON).
 
     Curves shorter than ``tolerance`` are refused (zero-length curve). The file is written
-    whole or not at all. Returns the path.
+    whole or not at all (NetworkFileError naming it when it cannot be). Returns the path.
     """
-    from batten_native import check_lengths
-
-    curves = read_curves(source)
-    check_lengths(curves, tolerance)
+    curves, object_of = _read_source(source)
+    with errors_named_by_object(object_of):
+        check_lengths(curves, tolerance)
     text = network_to_json(name if name is not None else _source_name(source), curves)
     path = Path(path)
-    _write_atomically(path, text)
-    return path
+    try:
+        return write_atomically(path, text)
+    except OSError as e:
+        raise NetworkFileError(f"network file '{path}': {e.strerror or e}") from e
 
 
 def read_network(path) -> tuple[str, list[Curve]]:
-    """The network file at ``path`` as ``(name, curves)``; BattenError if it cannot be read."""
+    """The network file at ``path`` as ``(name, curves)``; NetworkFileError naming the file
+    (and the problem) if it cannot be read or is not a valid network."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as e:
-        raise BattenError(f"network file '{path}': {e.strerror or e}") from None
+        raise NetworkFileError(f"network file '{path}': {e.strerror or e}") from e
     try:
         return network_from_json(text)
     except BattenError as e:
-        raise BattenError(f"network file '{path}': {e}") from None
+        raise NetworkFileError(f"network file '{path}': {e}") from e
 
 
-def load_network(path, *, collection=None, resolution: int = 16):
+def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):
     """Draw the network file at ``path`` as Blender curve objects in a new collection (named
     after the network, or ``collection`` if a name is given) linked to the scene.
 
@@ -161,7 +197,7 @@ def load_network(path, *, collection=None, resolution: int = 16):
     return _draw_collection(coll_name, curves, resolution=resolution)
 
 
-def _draw_collection(name: str, curves: list[Curve], *, resolution: int = 16):
+def _draw_collection(name: str, curves: list[Curve], *, resolution: int = CURVE_RESOLUTION):
     """Draw ``curves`` as curve objects in a new collection ``name`` linked to the scene:
     all of them, or (if drawing fails midway) none, with everything created removed again."""
     coll = bpy.data.collections.new(name)
@@ -181,101 +217,128 @@ def _draw_collection(name: str, curves: list[Curve], *, resolution: int = 16):
 
 
 def set_role(objects, role: str) -> None:
-    """Set the batten role (one of :data:`ROLES`) of each curve object in ``objects``."""
+    """Set the batten role (one of :data:`ROLES`) of each curve object in ``objects``
+    (InvalidArgumentError for any other role)."""
     if role not in ROLES:
-        raise BattenError(f"unknown role '{role}' (one of {', '.join(ROLES)})")
+        raise InvalidArgumentError(f"unknown role '{role}' (one of {', '.join(ROLES)})")
     for obj in curve_objects(objects):
         obj.batten.role = role
 
 
-#: Samples per knot span when a drawn (non-polyline) curve is refitted.
-FAIR_SAMPLES_PER_SPAN = 12
-#: At least this many samples for a drawn curve.
-FAIR_MIN_SAMPLES = 60
+def example_files() -> list[Path]:
+    """The example networks: shipped inside the extension, or in this checkout's examples/."""
+    here = Path(__file__).resolve().parent
+    for folder in (here / "examples", here.parent.parent / "examples"):
+        files = sorted(folder.glob("*.json"))
+        if files:
+            return files
+    return []
 
 
-def _fit_data(curve: Curve) -> tuple[np.ndarray, list[int]]:
-    """The points to fair a curve through, and the indices of its corners among them.
+def load_example(file_name: str):
+    """Draw the example network ``file_name`` (one of :func:`example_files`, by file name) as
+    in :func:`load_network`; InvalidArgumentError when there is no such example."""
+    path = next((p for p in example_files() if p.name == file_name), None)
+    if path is None:
+        raise InvalidArgumentError(f"No example '{file_name}'")
+    return load_network(path)
 
-    A polyline's vertices are the data (imported or digitised points). A drawn curve is
-    sampled: each smooth piece between its corners evenly in parameter, the corners exactly.
+
+def _fair_object(obj, *, tolerance, noise, degree, corner_angle_deg) -> list[tuple[Curve, dict]]:
+    """Every spline of ``obj`` faired (see :func:`fair_curves`), with its report; nothing is
+    written."""
+    fits = []
+    for curve in curves_in.read_object(obj):
+        points, corners = fit_data(curve)
+        with errors_named_by_object({curve.name: obj.name}):
+            new, report = fair_points(
+                curve.name,
+                points,
+                degree=degree,
+                tolerance=tolerance,
+                noise=noise,
+                corners=corners,
+                corner_angle_deg=corner_angle_deg if curve.degree == 1 else None,
+                role=curve.role,
+            )
+        report["curve"] = curve.name
+        report["object"] = obj.name
+        fits.append((new, report))
+    return fits
+
+
+def fair_curves(
+    objects,
+    *,
+    tolerance: float | None = DEFAULT_FAIR_TOLERANCE,
+    noise: float | None = None,
+    degree: int = DEFAULT_FAIR_DEGREE,
+    corner_angle_deg: float | None = DEFAULT_CORNER_ANGLE_DEG,
+) -> list[dict]:
+    """Refit every spline of the curve objects in ``objects`` (as for :func:`curve_objects`) in
+    place as a fair NURBS spline (Dierckx's smoothing spline, H-rep paper §4) and return one
+    report per spline, all or nothing: every spline is fitted before any object is written,
+    and if one fails (or a write fails midway) every object stays as it was.
+
+    The data are a polyline's points, or samples of a drawn curve (its corners kept; see
+    :func:`batten.fit_data.fit_data`). Give a ``tolerance`` (largest deviation, m) or a
+    ``noise`` level σ (m). End points are kept exactly, corners stay sharp (given ones, and
+    turns sharper than ``corner_angle_deg`` for polylines; None detects none). The objects,
+    their data-blocks, materials and modifiers stay. Report keys: curve, object,
+    control_points, knots, interior_knots, max_deviation, rms_deviation, inflections,
+    curvature_extrema, fairness_energy (∫κ² ds), max_curvature, corners, dropped_duplicates,
+    pieces.
     """
-    if curve.degree == 1:
-        return curve.control_points, []
-    a, b = curve.domain
-    knots = np.unique(curve.knots)
-    spans = int(np.count_nonzero((knots[:-1] >= a) & (knots[1:] <= b)))
-    breaks = [a, *curve.corners(), b]
-    total = max(FAIR_MIN_SAMPLES, FAIR_SAMPLES_PER_SPAN * spans)
-    params, corners = [a], []
-    for lo, hi in zip(breaks[:-1], breaks[1:], strict=True):
-        n = max(4, int(round(total * (hi - lo) / (b - a))))
-        params.extend(np.linspace(lo, hi, n + 1)[1:])
-        corners.append(len(params) - 1)
-    return curve.evaluate(np.asarray(params)), corners[:-1]
+    if noise is not None:
+        tolerance = None
+    fitted = [
+        (
+            obj,
+            _fair_object(
+                obj, tolerance=tolerance, noise=noise, degree=degree, corner_angle_deg=corner_angle_deg
+            ),
+        )
+        for obj in curve_objects(objects)
+    ]
+    curves_out.replace_splines_of([(obj, [curve for curve, _ in fits]) for obj, fits in fitted])
+    return [report for _, fits in fitted for _, report in fits]
 
 
 def fair_curve(
     obj,
     *,
-    tolerance: float | None = 1e-3,
+    tolerance: float | None = DEFAULT_FAIR_TOLERANCE,
     noise: float | None = None,
-    degree: int = 3,
-    corner_angle_deg: float | None = 45.0,
+    degree: int = DEFAULT_FAIR_DEGREE,
+    corner_angle_deg: float | None = DEFAULT_CORNER_ANGLE_DEG,
 ) -> list[dict]:
-    """Refit every spline of the curve object ``obj`` in place as a fair NURBS spline
-    (Dierckx's smoothing spline, H-rep paper §4) and return one report per spline.
-
-    The data are a polyline's points, or samples of a drawn curve (its corners kept). Give a
-    ``tolerance`` (largest deviation, m) or a ``noise`` level σ (m). End points are kept
-    exactly, corners stay sharp (given ones, and turns sharper than ``corner_angle_deg`` for
-    polylines; None detects none). The object, its data-block, materials and modifiers stay;
-    on any error nothing changes. Report keys: control_points, knots, interior_knots,
-    max_deviation, rms_deviation, inflections, curvature_extrema, fairness_energy (∫κ² ds),
-    max_curvature, corners, dropped_duplicates, pieces.
-    """
-    if noise is not None:
-        tolerance = None
-    curves = curves_in.read_object(obj)
-    fitted, reports = [], []
-    for curve in curves:
-        points, corners = _fit_data(curve)
-        new, report = fair_points(
-            curve.name,
-            points,
-            degree=degree,
-            tolerance=tolerance,
-            noise=noise,
-            corners=corners,
-            corner_angle_deg=corner_angle_deg if curve.degree == 1 else None,
-            role=curve.role,
-        )
-        report["curve"] = curve.name
-        fitted.append(new)
-        reports.append(report)
-    curves_out.replace_splines(obj, fitted)
-    return reports
+    """:func:`fair_curves` of the one curve object ``obj``: every spline refitted, one report
+    per spline; on any error nothing changes."""
+    return fair_curves(
+        obj, tolerance=tolerance, noise=noise, degree=degree, corner_angle_deg=corner_angle_deg
+    )
 
 
 def import_sections(
     path,
     *,
-    tolerance: float = 5e-3,
-    degree: int = 3,
-    corner_angle_deg: float | None = 45.0,
-    model_tolerance: float = 1e-3,
+    tolerance: float = DEFAULT_SECTION_TOLERANCE,
+    degree: int = DEFAULT_FAIR_DEGREE,
+    corner_angle_deg: float | None = DEFAULT_CORNER_ANGLE_DEG,
+    model_tolerance: float = DEFAULT_SECTION_MODEL_TOLERANCE,
     collection: str | None = None,
 ):
     """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets
     table ``name, x, y, z``), fair every curve within ``tolerance`` (m) keeping its end points
     and corners, and draw the curves as NURBS curve objects in a new collection, with roles
-    from the curve kinds. All curves are fitted before anything is created.
+    from the curve kinds. All curves are fitted before anything is created. A file that cannot
+    be read, or holds no curves, raises NetworkFileError naming it.
 
-    Returns ``(collection, reports)``, one report per curve (see :func:`fair_curve`).
+    Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`).
     """
     name, sections = sections_in.read_sections(path)
     if not sections:
-        raise BattenError(f"section file '{path}': no curves")
+        raise NetworkFileError(f"section file '{path}': no curves")
     fitted, reports = [], []
     for sec in sections:
         curve, report = fair_points(
@@ -319,9 +382,14 @@ def topology(source, *, tolerance: float = DEFAULT_TOLERANCE) -> dict:
     has a corner —, ``t_joint`` — a curve ending on another that runs on as one side of a face
     —, ``free_end``), ``faces`` (each ``curves``, ``corners``, ``sides``, ``edges``),
     ``faces_by_corners``, ``boundary_loops``, ``diagnostics`` (each ``kind``, ``message``,
-    ``curves``, ``location``).
+    ``curves`` — curve names —, ``objects`` — the names of the objects they came from —,
+    ``location`` and ``error``, as the build report's warnings).
     """
-    return _topology(read_curves(source), tolerance)
+    curves, object_of = _read_source(source)
+    with errors_named_by_object(object_of):
+        topo = _topology(curves, tolerance)
+    topo["diagnostics"] = with_objects(topo["diagnostics"], object_of)
+    return topo
 
 
 class BuildResult(NamedTuple):
@@ -339,7 +407,7 @@ def _surface_object(name: str):
 
 
 def build(
-    source, *, tolerance: float = DEFAULT_TOLERANCE, resolution: int = 8, mirror: bool = True
+    source, *, tolerance: float = DEFAULT_TOLERANCE, resolution: int = DEFAULT_RESOLUTION, mirror: bool = True
 ) -> BuildResult:
     """Build the smooth hull surface of the curve network in ``source`` (H-rep paper): nodes
     where curves meet, faces found automatically, one Gregory (4 sides) or Charrot–Gregory
@@ -350,26 +418,34 @@ def build(
     The mesh object (``"<source> surface"``) is updated in place on every rebuild: its name,
     materials and modifiers survive. ``mirror`` adds a Mirror modifier about y = 0. Faces
     carry an integer attribute ``patch`` (the network face they belong to). A build that fails
-    raises BattenError and leaves the previous mesh untouched.
+    raises BattenError (NoSurfaceError when no face could be made) and leaves the previous
+    mesh untouched.
 
-    ``report`` holds: nodes, edges, faces, faces_by_sides, open_edges, max_gap,
-    max_normal_angle_deg, crease_angles_deg (per knuckle curve: name, min, max), knuckle_edges
-    (each ``curve``, ``source`` — ``"role"`` or ``"auto"``, found at corners of crossing
-    curves —, ``corner_curves``, ``crease_deg`` (min, max) or None, ``points`` along the edge),
+    ``report`` holds: nodes, edges, node_positions, node_kinds (as in :func:`topology`),
+    faces, faces_by_sides, open_edges, max_gap, max_normal_angle_deg, crease_angles_deg (per
+    knuckle curve: name, min, max), knuckle_edges (each ``curve``, ``objects`` — the object
+    it came from —, ``source`` — ``"role"`` or ``"auto"``, found at corners of crossing curves
+    —, ``corner_curves``, ``crease_deg`` (min, max) or None, ``points`` along the edge),
     volume (between the drawn half surface and the centreplane), displacement_volume (both
-    halves when mirrored), mesh_vertices, mesh_faces, warnings.
+    halves when mirrored), mesh_vertices, mesh_faces, and warnings: each a dict with ``kind``
+    (``dangling_end``, ``near_miss``, ``unclosed_region``, ``face_not_patched``, …),
+    ``message``, ``curves`` (curve names),
+    ``objects`` (the names of the curve objects they came from, for selecting them),
+    ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the
+    patch error as ``{"kind", "message"}``, else None).
     """
-    curves = read_curves(source)
+    curves, object_of = _read_source(source)
     name = _source_name(source)
-    (positions, corners, sizes, patch), report = build_surface(curves, tolerance, resolution)
+    with errors_named_by_object(object_of):
+        (positions, corners, sizes, patch), report = build_surface(curves, tolerance, resolution)
     obj = mesh_out.write_surface(
         f"{name} surface", positions, corners, sizes, patch, obj=_surface_object(name), mirror=mirror
     )
     obj[SURFACE_TAG] = name
     report["mirror"] = mirror
     report["displacement_volume"] = report["volume"] * (2.0 if mirror else 1.0)
-    # Messages name curves as 'name': keep the names per warning, so the panel can show them.
-    report["warning_curves"] = {
-        w: sorted({c.name.split("[")[0] for c in curves if f"'{c.name}'" in w}) for w in report["warnings"]
-    }
+    report["warnings"] = with_objects(report["warnings"], object_of)
+    report["knuckle_edges"] = [
+        {**k, "objects": objects_of([k["curve"]], object_of)} for k in report["knuckle_edges"]
+    ]
     return BuildResult(obj, report)

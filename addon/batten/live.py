@@ -9,6 +9,7 @@ the transient "a rebuild is scheduled" flag lives here.
 import bpy
 
 from . import api
+from .scene_build import build_into_scene
 
 #: Seconds to wait after the last change before rebuilding.
 COALESCE_SECONDS = 0.05
@@ -32,8 +33,6 @@ def rebuild_scene(scene_name: str):
     scene = bpy.data.scenes.get(scene_name)
     if scene is None or not scene.batten.live or scene.batten.source is None:
         return None
-    from .operators import build_into_scene
-
     global _rebuilding
     _rebuilding = True
     try:

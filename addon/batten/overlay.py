@@ -4,7 +4,8 @@ knuckle edges as thick lines, the automatically found ones in their own colour (
 nothing stored).
 
 The comb geometry comes from :func:`batten.api.curvature_comb`, the markers and knuckle lines
-from the scene's last build report; this module only turns them into batches for the GPU.
+from the scene's last build report (through :mod:`batten.network_markers`); this module only
+turns them into batches for the GPU.
 """
 
 import json
@@ -13,6 +14,7 @@ import bpy
 import numpy as np
 
 from . import api
+from .network_markers import knuckle_segments, marker_arrays
 
 _handle = None
 
@@ -37,7 +39,7 @@ def comb_lines(context) -> np.ndarray:
     return np.concatenate(segments).astype(np.float32)
 
 
-# Marker kinds of the build report (see operators.network_markers): colour, point size (px).
+# Marker kinds of the build report (network_markers.MARKER_KINDS): colour, point size (px).
 MARKER_STYLES = {
     "nodes": ((0.1, 0.6, 1.0, 1.0), 6.0),
     "t_joints": ((0.2, 0.85, 0.3, 1.0), 10.0),
@@ -45,8 +47,8 @@ MARKER_STYLES = {
     "near_misses": ((1.0, 0.2, 0.85, 1.0), 14.0),
     "problems": ((1.0, 0.15, 0.1, 1.0), 12.0),
 }
-# Knuckle edges by source ("role": the curve's role, "auto": found at corners of crossing
-# curves): colour, line width (px).
+# Knuckle edges by source (network_markers.KNUCKLE_SOURCES; "role": the curve's role, "auto":
+# found at corners of crossing curves): colour, line width (px).
 KNUCKLE_STYLES = {
     "role": ((1.0, 0.5, 0.0, 1.0), 4.0),
     "auto": ((0.0, 0.9, 0.9, 1.0), 4.0),
@@ -67,19 +69,13 @@ def _last_report(context) -> dict:
 def markers(context) -> dict[str, np.ndarray]:
     """Marker positions from the last build, each (n, 3) float32, by kind: ``nodes``,
     ``t_joints``, ``dangling_ends``, ``near_misses``, ``problems``."""
-    data = _last_report(context).get("markers", {})
-    return {k: np.asarray(data.get(k, []), dtype=np.float32).reshape(-1, 3) for k in MARKER_STYLES}
+    return marker_arrays(_last_report(context).get("markers", {}))
 
 
 def knuckle_lines(context) -> dict[str, np.ndarray]:
     """Line segment end points (2k, 3), float32, along the knuckle edges of the last build,
     by source: ``role`` and ``auto``."""
-    segments = {k: [] for k in KNUCKLE_STYLES}
-    for edge in _last_report(context).get("knuckle_edges", []):
-        pts = np.asarray(edge["points"], dtype=np.float32).reshape(-1, 3)
-        if edge["source"] in segments and len(pts) > 1:
-            segments[edge["source"]].append(np.stack([pts[:-1], pts[1:]], axis=1).reshape(-1, 3))
-    return {k: np.concatenate(v) if v else np.zeros((0, 3), dtype=np.float32) for k, v in segments.items()}
+    return knuckle_segments(_last_report(context).get("knuckle_edges", []))
 
 
 def _draw():

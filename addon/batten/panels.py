@@ -71,15 +71,18 @@ def _draw_report(layout, text: str) -> None:
     if found:
         row = col.row()
         row.label(text=f"Knuckles found: {_names(found)}", icon="SHARPCURVE")
-        row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(found)
+        row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(
+            found_knuckle_objects(report)
+        )
         col.label(text=f"  at corners of {_names(corners)}")
     col.label(text=f"Volume: {report['displacement_volume']:.2f} m³")
     for warning in report["warnings"]:
         row = box.row()
-        row.label(text=warning, icon="ERROR")
-        names = [n for n in report.get("warning_curves", {}).get(warning, [])]
-        if names:
-            row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(names)
+        row.label(text=warning["message"], icon="ERROR")
+        if warning["objects"]:
+            row.operator("batten.select_curves", text="", icon="RESTRICT_SELECT_OFF").names = "\n".join(
+                warning["objects"]
+            )
 
 
 def _names(names: list[str], most: int = 6) -> str:
@@ -94,6 +97,12 @@ def knuckles_found(report: dict) -> tuple[list[str], list[str]]:
     made them knuckles (both sorted, without repeats), from a build report."""
     auto = [k for k in report.get("knuckle_edges", []) if k["source"] == "auto"]
     return sorted({k["curve"] for k in auto}), sorted({c for k in auto for c in k["corner_curves"]})
+
+
+def found_knuckle_objects(report: dict) -> list[str]:
+    """The curve objects with automatically found knuckle edges (sorted, without repeats),
+    from a build report."""
+    return sorted({o for k in report.get("knuckle_edges", []) if k["source"] == "auto" for o in k["objects"]})
 
 
 _CLASSES = (VIEW3D_PT_batten,)

@@ -4,6 +4,7 @@ Everything lives in Blender data (saved with the file, seen by undo); nothing in
 """
 
 import bpy
+from batten_native import DEFAULT_FAIR_TOLERANCE, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE, MAX_RESOLUTION
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._registry import register_classes, unregister_classes
@@ -48,7 +49,7 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
     tolerance: FloatProperty(
         name="Tolerance",
         description="Model tolerance: curves closer than this meet",
-        default=1e-4,
+        default=DEFAULT_TOLERANCE,
         min=1e-7,
         max=1.0,
         precision=6,
@@ -57,9 +58,10 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
     resolution: IntProperty(
         name="Resolution",
         description="Surface segments per patch side",
-        default=8,
+        default=DEFAULT_RESOLUTION,
         min=1,
-        max=64,
+        max=MAX_RESOLUTION,
+        soft_max=64,
     )
     mirror: BoolProperty(
         name="Mirror",
@@ -80,7 +82,7 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
     fair_tolerance: FloatProperty(
         name="Fair tolerance",
         description="Largest distance a faired curve may stray from its points",
-        default=1e-3,
+        default=DEFAULT_FAIR_TOLERANCE,
         min=1e-6,
         max=1.0,
         precision=4,

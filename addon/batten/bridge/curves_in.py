@@ -16,7 +16,9 @@ named ``"Object[i]"``.
 from __future__ import annotations
 
 import numpy as np
-from batten_native import BattenError, Curve
+from batten_native import Curve, CurveError
+
+from ..object_names import errors_named_by_object
 
 
 def _array(collection, attr: str, count: int, width: int) -> np.ndarray:
@@ -52,21 +54,20 @@ def role_of(obj) -> str:
 def read_object(obj) -> list[Curve]:
     """Every spline of the curve object ``obj`` as a Curve in world coordinates.
 
-    Raises BattenError naming the object when it is not a curve, has no splines, or a spline
-    is invalid (NaN or infinite coordinates, too few points, zero or negative weights).
+    Raises CurveError (``curve`` is the object's name; the message names the spline) when it
+    is not a curve, has no splines, or a spline is invalid (NaN or infinite coordinates, too
+    few points, zero or negative weights).
     """
     if obj.type != "CURVE":
-        raise BattenError(f"object '{obj.name}' is a {obj.type.lower()}, not a curve object")
+        raise CurveError(f"object '{obj.name}' is a {obj.type.lower()}, not a curve object", obj.name)
     splines = obj.data.splines
     if len(splines) == 0:
-        raise BattenError(f"curve '{obj.name}' has no splines")
+        raise CurveError(f"curve '{obj.name}' has no splines", obj.name)
     matrix = np.array(obj.matrix_world, dtype=np.float64)
     role = role_of(obj)
-    curves = []
-    for i, spline in enumerate(splines):
-        name = obj.name if len(splines) == 1 else f"{obj.name}[{i}]"
-        curves.append(_read_spline(spline, name, role, matrix))
-    return curves
+    names = [obj.name] if len(splines) == 1 else [f"{obj.name}[{i}]" for i in range(len(splines))]
+    with errors_named_by_object(dict.fromkeys(names, obj.name)):
+        return [_read_spline(spline, name, role, matrix) for spline, name in zip(splines, names, strict=True)]
 
 
 def _read_spline(spline, name: str, role: str, matrix: np.ndarray) -> Curve:
@@ -85,7 +86,7 @@ def _read_spline(spline, name: str, role: str, matrix: np.ndarray) -> Curve:
     if spline.type == "POLY":
         return Curve.from_poly(name, xyz, cyclic=cyclic, role=role)
     if spline.type != "NURBS":
-        raise BattenError(f"curve '{name}': spline type {spline.type} is not supported")
+        raise CurveError(f"curve '{name}': spline type {spline.type} is not supported", name)
     order = int(spline.order_u)
     endpoint, bezier = bool(spline.use_endpoint_u), bool(spline.use_bezier_u)
     if not _blender_nurbs_valid(n, order, endpoint, bezier, cyclic):

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import bpy
 import numpy as np
-from batten_native import BattenError, Curve
+from batten_native import Curve, CurveError
 
 #: Blender's legacy curves have orders 2..6.
 MAX_BLENDER_DEGREE = 5
@@ -19,8 +19,10 @@ MAX_BLENDER_DEGREE = 5
 def _spline_data(curve: Curve) -> tuple[str, np.ndarray, dict]:
     degree = curve.degree
     if degree > MAX_BLENDER_DEGREE:
-        raise BattenError(
-            f"curve '{curve.name}': degree {degree} is above the largest Blender draws ({MAX_BLENDER_DEGREE})"
+        raise CurveError(
+            f"curve '{curve.name}': degree {degree} is above the largest Blender draws "
+            f"({MAX_BLENDER_DEGREE})",
+            curve.name,
         )
     layout = curve.matching_layout()
     weights = curve.weights
@@ -70,13 +72,40 @@ def new_curve_object(curve: Curve, collection, *, resolution: int = 16):
     return obj
 
 
-def replace_splines(obj, curves: list[Curve]) -> None:
-    """Replace every spline of the curve object ``obj`` by ``curves`` (world coordinates),
-    keeping the object, its data-block, materials and modifiers. Everything Blender cannot
-    draw is refused before anything is changed."""
-    specs = [_spline_data(curve) for curve in curves]
+def _write_splines(obj, specs: list) -> None:
+    """Replace every spline of the curve object ``obj`` by ``specs`` (world coordinates)."""
     to_local = np.array(obj.matrix_world.inverted(), dtype=np.float64)
     data = obj.data
     data.splines.clear()
     for spec in specs:
         write_spline(data, spec, to_local)
+
+
+def _restore(data, backup) -> None:
+    """Put the copy ``backup`` of the curve data-block ``data`` back in its place, for every
+    user, under its name."""
+    name = data.name
+    data.user_remap(backup)
+    bpy.data.curves.remove(data)
+    backup.name = name
+
+
+def replace_splines_of(replacements: list[tuple[object, list[Curve]]]) -> None:
+    """Replace every spline of each curve object by its curves (world coordinates), keeping the
+    objects, their data-blocks, materials and modifiers: all of them or none. Everything
+    Blender cannot draw is refused before anything is changed; if writing fails midway, every
+    object written so far gets its curve data back as it was."""
+    specs = [(obj, [_spline_data(curve) for curve in curves]) for obj, curves in replacements]
+    backups = {}  # data-block pointer → (data-block, untouched copy)
+    try:
+        for obj, obj_specs in specs:
+            key = obj.data.as_pointer()
+            if key not in backups:
+                backups[key] = (obj.data, obj.data.copy())
+            _write_splines(obj, obj_specs)
+    except BaseException:
+        for data, backup in backups.values():
+            _restore(data, backup)
+        raise
+    for _, backup in backups.values():
+        bpy.data.curves.remove(backup)

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from batten_native import BattenError
+from batten_native import NetworkFileError
 
 #: The batten role a curve of each kind gets.
 ROLE_OF_KIND = {
@@ -41,13 +41,13 @@ class PointCurve:
 
 
 def read_sections(path) -> tuple[str, list[PointCurve]]:
-    """``(name, curves)`` from a neutral JSON or CSV point file; BattenError naming the file
+    """``(name, curves)`` from a neutral JSON or CSV point file; NetworkFileError naming the file
     (and the curve or row) when it cannot be read."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as e:
-        raise BattenError(f"section file '{path}': {e.strerror or e}") from None
+        raise NetworkFileError(f"section file '{path}': {e.strerror or e}") from None
     if path.suffix.lower() == ".csv":
         return path.stem, _read_csv(path, text)
     return _read_json(path, text)
@@ -57,18 +57,20 @@ def _read_json(path: Path, text: str) -> tuple[str, list[PointCurve]]:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as e:
-        raise BattenError(f"section file '{path}': not JSON ({e})") from None
+        raise NetworkFileError(f"section file '{path}': not JSON ({e})") from None
     if not isinstance(data, dict) or not isinstance(data.get("curves"), list):
-        raise BattenError(f"section file '{path}': expected an object with a 'curves' list")
+        raise NetworkFileError(f"section file '{path}': expected an object with a 'curves' list")
     curves = []
     for i, c in enumerate(data["curves"]):
         name = str(c.get("name") or f"curve {i}")
         try:
             pts = np.asarray(c["points"], dtype=np.float64)
         except (KeyError, TypeError, ValueError):
-            raise BattenError(f"section file '{path}': curve '{name}' has no numeric 'points' list") from None
+            raise NetworkFileError(
+                f"section file '{path}': curve '{name}' has no numeric 'points' list"
+            ) from None
         if pts.ndim != 2 or pts.shape[1] != 3:
-            raise BattenError(f"section file '{path}': curve '{name}' points must be [x, y, z] triples")
+            raise NetworkFileError(f"section file '{path}': curve '{name}' points must be [x, y, z] triples")
         kind = str(c.get("kind", "")).lower()
         curves.append(PointCurve(name, ROLE_OF_KIND.get(kind, "free"), pts))
     return str(data.get("name") or path.stem), curves
@@ -80,14 +82,14 @@ def _read_csv(path: Path, text: str) -> list[PointCurve]:
         if not row or all(not c.strip() for c in row):
             continue
         if len(row) != 4:
-            raise BattenError(f"section file '{path}', line {lineno}: expected name, x, y, z")
+            raise NetworkFileError(f"section file '{path}', line {lineno}: expected name, x, y, z")
         try:
             xyz = [float(v) for v in row[1:]]
         except ValueError:
             if lineno == 1:
                 continue  # header
-            raise BattenError(f"section file '{path}', line {lineno}: x, y, z must be numbers") from None
+            raise NetworkFileError(f"section file '{path}', line {lineno}: x, y, z must be numbers") from None
         rows.setdefault(row[0].strip(), []).append(xyz)
     if not rows:
-        raise BattenError(f"section file '{path}': no points")
+        raise NetworkFileError(f"section file '{path}': no points")
     return [PointCurve(name, "free", np.asarray(pts)) for name, pts in rows.items()]
