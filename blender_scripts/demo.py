@@ -229,8 +229,8 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
         f"displacement volume {b['displacement_volume']:.2f} m3, {len(b['warnings'])} warning(s)"
     )
     for w in b["warnings"]:
-        _log(f"{name}: warning: {w}")
-    report["surface"] = {k: v for k, v in b.items() if k != "warning_curves"}
+        _log(f"{name}: warning ({w['kind']}): {w['message']}")
+    report["surface"] = b
     report["surface"]["faces_by_sides"] = {str(k): v for k, v in b["faces_by_sides"].items()}
     report["build_ms"] = round(t_build * 1e3, 3)
     lo, hi = _bounds(coll.objects)
