@@ -204,3 +204,23 @@ def test_show_curves_of_found_knuckles_selects_their_object(examples_dir):
     assert layout.record["buttons"][0].names == "chine", "the first button: the found knuckles"
     assert bpy.ops.batten.select_curves(names="chine") == {"FINISHED"}
     assert [o.name for o in bpy.context.selected_objects] == ["chine"]
+
+
+def test_a_degenerate_corner_names_its_face_curves_and_place():
+    """A triangle with a 0.5° corner is built, and the patch's repair of that corner reaches
+    Python as a ``degenerate_corner`` dict naming the face's three curves, at the face."""
+    coll = new_collection("sliver")
+    a = np.radians(0.5)
+    tip = (10 * np.cos(a), 10 * np.sin(a), 0.0)
+    _line("base", (0, 0, 0), (10, 0, 0), coll)
+    _line("slant", (0, 0, 0), tip, coll)
+    _line("end", (10, 0, 0), tip, coll)
+    report = api.build(coll, mirror=False).report
+    found = _of_kind(report["warnings"], "degenerate_corner")
+    assert found, report["warnings"]
+    w = found[0]
+    assert sorted(w["curves"]) == ["base", "end", "slant"], w
+    assert sorted(w["objects"]) == ["base", "end", "slant"], w
+    centre = (np.array([0, 0, 0]) + np.array([10, 0, 0]) + np.array(tip)) / 3
+    assert np.allclose(w["location"], centre, atol=1e-5), w  # float32 curve data
+    assert w["error"] is None, w

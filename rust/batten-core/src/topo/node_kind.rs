@@ -8,6 +8,7 @@ use super::Topology;
 
 /// The kind of a node of the network.
 #[derive(serde::Serialize, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[serde(rename_all = "snake_case")]
 pub enum NodeKind {
     /// Curves cross or pass through the node; none ends there.
     Crossing,
