@@ -594,6 +594,18 @@ fn fit_hull(name: &str) {
             c.name,
             r.max_deviation
         );
+        // Measured, not reported: every input point (the dropped duplicates too) lies within
+        // the tolerance of the fitted curve, by a global closest-point search.
+        let measured = c
+            .points
+            .iter()
+            .map(|&p| fit.curve.nearest(p, 1e-9).expect("nearest").distance)
+            .fold(0.0, f64::max);
+        assert!(
+            measured <= tol,
+            "{name} {}: an input point is {measured} m from the curve",
+            c.name
+        );
         // Corners kept: the curve passes through each knuckle point, with a knot of
         // multiplicity 3 there that corner_parameters finds.
         let found = fit.curve.corner_parameters(1f64.to_radians());

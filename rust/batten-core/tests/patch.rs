@@ -259,8 +259,14 @@ fn four_sided_charrot_gregory_is_close_to_gregory() {
     println!(
         "4-sided Gregory vs Charrot-Gregory: max difference {diff:.3e} on a face of size {size:.2}"
     );
+    // Both schemes interpolate the same boundary curves and ribbon planes, so their
+    // difference vanishes with its first derivative on the whole boundary and is a
+    // second-order term inside: on this gently curved face 0.32 % of its size. A blend that
+    // loses an equation moves the interior by more: weights of d instead of d² (eq. 6) give
+    // 0.57 %, a constant twist instead of Gregory's rational one (eq. 3) 0.74 %. A bound of
+    // 0.5 % passes today's value and fails both.
     assert!(
-        diff < 0.05 * size,
+        diff < 0.005 * size,
         "the two schemes differ by {diff} on size {size}"
     );
     assert!(diff > 0.0, "the two schemes are different interpolants");
