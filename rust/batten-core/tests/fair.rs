@@ -702,14 +702,13 @@ proptest! {
         prop_assert!(b.report.max_deviation <= tol, "moved deviation {}", b.report.max_deviation);
         // Same shape: every sample of the moved fit, moved back, lies within 2·tol of the
         // first fit (each is within tol of the same points; the parameterisations may differ).
-        let dense: Vec<DVec3> = {
-            let (lo, hi) = a.curve.domain();
-            (0..=4000).map(|i| a.curve.point(lo + (hi - lo) * f64::from(i) / 4000.0)).collect()
-        };
+        // Measured by the global closest point: dense sampling of the first fit (4000 samples,
+        // a few mm apart on these curves) overstated a gap by up to half that spacing (found
+        // by PROPTEST_RNG_SEED=12: 2.01 mm measured for tol 1 mm; kept in the regressions).
         let (lo, hi) = b.curve.domain();
         for i in 0..=50 {
             let p = b.curve.point(lo + (hi - lo) * f64::from(i) / 50.0) - d;
-            let gap = dense.iter().map(|q| (*q - p).length()).fold(f64::INFINITY, f64::min);
+            let gap = a.curve.nearest(p, 1e-9).unwrap().distance;
             prop_assert!(gap <= 2.0 * tol, "gap {}", gap);
         }
     }
