@@ -403,6 +403,8 @@ fn arb_curve() -> impl Strategy<Value = NurbsCurve> {
 }
 
 proptest! {
+    #![proptest_config(common::proptest_config(256))]
+
     #[test]
     fn derivatives_match_central_differences(c in arb_curve(), s in 0.05f64..0.95) {
         let (a, b) = c.domain();

@@ -654,7 +654,7 @@ fn planar_cubic(ys: &[f64]) -> NurbsCurve {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(common::proptest_config(24))]
 
     /// For random planar cubic curves with noise, in every degree: the noise-mode fit keeps
     /// its sum of squares within Dierckx's range (lobe flattening included) and interpolates

@@ -812,7 +812,7 @@ fn invariance_case(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(common::proptest_config(24))]
 
     #[test]
     fn frigate_topology_is_invariant((net, order, flips, jitter) in invariance_case(frigate())) {
@@ -891,7 +891,7 @@ fn a_segment_along_part_of_another_is_kept_once() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(common::proptest_config(200))]
 
     /// Random segments between points of a 5 × 5 grid: crossings, T-joints, shared ends,
     /// collinear overlaps, duplicates and zero-length segments in every mix. The builder never
