@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+import math
+
 import bpy
 import numpy as np
+
+L, B, T, F = 100.0, 10.0, 6.25, 2.5  # examples/wigley.py: length, beam, draught, freeboard
+WIGLEY_HALF_VOLUME = (2 / 9) * L * B * T + (1 / 3) * L * B * F  # to the deck, one half
 
 
 def _curve_data(name: str, resolution: int):
@@ -107,3 +112,13 @@ def evaluated_volume(obj, *, axis: int, level: float) -> float:
     finally:
         evaluated.to_mesh_clear()
     return total
+
+
+def noisy_arc(n=120, r=10.0, sigma=0.01, seed=4):
+    """A quarter circle of radius ``r`` as ``n`` points, the interior ones moved by Gaussian
+    noise σ in x and y (seeded)."""
+    rng = np.random.default_rng(seed)
+    a = np.linspace(0.0, math.pi / 2, n)
+    pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(n)])
+    pts[1:-1, :2] += rng.normal(0.0, sigma, (n - 2, 2))
+    return pts

@@ -5,10 +5,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from helpers import evaluated_volume
-
-L, B, T, F = 100.0, 10.0, 6.25, 2.5  # examples/wigley.py
-WIGLEY_HALF_VOLUME = (2 / 9) * L * B * T + (1 / 3) * L * B * F  # to the deck, one half
+from helpers import WIGLEY_HALF_VOLUME, F, T, evaluated_volume
 
 
 def mesh_arrays(obj):

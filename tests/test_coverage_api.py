@@ -9,19 +9,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from helpers import evaluated_volume, new_curve
-
-L, B, T, F = 100.0, 10.0, 6.25, 2.5  # examples/wigley.py
-WIGLEY_HALF_VOLUME = (2 / 9) * L * B * T + (1 / 3) * L * B * F  # to the deck, one half
-
-
-def arc_points(n=80, r=10.0, sigma=0.0, seed=7):
-    """A quarter circle of radius ``r`` as ``n`` points, interior ones with Gaussian noise σ."""
-    rng = np.random.default_rng(seed)
-    a = np.linspace(0.0, math.pi / 2, n)
-    pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(n)])
-    pts[1:-1, :2] += rng.normal(0.0, sigma, (n - 2, 2))
-    return pts
+from helpers import WIGLEY_HALF_VOLUME, evaluated_volume, new_curve, noisy_arc
 
 
 def corner_points(n=21):
@@ -84,7 +72,7 @@ def test_build_without_mirror_has_one_half_and_its_volume(examples_dir):
 
 def test_fair_curve_noise_mode_smooths_to_the_noise_level():
     sigma = 0.01
-    pts = arc_points(n=150, sigma=sigma)
+    pts = noisy_arc(n=150, sigma=sigma, seed=7)
     obj = new_curve("noisy", "POLY", pts)
     # noise overrides tolerance: a tolerance of 1 µm would need ~every point as a control point.
     (report,) = api.fair_curve(obj, tolerance=1e-6, noise=sigma)
@@ -95,12 +83,12 @@ def test_fair_curve_noise_mode_smooths_to_the_noise_level():
     assert report["rms_deviation"] > 0.5 * sigma, "smoothed, not interpolated"
     assert report["control_points"] < 15 and report["inflections"] == 0
     (curve,) = api.read_curves(obj)
-    dist = [curve.nearest(p.tolist(), 1e-9)[1] for p in arc_points(n=50)]
+    dist = [curve.nearest(p.tolist(), 1e-9)[1] for p in noisy_arc(n=50, sigma=0.0)]
     assert max(dist) < 3 * sigma, "close to the noise-free arc"
 
 
 def test_fair_curve_degree_sets_the_spline_order():
-    pts = arc_points(n=60, sigma=0.002)
+    pts = noisy_arc(n=60, sigma=0.002, seed=7)
     for degree in (2, 5):
         obj = new_curve(f"deg{degree}", "POLY", pts)
         (report,) = api.fair_curve(obj, tolerance=5e-3, degree=degree)
@@ -127,9 +115,9 @@ def test_fair_curve_corner_angle_none_keeps_no_corner():
 
 
 def test_fair_curve_refits_every_spline_of_an_object():
-    obj = new_curve("pair", "POLY", arc_points(n=60, sigma=0.003))
+    obj = new_curve("pair", "POLY", noisy_arc(n=60, sigma=0.003, seed=7))
     second = obj.data.splines.new("POLY")
-    pts = arc_points(n=40, r=6.0, sigma=0.003, seed=3) + [0.0, 0.0, 2.0]
+    pts = noisy_arc(n=40, r=6.0, sigma=0.003, seed=3) + [0.0, 0.0, 2.0]
     second.points.add(len(pts) - 1)
     second.points.foreach_set("co", np.column_stack([pts, np.ones(len(pts))]).astype(np.float32).ravel())
     reports = api.fair_curve(obj, tolerance=0.01)

@@ -8,17 +8,9 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from helpers import new_curve
+from helpers import new_curve, noisy_arc
 
 HULLS = Path(__file__).resolve().parents[2] / "shared" / "hulls"
-
-
-def noisy_arc(n=120, r=10.0, sigma=0.01, seed=4):
-    rng = np.random.default_rng(seed)
-    a = np.linspace(0.0, math.pi / 2, n)
-    pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(n)])
-    pts[1:-1, :2] += rng.normal(0.0, sigma, (n - 2, 2))
-    return pts
 
 
 def test_fair_curve_refits_a_polyline_in_place_within_tolerance():
