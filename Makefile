@@ -11,6 +11,9 @@ NATIVE_DIR := build/native/$(PROFILE)
 EXT_DIR := build/extension/$(PROFILE)
 # Test builds (dev) carry the test hooks (`_panic_for_tests`); release builds never do.
 OUT ?= out
+# CI (CI=true) runs the proptests from this fixed seed, so a failure there replays exactly;
+# local runs stay random. Failures found either way persist in tests/*.proptest-regressions.
+CI_PROPTEST_SEED := 12
 
 .PHONY: demo test extension package native venv sysdeps lint fmt bench clean
 
@@ -19,7 +22,7 @@ demo: venv sysdeps
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/demo.py -- --out $(OUT) --zebra
 
 test: venv sysdeps lint
-	cargo test -p batten-core
+	$(if $(CI),PROPTEST_RNG_SEED=$(CI_PROPTEST_SEED) )cargo test -p batten-core
 	$(MAKE) --no-print-directory package PROFILE=dev
 	PYTHONPATH=build/native/dev $(VPY) -m pytest -q tests/plain
 	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \

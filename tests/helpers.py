@@ -2,8 +2,13 @@
 
 from __future__ import annotations
 
+import math
+
 import bpy
 import numpy as np
+
+L, B, T, F = 100.0, 10.0, 6.25, 2.5  # examples/wigley.py: length, beam, draught, freeboard
+WIGLEY_HALF_VOLUME = (2 / 9) * L * B * T + (1 / 3) * L * B * F  # to the deck, one half
 
 
 def _curve_data(name: str, resolution: int):
@@ -84,3 +89,36 @@ def evaluated_polyline(obj) -> np.ndarray:
         ev.to_mesh_clear()
     m = np.array(obj.matrix_world, dtype=np.float64)
     return local @ m[:3, :3].T + m[:3, 3]
+
+
+def evaluated_volume(obj, *, axis: int, level: float) -> float:
+    """The volume enclosed by the evaluated mesh of ``obj`` (its modifiers applied) and the
+    plane ``x[axis] = level`` together with any planes normal to the other axes that close its
+    openings: the divergence theorem with the field ``e_axis · (x[axis] − level)``, whose flux
+    through those planes is zero, summed exactly over a fan of triangles per face."""
+    evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    me = evaluated.to_mesh()
+    try:
+        pos = np.empty(3 * len(me.vertices))
+        me.vertices.foreach_get("co", pos)
+        pos = pos.reshape(-1, 3)
+        total = 0.0
+        for poly in me.polygons:
+            v = pos[list(poly.vertices)]
+            a, b, c = v[0], v[1:-1], v[2:]
+            area = 0.5 * np.cross(b - a, c - a)[:, axis]
+            centroid = (a[axis] + b[:, axis] + c[:, axis]) / 3.0
+            total += float(np.sum((centroid - level) * area))
+    finally:
+        evaluated.to_mesh_clear()
+    return total
+
+
+def noisy_arc(n=120, r=10.0, sigma=0.01, seed=4):
+    """A quarter circle of radius ``r`` as ``n`` points, the interior ones moved by Gaussian
+    noise σ in x and y (seeded)."""
+    rng = np.random.default_rng(seed)
+    a = np.linspace(0.0, math.pi / 2, n)
+    pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(n)])
+    pts[1:-1, :2] += rng.normal(0.0, sigma, (n - 2, 2))
+    return pts

@@ -594,6 +594,18 @@ fn fit_hull(name: &str) {
             c.name,
             r.max_deviation
         );
+        // Measured, not reported: every input point (the dropped duplicates too) lies within
+        // the tolerance of the fitted curve, by a global closest-point search.
+        let measured = c
+            .points
+            .iter()
+            .map(|&p| fit.curve.nearest(p, 1e-9).expect("nearest").distance)
+            .fold(0.0, f64::max);
+        assert!(
+            measured <= tol,
+            "{name} {}: an input point is {measured} m from the curve",
+            c.name
+        );
         // Corners kept: the curve passes through each knuckle point, with a knot of
         // multiplicity 3 there that corner_parameters finds.
         let found = fit.curve.corner_parameters(1f64.to_radians());
@@ -642,7 +654,7 @@ fn planar_cubic(ys: &[f64]) -> NurbsCurve {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(common::proptest_config(24))]
 
     /// For random planar cubic curves with noise, in every degree: the noise-mode fit keeps
     /// its sum of squares within Dierckx's range (lobe flattening included) and interpolates
@@ -690,14 +702,13 @@ proptest! {
         prop_assert!(b.report.max_deviation <= tol, "moved deviation {}", b.report.max_deviation);
         // Same shape: every sample of the moved fit, moved back, lies within 2·tol of the
         // first fit (each is within tol of the same points; the parameterisations may differ).
-        let dense: Vec<DVec3> = {
-            let (lo, hi) = a.curve.domain();
-            (0..=4000).map(|i| a.curve.point(lo + (hi - lo) * f64::from(i) / 4000.0)).collect()
-        };
+        // Measured by the global closest point: dense sampling of the first fit (4000 samples,
+        // a few mm apart on these curves) overstated a gap by up to half that spacing (found
+        // by PROPTEST_RNG_SEED=12: 2.01 mm measured for tol 1 mm; kept in the regressions).
         let (lo, hi) = b.curve.domain();
         for i in 0..=50 {
             let p = b.curve.point(lo + (hi - lo) * f64::from(i) / 50.0) - d;
-            let gap = dense.iter().map(|q| (*q - p).length()).fold(f64::INFINITY, f64::min);
+            let gap = a.curve.nearest(p, 1e-9).unwrap().distance;
             prop_assert!(gap <= 2.0 * tol, "gap {}", gap);
         }
     }

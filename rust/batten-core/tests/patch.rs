@@ -259,8 +259,14 @@ fn four_sided_charrot_gregory_is_close_to_gregory() {
     println!(
         "4-sided Gregory vs Charrot-Gregory: max difference {diff:.3e} on a face of size {size:.2}"
     );
+    // Both schemes interpolate the same boundary curves and ribbon planes, so their
+    // difference vanishes with its first derivative on the whole boundary and is a
+    // second-order term inside: on this gently curved face 0.32 % of its size. A blend that
+    // loses an equation moves the interior by more: weights of d instead of d² (eq. 6) give
+    // 0.57 %, a constant twist instead of Gregory's rational one (eq. 3) 0.74 %. A bound of
+    // 0.5 % passes today's value and fails both.
     assert!(
-        diff < 0.05 * size,
+        diff < 0.005 * size,
         "the two schemes differ by {diff} on size {size}"
     );
     assert!(diff > 0.0, "the two schemes are different interpolants");
@@ -360,14 +366,24 @@ fn sphere_octant_converges_under_refinement() {
         quads = quads.into_iter().flat_map(split_quad).collect();
     }
     println!("sphere level 0: 1 triangle, max |r - 1| {:.3e}", devs[0]);
-    for l in 1..devs.len() {
+    // Level 0 → 1 changes the scheme (one triangle → three quads): the error only shrinks.
+    assert!(
+        devs[1] < devs[0] && devs_cg[1] < devs_cg[0],
+        "deviation must shrink: {devs:?}, {devs_cg:?}"
+    );
+    // After that each level halves the quads. The sides are exact arcs and the ribbons the
+    // sphere's tangent planes, so the interior error is of third order or higher: at least
+    // 2³ = 8 times smaller per level (today 12.8 and 15.7 for Gregory, 9.7 and 14.6 for
+    // Charrot–Gregory, tending to 2⁴ = 16). A ribbon of the wrong length or a blend that is
+    // only first-order accurate across the face drops the ratio to 4 or 2.
+    for l in 2..devs.len() {
         assert!(
-            devs[l] < devs[l - 1],
-            "Gregory deviation must shrink: {devs:?}"
+            devs[l] < devs[l - 1] / 8.0,
+            "Gregory deviation must shrink at third order or better: {devs:?}"
         );
         assert!(
-            devs_cg[l] < devs_cg[l - 1],
-            "CG deviation must shrink: {devs_cg:?}"
+            devs_cg[l] < devs_cg[l - 1] / 8.0,
+            "CG deviation must shrink at third order or better: {devs_cg:?}"
         );
     }
     assert!(
@@ -838,4 +854,101 @@ fn degenerate_input_errors_or_falls_back_without_nan() {
             "edge kept at s={s}"
         );
     }
+}
+
+#[test]
+fn empty_side_gapped_segments_and_wrong_ribbon_count_are_refused() {
+    let opts = PatchOptions::default();
+    let c = square_curves();
+
+    // A side without segments.
+    let mut b = single_sides(&c);
+    b.sides[3] = Side::new(Vec::new());
+    assert_eq!(
+        Patch::try_new(&b, &[], &opts).map(|_| ()),
+        Err(PatchError::EmptySide { side: 3 }),
+        "empty side refused"
+    );
+
+    // Side 1 as two segments that do not meet: the first stops at t = 0.5, the second starts
+    // 1 cm beside the curve's midpoint (tolerance 0.1 mm).
+    let mut b = single_sides(&c);
+    let mid = c[1].point(0.5);
+    let shifted = bezier(&[mid + DVec3::new(0.01, 0.0, 0.0), c[1].point(1.0)]);
+    b.sides[1] = Side::new(vec![
+        SideSegment::new(c[1].clone(), 0.0, 0.5).named("stem"),
+        SideSegment::whole(shifted).named("stem extension"),
+    ]);
+    let err = Patch::try_new(&b, &[], &opts).expect_err("gapped segments");
+    match &err {
+        PatchError::SegmentGap {
+            side,
+            segment,
+            next,
+            curve,
+            next_curve,
+            gap,
+            limit,
+        } => {
+            assert_eq!((*side, *segment, *next), (1, 0, 1), "where: {err}");
+            assert_eq!(
+                (curve.as_str(), next_curve.as_str()),
+                ("stem", "stem extension"),
+                "names both curves"
+            );
+            assert!(*gap >= 0.005 && *gap <= 0.01 + 1e-12, "gap {gap}");
+            assert!(limit < gap, "limit {limit}");
+        }
+        other => panic!("expected SegmentGap, got {other}"),
+    }
+    // The same split without the shift is one side.
+    b.sides[1] = Side::new(vec![
+        SideSegment::new(c[1].clone(), 0.0, 0.5),
+        SideSegment::new(c[1].clone(), 0.5, 1.0),
+    ]);
+    assert!(
+        Patch::try_new(&b, &[], &opts).is_ok(),
+        "meeting segments accepted"
+    );
+
+    // Ribbons: none (all default) or one per side; 2 for 4 sides is refused.
+    let b = single_sides(&c);
+    let two = vec![SideRibbon::default_for(1); 2];
+    assert_eq!(
+        Patch::try_new(&b, &two, &opts).map(|_| ()),
+        Err(PatchError::RibbonCount {
+            expected: 4,
+            got: 2
+        }),
+        "ribbon count refused"
+    );
+    let four = vec![SideRibbon::default_for(1); 4];
+    assert!(
+        Patch::try_new(&b, &four, &opts).is_ok(),
+        "one per side accepted"
+    );
+}
+
+/// BUG (found by this test, reported in the issue-12 note, not fixed here): `MeshTooLarge` is
+/// checked in `tessellate_patches` only after every face mesh has been built, so a request large
+/// enough to trip it (here 70 000² ≈ 4.9·10⁹ vertices, ~120 GB) exhausts memory first and
+/// never returns the error. Ignored because running it tries that allocation; it passes once
+/// the vertex count is computed before any face is meshed.
+#[test]
+#[ignore = "BUG: MeshTooLarge is checked after the allocation it guards (see doc comment)"]
+fn too_large_a_mesh_is_refused_before_it_is_built() {
+    let p = Patch::try_new(
+        &single_sides(&square_curves()),
+        &[],
+        &PatchOptions::default(),
+    )
+    .expect("square");
+    let r = 70_000;
+    assert!(
+        matches!(
+            tessellate_patches(&[p], r),
+            Err(PatchError::MeshTooLarge(n)) if n >= (r - 1) * (r - 1)
+        ),
+        "refused with the vertex count"
+    );
 }

@@ -812,7 +812,7 @@ fn invariance_case(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(common::proptest_config(24))]
 
     #[test]
     fn frigate_topology_is_invariant((net, order, flips, jitter) in invariance_case(frigate())) {
@@ -891,7 +891,7 @@ fn a_segment_along_part_of_another_is_kept_once() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(common::proptest_config(200))]
 
     /// Random segments between points of a 5 × 5 grid: crossings, T-joints, shared ends,
     /// collinear overlaps, duplicates and zero-length segments in every mix. The builder never
@@ -1263,4 +1263,48 @@ fn node_kinds_tell_t_joints_from_stations_landing_on_the_keel() {
         15,
         "curve ends on the boundary curves"
     );
+}
+
+#[test]
+fn a_ring_joined_to_its_hole_by_one_curve_is_an_unclosed_region() {
+    // An outer square, a square hole in it and one curve joining the two: the region between
+    // them is bounded by a loop that runs along the joining curve on both sides (a cut, not
+    // a disk), so no face is made of it and the diagnostic names its curves. The hole is a
+    // face of its own.
+    let square = |p: &str, (x0, z0): (f64, f64), (x1, z1): (f64, f64)| {
+        vec![
+            lifted(&format!("{p} bottom"), Role::Free, &[(x0, z0), (x1, z0)]),
+            lifted(&format!("{p} fore"), Role::Free, &[(x1, z0), (x1, z1)]),
+            lifted(&format!("{p} top"), Role::Free, &[(x1, z1), (x0, z1)]),
+            lifted(&format!("{p} aft"), Role::Free, &[(x0, z1), (x0, z0)]),
+        ]
+    };
+    let mut curves = square("outer", (1.0, -0.9), (9.0, -0.1));
+    curves.extend(square("hole", (4.0, -0.6), (6.0, -0.4)));
+    curves.push(lifted("cut", Role::Free, &[(6.0, -0.5), (9.0, -0.5)]));
+    let t = build(&network(curves));
+    let d = t.diagnostics_of("unclosed_region");
+    assert_eq!(d.len(), 1, "one unclosed region: {:?}", t.diagnostics);
+    let names = d[0].curves();
+    for c in [
+        "cut",
+        "outer bottom",
+        "outer top",
+        "hole bottom",
+        "hole top",
+    ] {
+        assert!(names.contains(&c), "{c} named: {}", d[0]);
+    }
+    let loc = d[0].location().expect("located");
+    assert!(
+        (1.0 - 1e-9..=9.0 + 1e-9).contains(&loc.x) && (-0.9 - 1e-9..=-0.1 + 1e-9).contains(&loc.z),
+        "on the ring: {loc}"
+    );
+    assert_eq!(t.faces.len(), 1, "the hole is the only face");
+    assert_eq!(t.faces[0].corners, 4, "a quad");
+    assert!(
+        t.diagnostics_of("non_manifold_edge").is_empty(),
+        "a cut is not a branching"
+    );
+    assert_eq!(t.brep.validate(), vec![], "still a consistent B-rep");
 }

@@ -70,3 +70,18 @@ pub fn s_bend() -> NurbsCurve {
     .map(|(x, y)| DVec3::new(x, y, 0.1 * x));
     NurbsCurve::from_layout(&pts, None, 4, KnotLayout::Endpoint, false).unwrap()
 }
+
+/// The proptest configuration of every suite: `cases` cases, failures kept beside the suite in
+/// `tests/<suite>.proptest-regressions` (committed, replayed first on every run). Said
+/// explicitly: proptest's default looks for a `lib.rs` above the file, finds none for an
+/// integration test, warns and falls back to the same place. The seed comes from
+/// `PROPTEST_RNG_SEED` when set (the Makefile sets it on CI), else it is random.
+pub fn proptest_config(cases: u32) -> proptest::test_runner::Config {
+    proptest::test_runner::Config {
+        cases,
+        failure_persistence: Some(Box::new(
+            proptest::test_runner::FileFailurePersistence::WithSource("proptest-regressions"),
+        )),
+        ..proptest::test_runner::Config::default()
+    }
+}
