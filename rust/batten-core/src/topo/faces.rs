@@ -1,6 +1,7 @@
-//! Faces of the rotation system: loops traced by the "next edge is the one immediately
-//! clockwise" rule, sorted into faces and boundary loops, and each face's true corners and
-//! sides (H-rep paper §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
+//! The geometry of the loops of the rotation system (traced and sorted in [`super::loops`]):
+//! a loop's vector area against the node normals, which tells a face from a boundary loop,
+//! whether it runs along an edge twice, and each face's true corners and sides (H-rep paper
+//! §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
 
 use glam::DVec3;
 

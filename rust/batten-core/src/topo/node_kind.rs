@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::Topology;
+use super::topology::Topology;
 
 /// The kind of a node of the network.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

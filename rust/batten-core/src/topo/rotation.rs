@@ -100,6 +100,18 @@ pub(crate) fn raw_normal(tangents: &[DVec3]) -> Option<DVec3> {
     Some(sum.normalize())
 }
 
+/// How well a set of tangents defines a plane: the largest sine between two of them (the
+/// confidence of a node's [`raw_normal`], which [`orient_normals`] starts from).
+pub(crate) fn confidence(tangents: &[DVec3]) -> f64 {
+    let mut best: f64 = 0.0;
+    for (i, a) in tangents.iter().enumerate() {
+        for b in &tangents[i + 1..] {
+            best = best.max(a.cross(*b).length());
+        }
+    }
+    best
+}
+
 /// Largest distance of a tangent tip from the least-squares plane through the tips (the plane
 /// of [`raw_normal`]); 0 for fewer than four tangents, whose tips always fit a plane. Tips of
 /// tangents in one smooth surface lie near that plane; a large value means several surface
