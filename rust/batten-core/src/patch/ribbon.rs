@@ -172,7 +172,7 @@ impl EdgeNormal {
     }
 
     fn from_pairs(mut pairs: Vec<(f64, DVec3)>) -> EdgeNormal {
-        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pairs.sort_by(|(ta, _), (tb, _)| ta.total_cmp(tb));
         // Merge nodes at the same parameter; align signs along the curve.
         let mut ts: Vec<f64> = Vec::with_capacity(pairs.len());
         let mut normals: Vec<DVec3> = Vec::with_capacity(pairs.len());
@@ -366,6 +366,13 @@ fn in_plane_cross(n: DVec3, c: DVec3) -> Option<DVec3> {
     (l > PARALLEL).then(|| (m / l).cross(c))
 }
 
+/// A side's derivatives d/ds at its two ends (s = 0 and s = 1).
+#[derive(Clone, Copy, Debug)]
+struct SideEnds {
+    start: DVec3,
+    end: DVec3,
+}
+
 /// Build the prepared ribbons of a face from its prepared sides and ribbon specifications.
 pub(crate) fn prepare_ribbons(
     sides: &[PreparedSide],
@@ -373,8 +380,13 @@ pub(crate) fn prepare_ribbons(
     warnings: &mut Vec<PatchWarning>,
 ) -> Vec<PreparedRibbon> {
     let n = sides.len();
-    let ends: Vec<((DVec3, DVec3), (DVec3, DVec3))> =
-        sides.iter().map(|s| (s.eval(0.0), s.eval(1.0))).collect();
+    let ends: Vec<SideEnds> = sides
+        .iter()
+        .map(|s| {
+            let ((_, start), (_, end)) = (s.eval(0.0), s.eval(1.0));
+            SideEnds { start, end }
+        })
+        .collect();
     // Newell normal of the boundary polygon (8 samples per side): the face's overall
     // orientation, used only where local information is degenerate.
     let mut poly = Vec::with_capacity(8 * n);
@@ -393,10 +405,13 @@ pub(crate) fn prepare_ribbons(
     let mut out = Vec::with_capacity(n);
     for i in 0..n {
         let (prev, next) = ((i + n - 1) % n, (i + 1) % n);
-        let ((_, d_start), (_, d_end)) = ends[i];
+        let SideEnds {
+            start: d_start,
+            end: d_end,
+        } = ends[i];
         // Tangents of the neighbouring sides leaving the two corners, into the face.
-        let a0 = -(ends[prev].1).1;
-        let a1 = (ends[next].0).1;
+        let a0 = -ends[prev].end;
+        let a1 = ends[next].start;
         let c0 = unit(d_start).unwrap_or(DVec3::X);
         let c1 = unit(d_end).unwrap_or(c0);
         let corner_normal = |c: DVec3, a: DVec3| -> DVec3 {

@@ -53,6 +53,26 @@ impl SurfaceMesh {
     }
 }
 
+/// The boundary samples of one face, counter-clockwise from corner 0, each corner once.
+struct BoundaryRing {
+    /// The surface points.
+    points: Vec<DVec3>,
+    /// Their domain points.
+    domain: Vec<DVec2>,
+    /// Index of the first sample of each side, and the sample count at the end.
+    starts: Vec<usize>,
+    /// Each sample's side parameter `s ∈ [0, 1)` along its side.
+    side_parameters: Vec<f64>,
+}
+
+/// A vertex of a polyline the triangulation joins ([`fan`], [`zipper`]): its index and its
+/// relative position along the strip (0 at the start, 1 at the end).
+#[derive(Clone, Copy, Debug)]
+struct RingPoint {
+    vertex: u32,
+    along: f64,
+}
+
 /// One face's mesh before welding: the first `boundary` vertices lie on the face boundary.
 struct FaceMesh {
     positions: Vec<DVec3>,
@@ -69,7 +89,7 @@ impl Patch {
 
     /// The boundary samples of the face in counter-clockwise order starting at corner 0 (each
     /// corner once), with their domain points.
-    fn boundary_ring(&self, r: usize) -> (Vec<DVec3>, Vec<DVec2>, Vec<usize>, Vec<f64>) {
+    fn boundary_ring(&self, r: usize) -> BoundaryRing {
         let n = self.sides.len();
         let mut pts = Vec::new();
         let mut dom = Vec::new();
@@ -93,12 +113,22 @@ impl Patch {
             }
         }
         starts.push(pts.len());
-        (pts, dom, starts, lambdas)
+        BoundaryRing {
+            points: pts,
+            domain: dom,
+            starts,
+            side_parameters: lambdas,
+        }
     }
 
     fn face_mesh(&self, r: usize) -> FaceMesh {
         let n = self.sides.len();
-        let (mut positions, dom, starts, lambdas) = self.boundary_ring(r);
+        let BoundaryRing {
+            points: mut positions,
+            domain: dom,
+            starts,
+            side_parameters: lambdas,
+        } = self.boundary_ring(r);
         let b = positions.len();
         let counts: Vec<usize> = (0..n).map(|i| starts[i + 1] - starts[i]).collect();
         let mut faces = Vec::new();
@@ -166,20 +196,23 @@ impl Patch {
             }
             let centre_idx = next as u32;
             positions.push(self.eval_v(centre));
-            let ring_side = |rr: usize, i: usize| -> Vec<(u32, f64)> {
+            let ring_side = |rr: usize, i: usize| -> Vec<RingPoint> {
                 let m = k - rr;
                 (0..=m)
                     .map(|j| {
                         let (ii, jj) = if j == m { ((i + 1) % n, 0) } else { (i, j) };
-                        ((base[rr] + ii * m + jj) as u32, j as f64 / m as f64)
+                        RingPoint {
+                            vertex: (base[rr] + ii * m + jj) as u32,
+                            along: j as f64 / m as f64,
+                        }
                     })
                     .collect()
             };
             for i in 0..n {
-                let outer: Vec<(u32, f64)> = (starts[i]..=starts[i + 1])
-                    .map(|q| {
-                        let lam = if q == starts[i + 1] { 1.0 } else { lambdas[q] };
-                        (wrap(q), lam)
+                let outer: Vec<RingPoint> = (starts[i]..=starts[i + 1])
+                    .map(|q| RingPoint {
+                        vertex: wrap(q),
+                        along: if q == starts[i + 1] { 1.0 } else { lambdas[q] },
                     })
                     .collect();
                 if k == 1 {
@@ -207,9 +240,9 @@ impl Patch {
 }
 
 /// Triangles from a polyline to one point (counter-clockwise when the point lies to the left).
-fn fan(outer: &[(u32, f64)], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
+fn fan(outer: &[RingPoint], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
     for w in outer.windows(2) {
-        faces.extend([w[0].0, w[1].0, c]);
+        faces.extend([w[0].vertex, w[1].vertex, c]);
         sizes.push(3);
     }
 }
@@ -217,7 +250,7 @@ fn fan(outer: &[(u32, f64)], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) 
 /// Triangulate the strip between two polylines running the same way (`inner` to the left),
 /// each point carrying its relative position along the strip; advance the side whose next
 /// interval has the smaller midpoint.
-fn zipper(outer: &[(u32, f64)], inner: &[(u32, f64)], faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
+fn zipper(outer: &[RingPoint], inner: &[RingPoint], faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
     let (mut a, mut b) = (0, 0);
     while a + 1 < outer.len() || b + 1 < inner.len() {
         let take_outer = if a + 1 >= outer.len() {
@@ -225,13 +258,13 @@ fn zipper(outer: &[(u32, f64)], inner: &[(u32, f64)], faces: &mut Vec<u32>, size
         } else if b + 1 >= inner.len() {
             true
         } else {
-            outer[a].1 + outer[a + 1].1 <= inner[b].1 + inner[b + 1].1
+            outer[a].along + outer[a + 1].along <= inner[b].along + inner[b + 1].along
         };
         if take_outer {
-            faces.extend([outer[a].0, outer[a + 1].0, inner[b].0]);
+            faces.extend([outer[a].vertex, outer[a + 1].vertex, inner[b].vertex]);
             a += 1;
         } else {
-            faces.extend([outer[a].0, inner[b + 1].0, inner[b].0]);
+            faces.extend([outer[a].vertex, inner[b + 1].vertex, inner[b].vertex]);
             b += 1;
         }
         sizes.push(3);

@@ -3,7 +3,7 @@
 //! the surface branches, faces no patch method takes, and B-rep invariants that fail. Each
 //! becomes a [`Diagnostic`] naming the curves and the place.
 
-use std::collections::HashMap;
+use std::collections::BTreeMap;
 
 use glam::DVec3;
 
@@ -62,24 +62,32 @@ pub(crate) fn loose_ends(
             }
         }
     }
-    let mut unused: HashMap<usize, (usize, DVec3)> = HashMap::new();
+    // By curve, in curve order.
+    let mut unused: BTreeMap<usize, UnusedEdges> = BTreeMap::new();
     for (k, e) in brep.edges.iter().enumerate() {
         if !core[k] && !isolated[e.curve] {
-            let entry = unused
-                .entry(e.curve)
-                .or_insert((0, brep.vertices[e.start.index()].position));
-            entry.0 += 1;
+            let entry = unused.entry(e.curve).or_insert(UnusedEdges {
+                edges: 0,
+                location: brep.vertices[e.start.index()].position,
+            });
+            entry.edges += 1;
         }
     }
-    let mut unused: Vec<(usize, (usize, DVec3))> = unused.into_iter().collect();
-    unused.sort_by_key(|(c, _)| *c);
-    for (c, (edges, location)) in unused {
+    for (c, UnusedEdges { edges, location }) in unused {
         diagnostics.push(Diagnostic::UnusedEdges {
             curve: curves[c].name.clone(),
             edges,
             location,
         });
     }
+}
+
+/// The edges of one curve that bound no face.
+struct UnusedEdges {
+    /// How many.
+    edges: usize,
+    /// The start of the first of them.
+    location: DVec3,
 }
 
 /// A [`Diagnostic::NonManifoldNode`] at the origin of each of the `branching` half-edges.

@@ -8,7 +8,7 @@ use glam::DVec3;
 
 use super::adjacency::Adjacency;
 use super::brep::{Brep, HalfEdgeId};
-use super::rotation::{ccw_order, confidence, off_plane, orient_normals, raw_normal};
+use super::rotation::{ccw_order, confidence, off_plane, orient_normals, raw_normal, RawNormal};
 use crate::network::PieceCurve;
 
 /// A node whose unit edge tangents have a tip farther than this from the best plane through
@@ -21,9 +21,9 @@ pub const BRANCHING_TIP_DISTANCE: f64 = 0.6;
 
 /// What the rotation system leaves for the later steps.
 pub(crate) struct RotationSystem {
-    /// Per vertex: the unoriented normal from its tangents and how well they define it
-    /// ([`confidence`]), `None` when they are all parallel.
-    pub raw: Vec<Option<(DVec3, f64)>>,
+    /// Per vertex: the unoriented normal from its tangents, `None` when they are all
+    /// parallel.
+    pub raw: Vec<Option<RawNormal>>,
     /// Per vertex: the oriented unit normal (zero for vertices without half-edges).
     pub normals: Vec<DVec3>,
     /// Per vertex: the vertices its half-edges lead to, in the order they were made.
@@ -48,7 +48,7 @@ pub(crate) fn link(brep: &mut Brep, dirs: &[DVec3], evals: &[PieceCurve]) -> Rot
 
     let mut ts: Vec<DVec3> = Vec::new();
     let mut branching: Vec<HalfEdgeId> = Vec::new();
-    let raw: Vec<Option<(DVec3, f64)>> = (0..outgoing.rows())
+    let raw: Vec<Option<RawNormal>> = (0..outgoing.rows())
         .map(|v| {
             let hs = outgoing.row(v);
             ts.clear();
@@ -56,7 +56,10 @@ pub(crate) fn link(brep: &mut Brep, dirs: &[DVec3], evals: &[PieceCurve]) -> Rot
             if off_plane(&ts) > BRANCHING_TIP_DISTANCE {
                 branching.push(hs[0]);
             }
-            raw_normal(&ts).map(|n| (n, confidence(&ts)))
+            raw_normal(&ts).map(|normal| RawNormal {
+                normal,
+                confidence: confidence(&ts),
+            })
         })
         .collect();
     let neighbours = outgoing.map(|h| brep.destination(h).index());

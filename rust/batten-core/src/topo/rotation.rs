@@ -54,13 +54,24 @@ impl EvalCache {
     }
 
     fn eval(&mut self, curve: &PieceCurve, t: f64, after: bool) -> (DVec3, DVec3, DVec3) {
-        let key = (t.to_bits(), curve.piece_at(t, after));
+        let piece = curve.piece_at(t, after);
+        let key = (t.to_bits(), piece);
         if self.key != Some(key) {
-            self.value = curve.eval_in(key.1, t);
+            self.value = curve.eval_in(piece, t);
             self.key = Some(key);
         }
         self.value
     }
+}
+
+/// A node's surface normal from its tangents, before orientation ([`orient_normals`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RawNormal {
+    /// The unit normal, either sign ([`raw_normal`]).
+    pub normal: DVec3,
+    /// How well the tangents define it ([`confidence`]): orientation starts from the most
+    /// confident node of each part.
+    pub confidence: f64,
 }
 
 /// The surface normal at a node from the unit tangents of its edges (unoriented), or `None`
@@ -168,7 +179,7 @@ fn plane_normal(points: &[DVec3]) -> Option<DVec3> {
 /// tangents parallel) take the normal they are reached from. Returns one unit normal per vertex
 /// (zero for vertices without edges).
 pub(crate) fn orient_normals(
-    raw: &[Option<(DVec3, f64)>],
+    raw: &[Option<RawNormal>],
     neighbours: &Adjacency<usize>,
 ) -> Vec<DVec3> {
     let n = raw.len();
@@ -177,8 +188,8 @@ pub(crate) fn orient_normals(
     let mut order: Vec<usize> = (0..n).filter(|&v| !neighbours.row(v).is_empty()).collect();
     // Start each part at its most confident normal.
     order.sort_by(|&a, &b| {
-        let ca = raw[a].map_or(0.0, |r| r.1);
-        let cb = raw[b].map_or(0.0, |r| r.1);
+        let ca = raw[a].map_or(0.0, |r| r.confidence);
+        let cb = raw[b].map_or(0.0, |r| r.confidence);
         cb.total_cmp(&ca).then(a.cmp(&b))
     });
     let mut queue = VecDeque::new();
@@ -187,7 +198,7 @@ pub(crate) fn orient_normals(
             continue;
         }
         seen[start] = true;
-        out[start] = raw[start].map_or(DVec3::Z, |r| r.0);
+        out[start] = raw[start].map_or(DVec3::Z, |r| r.normal);
         queue.push_back(start);
         while let Some(u) = queue.pop_front() {
             for &v in neighbours.row(u) {
@@ -196,8 +207,8 @@ pub(crate) fn orient_normals(
                 }
                 seen[v] = true;
                 out[v] = match raw[v] {
-                    Some((nv, _)) if nv.dot(out[u]) < 0.0 => -nv,
-                    Some((nv, _)) => nv,
+                    Some(RawNormal { normal: nv, .. }) if nv.dot(out[u]) < 0.0 => -nv,
+                    Some(RawNormal { normal: nv, .. }) => nv,
                     None => out[u],
                 };
                 queue.push_back(v);
@@ -251,7 +262,7 @@ pub(crate) fn ccw_order(
                 (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
             };
             let mut run: Vec<(f64, usize)> = idx[start..end].iter().map(|&i| (rel(i), i)).collect();
-            run.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            run.sort_by(|(ra, ia), (rb, ib)| ra.total_cmp(rb).then(ia.cmp(ib)));
             for (k, (_, i)) in run.into_iter().enumerate() {
                 idx[start + k] = i;
             }

@@ -7,6 +7,7 @@ use glam::DVec3;
 use super::adjacency::Adjacency;
 use super::brep::{Brep, LoopId, Shell};
 use super::faces;
+use super::rotation::RawNormal;
 use crate::diagnostic::Diagnostic;
 use crate::network::PieceCurve;
 
@@ -59,7 +60,7 @@ pub(crate) fn add_shells(brep: &mut Brep, shell_of: &[usize]) {
 pub(crate) fn orient_lone_parts(
     brep: &mut Brep,
     evals: &[PieceCurve],
-    raw: &[Option<(DVec3, f64)>],
+    raw: &[Option<RawNormal>],
     normals: &mut [DVec3],
     shell_of: &[usize],
 ) {
