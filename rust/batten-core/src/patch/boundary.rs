@@ -14,6 +14,11 @@ use super::error::PatchError;
 use crate::curve::{BezierDecomposition, NurbsCurve, MAX_ORDER};
 use crate::tolerance::Tolerance;
 
+/// How far a segment's parameter may lie outside its curve's domain, relative to the domain's
+/// length (at least 1): rounding in parameters computed from the domain's ends, not a distance
+/// on the curve.
+const PARAMETER_SLACK: f64 = 1e-12;
+
 /// A parameter interval `[t0, t1]` of one designer curve, traversed from `t0` to `t1`
 /// (`t0 > t1` traverses the curve backwards).
 ///
@@ -355,7 +360,7 @@ pub(crate) fn prepare_boundary(
         for (ki, seg) in side.segments.iter().enumerate() {
             let (a, b) = seg.curve.domain();
             for t in [seg.t0, seg.t1] {
-                let slack = 1e-12 * (b - a).abs().max(1.0);
+                let slack = PARAMETER_SLACK * (b - a).abs().max(1.0);
                 if !t.is_finite() || t < a - slack || t > b + slack {
                     return Err(PatchError::BadParameter {
                         side: si,
@@ -381,7 +386,7 @@ pub(crate) fn prepare_boundary(
             let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
             let length = if hi > lo {
                 seg.curve
-                    .arc_length_between(lo, hi, 0.1 * tol.get())
+                    .arc_length_between(lo, hi, tol.side_length_accuracy())
                     .map_err(|source| PatchError::Curve {
                         curve: seg.label(),
                         source,

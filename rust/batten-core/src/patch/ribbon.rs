@@ -40,6 +40,15 @@ pub const MIN_CORNER_ANGLE_DEGREES: f64 = 2.0;
 /// remainder is treated as zero: directions that close are parallel for every purpose here.
 const PARALLEL: f64 = 1e-9;
 
+/// How far a ribbon node's parameter may lie outside its segment's interval, relative to the
+/// interval's length (at least 1): node parameters come from the topology's intersections and
+/// may round past the segment's ends.
+const NODE_PARAMETER_SLACK: f64 = 1e-9;
+
+/// Samples per side of the boundary polygon whose Newell normal gives a face's overall
+/// orientation (used only where local information is degenerate).
+const NEWELL_SAMPLES_PER_SIDE: usize = 8;
+
 /// The crossing information at one node on a side segment: the curve parameter of the node on
 /// the segment's curve and the tangents of the other curves through it (any orientation, any
 /// length; the adjacent sides' tangents at a corner count too).
@@ -261,7 +270,7 @@ fn segment_label(segment: &SideSegment) -> String {
 
 fn check_node_t(segment: &SideSegment, t: f64) -> Result<(), PatchError> {
     let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
-    let slack = 1e-9 * (hi - lo).abs().max(1.0);
+    let slack = NODE_PARAMETER_SLACK * (hi - lo).abs().max(1.0);
     if !t.is_finite() || t < lo - slack || t > hi + slack {
         return Err(PatchError::BadRibbonNode {
             curve: segment_label(segment),
@@ -387,12 +396,12 @@ pub(crate) fn prepare_ribbons(
             SideEnds { start, end }
         })
         .collect();
-    // Newell normal of the boundary polygon (8 samples per side): the face's overall
-    // orientation, used only where local information is degenerate.
-    let mut poly = Vec::with_capacity(8 * n);
+    // Newell normal of the boundary polygon: the face's overall orientation, used only where
+    // local information is degenerate.
+    let mut poly = Vec::with_capacity(NEWELL_SAMPLES_PER_SIDE * n);
     for s in sides {
-        for j in 0..8 {
-            poly.push(s.point(j as f64 / 8.0));
+        for j in 0..NEWELL_SAMPLES_PER_SIDE {
+            poly.push(s.point(j as f64 / NEWELL_SAMPLES_PER_SIDE as f64));
         }
     }
     let mut newell = DVec3::ZERO;

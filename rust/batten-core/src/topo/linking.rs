@@ -19,6 +19,11 @@ use crate::network::PieceCurve;
 /// curve the farthest tip is 0.75 from the best plane.
 pub const BRANCHING_TIP_DISTANCE: f64 = 0.6;
 
+/// Edges leaving a node with the same tangent are ordered by the direction to their point
+/// this fraction of their parameter interval along (a quarter: far enough to bend apart, near
+/// enough to stay on the node's side of the edge).
+const TIE_BREAK_FRACTION: f64 = 0.25;
+
 /// What the rotation system leaves for the later steps.
 pub(crate) struct RotationSystem {
     /// Per vertex: the unoriented normal from its tangents, `None` when they are all
@@ -76,7 +81,7 @@ pub(crate) fn link(brep: &mut Brep, dirs: &[DVec3], evals: &[PieceCurve]) -> Rot
         ts.clear();
         ts.extend(hs.iter().map(|h| dirs[h.index()]));
         let d = &ts;
-        // Edges leaving with the same tangent are told apart a quarter along the edge.
+        // Edges leaving with the same tangent are told apart further along the edge.
         let further = |i: usize| {
             let h = hs[i];
             let e = &brep.edges[brep.half_edges[h.index()].edge.index()];
@@ -86,7 +91,7 @@ pub(crate) fn link(brep: &mut Brep, dirs: &[DVec3], evals: &[PieceCurve]) -> Rot
                 (e.t1, e.t0)
             };
             let c = &evals[e.curve];
-            (c.point(from + 0.25 * (to - from)) - c.point(from)).normalize_or_zero()
+            (c.point(from + TIE_BREAK_FRACTION * (to - from)) - c.point(from)).normalize_or_zero()
         };
         ccw_order(normal, d, &further, &mut keys, &mut order);
         let row = outgoing.row_mut(v);

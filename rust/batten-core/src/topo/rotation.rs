@@ -14,6 +14,15 @@ use crate::network::PieceCurve;
 /// not define a plane (about 0.06°).
 const PARALLEL_SINE: f64 = 1e-3;
 
+/// A curve's derivative at a node counts as vanishing when the distance it predicts over the
+/// whole stretch (its length times the parameter length) is below this, relative to the size
+/// of the coordinates (`1 + |p|`): near the f64 rounding of the positions.
+const VANISHING_DERIVATIVE: f64 = 1e-9;
+
+/// Where the derivative vanishes, the leaving direction is the chord to the point this
+/// fraction of the stretch's parameter length along it.
+const CHORD_STEP: f64 = 1e-3;
+
 /// Unit direction in which a stretch `[t_from → t_to]` of a curve leaves `t_from`: the
 /// one-sided derivative on the stretch's side, or the chord to a nearby point where the
 /// derivative vanishes.
@@ -27,10 +36,10 @@ pub(crate) fn leaving_direction(
     let (p0, d1, _) = cache.eval(curve, t_from, forward);
     let d = if forward { d1 } else { -d1 };
     let step = (t_to - t_from).abs();
-    if d.length() * step > 1e-9 * (1.0 + p0.length()) {
+    if d.length() * step > VANISHING_DERIVATIVE * (1.0 + p0.length()) {
         return d.normalize();
     }
-    (curve.point(t_from + 1e-3 * (t_to - t_from)) - p0).normalize_or_zero()
+    (curve.point(t_from + CHORD_STEP * (t_to - t_from)) - p0).normalize_or_zero()
 }
 
 /// The last evaluation of [`leaving_direction`], by curve, parameter and piece: the two
