@@ -15,8 +15,8 @@
 use glam::{DVec2, DVec3};
 
 use super::boundary::PreparedSide;
+use super::corner::CornerData;
 use super::ribbon::PreparedRibbon;
-use super::CornerData;
 
 #[inline]
 fn hermite(x: f64) -> [f64; 4] {
@@ -27,18 +27,6 @@ fn hermite(x: f64) -> [f64; 4] {
         -2.0 * x3 + 3.0 * x2,
         x3 - x2,
     ]
-}
-
-/// Corner `i`'s rational twist in its local parameters (`u` along side `i`, `v` along side
-/// `i − 1` from the corner).
-#[inline]
-fn twist(c: &CornerData, u: f64, v: f64) -> DVec3 {
-    let uv = u + v;
-    if uv > 0.0 {
-        (c.x * u + c.y * v) / uv
-    } else {
-        (c.x + c.y) * 0.5
-    }
 }
 
 /// A corner of the unit square for the tensor-product Hermite interpolant `P12`: position,
@@ -86,10 +74,12 @@ pub(crate) fn eval(
         dv,
         twist: w,
     };
-    let k00 = jet(c0.p, c0.a, c0.b, twist(c0, u, v));
-    let k10 = jet(c1.p, -c1.b, c1.a, -twist(c1, v, 1.0 - u));
-    let k11 = jet(c2.p, -c2.a, -c2.b, twist(c2, 1.0 - u, 1.0 - v));
-    let k01 = jet(c3.p, c3.b, -c3.a, -twist(c3, 1.0 - v, u));
+    // Corner `i`'s twist takes its local parameters (`u` along side `i`, `v` along side
+    // `i − 1` from the corner).
+    let k00 = jet(c0.p, c0.a, c0.b, c0.twist(u, v));
+    let k10 = jet(c1.p, -c1.b, c1.a, -c1.twist(v, 1.0 - u));
+    let k11 = jet(c2.p, -c2.a, -c2.b, c2.twist(1.0 - u, 1.0 - v));
+    let k01 = jet(c3.p, c3.b, -c3.a, -c3.twist(1.0 - v, u));
     let term = |k: CornerJet, pu: f64, du: f64, pv: f64, dv: f64| {
         k.p * (pu * pv) + k.du * (du * pv) + k.dv * (pu * dv) + k.twist * (du * dv)
     };

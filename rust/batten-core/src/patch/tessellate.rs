@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use super::boundary::canonical_sample;
 use super::error::PatchError;
-use super::Patch;
+use super::face_patch::Patch;
 
 /// A polygon mesh in plain arrays, as the Blender bridge wants it.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -90,24 +90,24 @@ impl Patch {
     /// The boundary samples of the face in counter-clockwise order starting at corner 0 (each
     /// corner once), with their domain points.
     fn boundary_ring(&self, r: usize) -> BoundaryRing {
-        let n = self.sides.len();
+        let n = self.sides();
         let mut pts = Vec::new();
         let mut dom = Vec::new();
         let mut starts = Vec::with_capacity(n + 1);
         let mut lambdas = Vec::new();
-        for (i, side) in self.sides.iter().enumerate() {
+        for (i, side) in self.prepared_sides().iter().enumerate() {
             starts.push(pts.len());
             for (k, seg) in side.segs.iter().enumerate() {
                 let (u0, u1) = (side.breaks[k], side.breaks[k + 1]);
                 pts.push(seg.p0);
-                dom.push(self.domain.side_point_v(i, u0));
+                dom.push(self.domain().side_point_v(i, u0));
                 lambdas.push(u0);
                 for q in 1..r {
                     let j = if seg.ta <= seg.tb { q } else { r - q };
                     let t = canonical_sample(seg.ta, seg.tb, r, j);
                     let s = u0 + (u1 - u0) * (q as f64 / r as f64);
                     pts.push(seg.curve.point(t));
-                    dom.push(self.domain.side_point_v(i, s));
+                    dom.push(self.domain().side_point_v(i, s));
                     lambdas.push(s);
                 }
             }
@@ -122,7 +122,7 @@ impl Patch {
     }
 
     fn face_mesh(&self, r: usize) -> FaceMesh {
-        let n = self.sides.len();
+        let n = self.sides();
         let BoundaryRing {
             points: mut positions,
             domain: dom,
@@ -177,7 +177,7 @@ impl Patch {
         } else {
             let total: usize = counts.iter().sum();
             let k = ((total as f64 / n as f64).round() as usize).max(1);
-            let centre = self.domain.centre_v();
+            let centre = self.domain().centre_v();
             // Ring r ≥ 1: (k − r) intervals per side, starting index base[r].
             let mut base = vec![0usize; k];
             let mut next = b;
@@ -186,8 +186,8 @@ impl Patch {
                 let scale = 1.0 - rr as f64 / k as f64;
                 let m = k - rr;
                 for i in 0..n {
-                    let a = centre + (self.domain.vertex(i) - centre) * scale;
-                    let c = centre + (self.domain.vertex(i + 1) - centre) * scale;
+                    let a = centre + (self.domain().vertex(i) - centre) * scale;
+                    let c = centre + (self.domain().vertex(i + 1) - centre) * scale;
                     for j in 0..m {
                         positions.push(self.eval_v(a + (c - a) * (j as f64 / m as f64)));
                     }

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use super::brep::{Brep, HalfEdgeId, LoopId};
+use super::brep::{Brep, EdgeId, HalfEdgeId, LoopId};
 use crate::network::PieceCurve;
 
 /// The boundary of a face runs on smoothly through a node (no corner) when its direction turns
@@ -23,7 +23,7 @@ const AREA_SAMPLES_PER_EDGE: usize = 2;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FaceSide {
     /// The edges of the side, in loop order.
-    pub edges: Vec<super::brep::EdgeId>,
+    pub edges: Vec<EdgeId>,
     /// The designer curves along the side (indices into the network), in order, without
     /// consecutive repeats.
     pub curves: Vec<usize>,

@@ -45,7 +45,7 @@ impl Topology {
     ///
     /// A curve ends at a node when exactly one of its edges (face edges or pruned ones) has an
     /// end there, and passes through it when two do. A node lies inside a face side when two
-    /// consecutive edges of one [`FaceSide`](super::FaceSide) meet there.
+    /// consecutive edges of one [`FaceSide`](super::faces::FaceSide) meet there.
     pub fn node_kinds(&self) -> Vec<NodeKind> {
         node_kinds(self)
     }

@@ -63,10 +63,9 @@ impl EvalCache {
     }
 
     fn eval(&mut self, curve: &PieceCurve, t: f64, after: bool) -> (DVec3, DVec3, DVec3) {
-        let piece = curve.piece_at(t, after);
-        let key = (t.to_bits(), piece);
+        let key = (t.to_bits(), curve.piece_at(t, after));
         if self.key != Some(key) {
-            self.value = curve.eval_in(piece, t);
+            self.value = curve.eval_in(key.1, t);
             self.key = Some(key);
         }
         self.value
