@@ -39,6 +39,15 @@ impl Tolerance {
     pub fn near_miss(self) -> f64 {
         10.0 * self.0
     }
+
+    // --- topology and patches ---
+
+    /// Accuracy to which the arc length of a face's side segment is measured (patch
+    /// boundaries, H-rep §3.2.1): a tenth of the tolerance, well below the tolerance that a
+    /// side must exceed and fine enough for dividing a composite side's parameter by lengths.
+    pub fn side_length_accuracy(self) -> f64 {
+        0.1 * self.0
+    }
 }
 
 impl Default for Tolerance {

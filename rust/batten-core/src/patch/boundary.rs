@@ -14,6 +14,11 @@ use super::error::PatchError;
 use crate::curve::{BezierDecomposition, NurbsCurve, MAX_ORDER};
 use crate::tolerance::Tolerance;
 
+/// How far a segment's parameter may lie outside its curve's domain, relative to the domain's
+/// length (at least 1): rounding in parameters computed from the domain's ends, not a distance
+/// on the curve.
+const PARAMETER_SLACK: f64 = 1e-12;
+
 /// A parameter interval `[t0, t1]` of one designer curve, traversed from `t0` to `t1`
 /// (`t0 > t1` traverses the curve backwards).
 ///
@@ -312,6 +317,20 @@ impl PreparedSide {
     }
 }
 
+/// A segment's curve end points (traversal order), arc length and chord, measured once while
+/// its parameters are validated.
+#[derive(Clone, Copy, Debug)]
+struct MeasuredSegment {
+    /// The curve's point at `t0`.
+    start: DVec3,
+    /// The curve's point at `t1`.
+    end: DVec3,
+    /// Arc length between `t0` and `t1`.
+    length: f64,
+    /// Distance from `start` to `end`.
+    chord: f64,
+}
+
 /// Validate a face boundary and resolve its corners and junctions (see [`SideSegment`]).
 pub(crate) fn prepare_boundary(
     boundary: &FaceBoundary,
@@ -331,7 +350,7 @@ pub(crate) fn prepare_boundary(
     }
     let limit = tol.near_miss();
     // Raw end points and lengths, after parameter validation.
-    let mut raw: Vec<Vec<(DVec3, DVec3, f64, f64)>> = Vec::with_capacity(n);
+    let mut raw: Vec<Vec<MeasuredSegment>> = Vec::with_capacity(n);
     for (si, side) in boundary.sides.iter().enumerate() {
         if side.segments.is_empty() {
             return Err(PatchError::EmptySide { side: si });
@@ -341,7 +360,7 @@ pub(crate) fn prepare_boundary(
         for (ki, seg) in side.segments.iter().enumerate() {
             let (a, b) = seg.curve.domain();
             for t in [seg.t0, seg.t1] {
-                let slack = 1e-12 * (b - a).abs().max(1.0);
+                let slack = PARAMETER_SLACK * (b - a).abs().max(1.0);
                 if !t.is_finite() || t < a - slack || t > b + slack {
                     return Err(PatchError::BadParameter {
                         side: si,
@@ -367,7 +386,7 @@ pub(crate) fn prepare_boundary(
             let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
             let length = if hi > lo {
                 seg.curve
-                    .arc_length_between(lo, hi, 0.1 * tol.get())
+                    .arc_length_between(lo, hi, tol.side_length_accuracy())
                     .map_err(|source| PatchError::Curve {
                         curve: seg.label(),
                         source,
@@ -386,8 +405,12 @@ pub(crate) fn prepare_boundary(
             total += length;
             let p0 = seg.curve.point(seg.t0);
             let p1 = seg.curve.point(seg.t1);
-            let chord = (p1 - p0).length();
-            segs.push((p0, p1, length, chord));
+            segs.push(MeasuredSegment {
+                start: p0,
+                end: p1,
+                length,
+                chord: (p1 - p0).length(),
+            });
         }
         if total.is_nan() || total < tol.get() {
             return Err(PatchError::ZeroLengthSide {
@@ -418,9 +441,9 @@ pub(crate) fn prepare_boundary(
         let pi = (si + n - 1) % n;
         let prev_side = &boundary.sides[pi];
         let prev_seg = prev_side.segments.last().expect("sides are non-empty");
-        let prev_end = raw[pi].last().expect("sides are non-empty").1;
+        let prev_end = raw[pi].last().expect("sides are non-empty").end;
         let first = &side.segments[0];
-        let first_start = raw[si][0].0;
+        let first_start = raw[si][0].start;
         let gap = (prev_end - first_start).length();
         let corner = resolve(prev_seg, prev_end, first, first_start);
         let worst = gap
@@ -440,7 +463,7 @@ pub(crate) fn prepare_boundary(
         starts.push(corner);
         for k in 0..m - 1 {
             let (a, b) = (&side.segments[k], &side.segments[k + 1]);
-            let (a_end, b_start) = (raw[si][k].1, raw[si][k + 1].0);
+            let (a_end, b_start) = (raw[si][k].end, raw[si][k + 1].start);
             let j = resolve(a, a_end, b, b_start);
             let worst = (a_end - b_start)
                 .length()
@@ -465,17 +488,17 @@ pub(crate) fn prepare_boundary(
         let last = side.segments.last().expect("sides are non-empty");
         let end = resolve(
             last,
-            raw[si].last().expect("sides are non-empty").1,
+            raw[si].last().expect("sides are non-empty").end,
             next_first,
-            raw[ni][0].0,
+            raw[ni][0].start,
         );
         starts.push(end);
 
         // Break parameters.
-        let use_chord = param == SideParam::Chord && raw[si].iter().all(|r| r.3 >= tol.get());
+        let use_chord = param == SideParam::Chord && raw[si].iter().all(|r| r.chord >= tol.get());
         let weights: Vec<f64> = raw[si]
             .iter()
-            .map(|r| if use_chord { r.3 } else { r.2 })
+            .map(|r| if use_chord { r.chord } else { r.length })
             .collect();
         let total: f64 = weights.iter().sum();
         let mut breaks = Vec::with_capacity(m + 1);
@@ -496,8 +519,8 @@ pub(crate) fn prepare_boundary(
                 fast: FastCurve::new(&seg.curve),
                 ta: seg.t0,
                 tb: seg.t1,
-                d0: starts[k] - raw[si][k].0,
-                d1: starts[k + 1] - raw[si][k].1,
+                d0: starts[k] - raw[si][k].start,
+                d1: starts[k + 1] - raw[si][k].end,
                 p0: starts[k],
             })
             .collect();

@@ -22,9 +22,9 @@
 use glam::{DVec2, DVec3};
 
 use super::boundary::PreparedSide;
+use super::corner::CornerData;
 use super::domain::{Domain, MAX_SIDES};
 use super::ribbon::PreparedRibbon;
-use super::CornerData;
 
 /// Evaluate the Charrot–Gregory patch at domain point `x` (clamped into the domain).
 #[inline]
@@ -85,13 +85,7 @@ pub(crate) fn eval(
         let c = &corners[i];
         let ta = f[i] + r[i] * v;
         let tb = f[prev] + r[prev] * u;
-        let uv = u + v;
-        let twist = if uv > 0.0 {
-            (c.x * u + c.y * v) / uv
-        } else {
-            (c.x + c.y) * 0.5
-        };
-        let tab = c.p + c.a * u + c.b * v + twist * (u * v);
+        let tab = c.p + c.a * u + c.b * v + c.twist(u, v) * (u * v);
         acc += (ta + tb - tab) * w[i];
     }
     acc / wsum

@@ -15,8 +15,8 @@
 use glam::{DVec2, DVec3};
 
 use super::boundary::PreparedSide;
+use super::corner::CornerData;
 use super::ribbon::PreparedRibbon;
-use super::CornerData;
 
 #[inline]
 fn hermite(x: f64) -> [f64; 4] {
@@ -29,16 +29,14 @@ fn hermite(x: f64) -> [f64; 4] {
     ]
 }
 
-/// Corner `i`'s rational twist in its local parameters (`u` along side `i`, `v` along side
-/// `i − 1` from the corner).
-#[inline]
-fn twist(c: &CornerData, u: f64, v: f64) -> DVec3 {
-    let uv = u + v;
-    if uv > 0.0 {
-        (c.x * u + c.y * v) / uv
-    } else {
-        (c.x + c.y) * 0.5
-    }
+/// A corner of the unit square for the tensor-product Hermite interpolant `P12`: position,
+/// derivatives along `u` and `v` and twist `∂²/∂u∂v`, in the square's axes.
+#[derive(Clone, Copy, Debug)]
+struct CornerJet {
+    p: DVec3,
+    du: DVec3,
+    dv: DVec3,
+    twist: DVec3,
 }
 
 /// Evaluate the Gregory patch at `(u, v)` (clamped into the unit square).
@@ -69,13 +67,21 @@ pub(crate) fn eval(
     let p1 = l * hu[0] + lu * hu[1] + r * hu[2] + ru * hu[3];
     let p2 = b * hv[0] + bv * hv[1] + t * hv[2] + tv * hv[3];
     let [c0, c1, c2, c3] = [&corners[0], &corners[1], &corners[2], &corners[3]];
-    // Corner data (position, ∂u, ∂v, twist) in the square's axes.
-    let k00 = (c0.p, c0.a, c0.b, twist(c0, u, v));
-    let k10 = (c1.p, -c1.b, c1.a, -twist(c1, v, 1.0 - u));
-    let k11 = (c2.p, -c2.a, -c2.b, twist(c2, 1.0 - u, 1.0 - v));
-    let k01 = (c3.p, c3.b, -c3.a, -twist(c3, 1.0 - v, u));
-    let term = |k: (DVec3, DVec3, DVec3, DVec3), pu: f64, du: f64, pv: f64, dv: f64| {
-        k.0 * (pu * pv) + k.1 * (du * pv) + k.2 * (pu * dv) + k.3 * (du * dv)
+    // Corner data in the square's axes.
+    let jet = |p, du, dv, w| CornerJet {
+        p,
+        du,
+        dv,
+        twist: w,
+    };
+    // Corner `i`'s twist takes its local parameters (`u` along side `i`, `v` along side
+    // `i − 1` from the corner).
+    let k00 = jet(c0.p, c0.a, c0.b, c0.twist(u, v));
+    let k10 = jet(c1.p, -c1.b, c1.a, -c1.twist(v, 1.0 - u));
+    let k11 = jet(c2.p, -c2.a, -c2.b, c2.twist(1.0 - u, 1.0 - v));
+    let k01 = jet(c3.p, c3.b, -c3.a, -c3.twist(1.0 - v, u));
+    let term = |k: CornerJet, pu: f64, du: f64, pv: f64, dv: f64| {
+        k.p * (pu * pv) + k.du * (du * pv) + k.dv * (pu * dv) + k.twist * (du * dv)
     };
     let p12 = term(k00, hu[0], hu[1], hv[0], hv[1])
         + term(k10, hu[2], hu[3], hv[0], hv[1])

@@ -40,6 +40,15 @@ pub const MIN_CORNER_ANGLE_DEGREES: f64 = 2.0;
 /// remainder is treated as zero: directions that close are parallel for every purpose here.
 const PARALLEL: f64 = 1e-9;
 
+/// How far a ribbon node's parameter may lie outside its segment's interval, relative to the
+/// interval's length (at least 1): node parameters come from the topology's intersections and
+/// may round past the segment's ends.
+const NODE_PARAMETER_SLACK: f64 = 1e-9;
+
+/// Samples per side of the boundary polygon whose Newell normal gives a face's overall
+/// orientation (used only where local information is degenerate).
+const NEWELL_SAMPLES_PER_SIDE: usize = 8;
+
 /// The crossing information at one node on a side segment: the curve parameter of the node on
 /// the segment's curve and the tangents of the other curves through it (any orientation, any
 /// length; the adjacent sides' tangents at a corner count too).
@@ -172,7 +181,7 @@ impl EdgeNormal {
     }
 
     fn from_pairs(mut pairs: Vec<(f64, DVec3)>) -> EdgeNormal {
-        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pairs.sort_by(|(ta, _), (tb, _)| ta.total_cmp(tb));
         // Merge nodes at the same parameter; align signs along the curve.
         let mut ts: Vec<f64> = Vec::with_capacity(pairs.len());
         let mut normals: Vec<DVec3> = Vec::with_capacity(pairs.len());
@@ -261,7 +270,7 @@ fn segment_label(segment: &SideSegment) -> String {
 
 fn check_node_t(segment: &SideSegment, t: f64) -> Result<(), PatchError> {
     let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
-    let slack = 1e-9 * (hi - lo).abs().max(1.0);
+    let slack = NODE_PARAMETER_SLACK * (hi - lo).abs().max(1.0);
     if !t.is_finite() || t < lo - slack || t > hi + slack {
         return Err(PatchError::BadRibbonNode {
             curve: segment_label(segment),
@@ -366,6 +375,13 @@ fn in_plane_cross(n: DVec3, c: DVec3) -> Option<DVec3> {
     (l > PARALLEL).then(|| (m / l).cross(c))
 }
 
+/// A side's derivatives d/ds at its two ends (s = 0 and s = 1).
+#[derive(Clone, Copy, Debug)]
+struct SideEnds {
+    start: DVec3,
+    end: DVec3,
+}
+
 /// Build the prepared ribbons of a face from its prepared sides and ribbon specifications.
 pub(crate) fn prepare_ribbons(
     sides: &[PreparedSide],
@@ -373,14 +389,19 @@ pub(crate) fn prepare_ribbons(
     warnings: &mut Vec<PatchWarning>,
 ) -> Vec<PreparedRibbon> {
     let n = sides.len();
-    let ends: Vec<((DVec3, DVec3), (DVec3, DVec3))> =
-        sides.iter().map(|s| (s.eval(0.0), s.eval(1.0))).collect();
-    // Newell normal of the boundary polygon (8 samples per side): the face's overall
-    // orientation, used only where local information is degenerate.
-    let mut poly = Vec::with_capacity(8 * n);
+    let ends: Vec<SideEnds> = sides
+        .iter()
+        .map(|s| {
+            let ((_, start), (_, end)) = (s.eval(0.0), s.eval(1.0));
+            SideEnds { start, end }
+        })
+        .collect();
+    // Newell normal of the boundary polygon: the face's overall orientation, used only where
+    // local information is degenerate.
+    let mut poly = Vec::with_capacity(NEWELL_SAMPLES_PER_SIDE * n);
     for s in sides {
-        for j in 0..8 {
-            poly.push(s.point(j as f64 / 8.0));
+        for j in 0..NEWELL_SAMPLES_PER_SIDE {
+            poly.push(s.point(j as f64 / NEWELL_SAMPLES_PER_SIDE as f64));
         }
     }
     let mut newell = DVec3::ZERO;
@@ -393,10 +414,13 @@ pub(crate) fn prepare_ribbons(
     let mut out = Vec::with_capacity(n);
     for i in 0..n {
         let (prev, next) = ((i + n - 1) % n, (i + 1) % n);
-        let ((_, d_start), (_, d_end)) = ends[i];
+        let SideEnds {
+            start: d_start,
+            end: d_end,
+        } = ends[i];
         // Tangents of the neighbouring sides leaving the two corners, into the face.
-        let a0 = -(ends[prev].1).1;
-        let a1 = (ends[next].0).1;
+        let a0 = -ends[prev].end;
+        let a1 = ends[next].start;
         let c0 = unit(d_start).unwrap_or(DVec3::X);
         let c1 = unit(d_end).unwrap_or(c0);
         let corner_normal = |c: DVec3, a: DVec3| -> DVec3 {

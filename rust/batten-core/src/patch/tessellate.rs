@@ -22,7 +22,7 @@ use rayon::prelude::*;
 
 use super::boundary::canonical_sample;
 use super::error::PatchError;
-use super::Patch;
+use super::face_patch::Patch;
 
 /// A polygon mesh in plain arrays, as the Blender bridge wants it.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -54,6 +54,26 @@ impl SurfaceMesh {
     }
 }
 
+/// The boundary samples of one face, counter-clockwise from corner 0, each corner once.
+struct BoundaryRing {
+    /// The surface points.
+    points: Vec<DVec3>,
+    /// Their domain points.
+    domain: Vec<DVec2>,
+    /// Index of the first sample of each side, and the sample count at the end.
+    starts: Vec<usize>,
+    /// Each sample's side parameter `s ∈ [0, 1)` along its side.
+    side_parameters: Vec<f64>,
+}
+
+/// A vertex of a polyline the triangulation joins ([`fan`], [`zipper`]): its index and its
+/// relative position along the strip (0 at the start, 1 at the end).
+#[derive(Clone, Copy, Debug)]
+struct RingPoint {
+    vertex: u32,
+    along: f64,
+}
+
 /// One face's mesh before welding: the first `boundary` vertices lie on the face boundary.
 struct FaceMesh {
     positions: Vec<DVec3>,
@@ -70,36 +90,46 @@ impl Patch {
 
     /// The boundary samples of the face in counter-clockwise order starting at corner 0 (each
     /// corner once), with their domain points.
-    fn boundary_ring(&self, r: usize) -> (Vec<DVec3>, Vec<DVec2>, Vec<usize>, Vec<f64>) {
-        let n = self.sides.len();
+    fn boundary_ring(&self, r: usize) -> BoundaryRing {
+        let n = self.sides();
         let mut pts = Vec::new();
         let mut dom = Vec::new();
         let mut starts = Vec::with_capacity(n + 1);
         let mut lambdas = Vec::new();
-        for (i, side) in self.sides.iter().enumerate() {
+        for (i, side) in self.prepared_sides().iter().enumerate() {
             starts.push(pts.len());
             for (k, seg) in side.segs.iter().enumerate() {
                 let (u0, u1) = (side.breaks[k], side.breaks[k + 1]);
                 pts.push(seg.p0);
-                dom.push(self.domain.side_point_v(i, u0));
+                dom.push(self.domain().side_point_v(i, u0));
                 lambdas.push(u0);
                 for q in 1..r {
                     let j = if seg.ta <= seg.tb { q } else { r - q };
                     let t = canonical_sample(seg.ta, seg.tb, r, j);
                     let s = u0 + (u1 - u0) * (q as f64 / r as f64);
                     pts.push(seg.curve.point(t));
-                    dom.push(self.domain.side_point_v(i, s));
+                    dom.push(self.domain().side_point_v(i, s));
                     lambdas.push(s);
                 }
             }
         }
         starts.push(pts.len());
-        (pts, dom, starts, lambdas)
+        BoundaryRing {
+            points: pts,
+            domain: dom,
+            starts,
+            side_parameters: lambdas,
+        }
     }
 
     fn face_mesh(&self, r: usize) -> FaceMesh {
-        let n = self.sides.len();
-        let (mut positions, dom, starts, lambdas) = self.boundary_ring(r);
+        let n = self.sides();
+        let BoundaryRing {
+            points: mut positions,
+            domain: dom,
+            starts,
+            side_parameters: lambdas,
+        } = self.boundary_ring(r);
         let b = positions.len();
         let counts: Vec<usize> = (0..n).map(|i| starts[i + 1] - starts[i]).collect();
         let mut faces = Vec::new();
@@ -148,7 +178,7 @@ impl Patch {
         } else {
             let total: usize = counts.iter().sum();
             let k = ((total as f64 / n as f64).round() as usize).max(1);
-            let centre = self.domain.centre_v();
+            let centre = self.domain().centre_v();
             // Ring r ≥ 1: (k − r) intervals per side, starting index base[r].
             let mut base = vec![0usize; k];
             let mut next = b;
@@ -157,8 +187,8 @@ impl Patch {
                 let scale = 1.0 - rr as f64 / k as f64;
                 let m = k - rr;
                 for i in 0..n {
-                    let a = centre + (self.domain.vertex(i) - centre) * scale;
-                    let c = centre + (self.domain.vertex(i + 1) - centre) * scale;
+                    let a = centre + (self.domain().vertex(i) - centre) * scale;
+                    let c = centre + (self.domain().vertex(i + 1) - centre) * scale;
                     for j in 0..m {
                         positions.push(self.eval_v(a + (c - a) * (j as f64 / m as f64)));
                     }
@@ -167,20 +197,23 @@ impl Patch {
             }
             let centre_idx = next as u32;
             positions.push(self.eval_v(centre));
-            let ring_side = |rr: usize, i: usize| -> Vec<(u32, f64)> {
+            let ring_side = |rr: usize, i: usize| -> Vec<RingPoint> {
                 let m = k - rr;
                 (0..=m)
                     .map(|j| {
                         let (ii, jj) = if j == m { ((i + 1) % n, 0) } else { (i, j) };
-                        ((base[rr] + ii * m + jj) as u32, j as f64 / m as f64)
+                        RingPoint {
+                            vertex: (base[rr] + ii * m + jj) as u32,
+                            along: j as f64 / m as f64,
+                        }
                     })
                     .collect()
             };
             for i in 0..n {
-                let outer: Vec<(u32, f64)> = (starts[i]..=starts[i + 1])
-                    .map(|q| {
-                        let lam = if q == starts[i + 1] { 1.0 } else { lambdas[q] };
-                        (wrap(q), lam)
+                let outer: Vec<RingPoint> = (starts[i]..=starts[i + 1])
+                    .map(|q| RingPoint {
+                        vertex: wrap(q),
+                        along: if q == starts[i + 1] { 1.0 } else { lambdas[q] },
                     })
                     .collect();
                 if k == 1 {
@@ -208,9 +241,9 @@ impl Patch {
 }
 
 /// Triangles from a polyline to one point (counter-clockwise when the point lies to the left).
-fn fan(outer: &[(u32, f64)], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
+fn fan(outer: &[RingPoint], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
     for w in outer.windows(2) {
-        faces.extend([w[0].0, w[1].0, c]);
+        faces.extend([w[0].vertex, w[1].vertex, c]);
         sizes.push(3);
     }
 }
@@ -218,7 +251,7 @@ fn fan(outer: &[(u32, f64)], c: u32, faces: &mut Vec<u32>, sizes: &mut Vec<u8>) 
 /// Triangulate the strip between two polylines running the same way (`inner` to the left),
 /// each point carrying its relative position along the strip; advance the side whose next
 /// interval has the smaller midpoint.
-fn zipper(outer: &[(u32, f64)], inner: &[(u32, f64)], faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
+fn zipper(outer: &[RingPoint], inner: &[RingPoint], faces: &mut Vec<u32>, sizes: &mut Vec<u8>) {
     let (mut a, mut b) = (0, 0);
     while a + 1 < outer.len() || b + 1 < inner.len() {
         let take_outer = if a + 1 >= outer.len() {
@@ -226,13 +259,13 @@ fn zipper(outer: &[(u32, f64)], inner: &[(u32, f64)], faces: &mut Vec<u32>, size
         } else if b + 1 >= inner.len() {
             true
         } else {
-            outer[a].1 + outer[a + 1].1 <= inner[b].1 + inner[b + 1].1
+            outer[a].along + outer[a + 1].along <= inner[b].along + inner[b + 1].along
         };
         if take_outer {
-            faces.extend([outer[a].0, outer[a + 1].0, inner[b].0]);
+            faces.extend([outer[a].vertex, outer[a + 1].vertex, inner[b].vertex]);
             a += 1;
         } else {
-            faces.extend([outer[a].0, inner[b + 1].0, inner[b].0]);
+            faces.extend([outer[a].vertex, inner[b + 1].vertex, inner[b].vertex]);
             b += 1;
         }
         sizes.push(3);

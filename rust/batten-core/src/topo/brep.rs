@@ -1,6 +1,6 @@
 //! The half-edge B-rep of a curve network: arenas of vertices, half-edges, edges, loops, faces
 //! and shells addressed by typed indices (no reference cycles), after the H-rep paper §3.1
-//! ("implemented as a half-edge-based data structure [Mäntylä]").
+//! ("implemented as a half-edge-based data structure \[Mäntylä\]").
 
 use glam::DVec3;
 

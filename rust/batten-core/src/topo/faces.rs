@@ -1,10 +1,11 @@
-//! Faces of the rotation system: loops traced by the "next edge is the one immediately
-//! clockwise" rule, sorted into faces and boundary loops, and each face's true corners and
-//! sides (H-rep paper §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
+//! The geometry of the loops of the rotation system (traced and sorted in [`super::loops`]):
+//! a loop's vector area against the node normals, which tells a face from a boundary loop,
+//! whether it runs along an edge twice, and each face's true corners and sides (H-rep paper
+//! §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
 
 use glam::DVec3;
 
-use super::brep::{Brep, HalfEdgeId, LoopId};
+use super::brep::{Brep, EdgeId, HalfEdgeId, LoopId};
 use crate::network::PieceCurve;
 
 /// The boundary of a face runs on smoothly through a node (no corner) when its direction turns
@@ -22,7 +23,7 @@ const AREA_SAMPLES_PER_EDGE: usize = 2;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FaceSide {
     /// The edges of the side, in loop order.
-    pub edges: Vec<super::brep::EdgeId>,
+    pub edges: Vec<EdgeId>,
     /// The designer curves along the side (indices into the network), in order, without
     /// consecutive repeats.
     pub curves: Vec<usize>,

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::Topology;
+use super::topology::Topology;
 
 /// The kind of a node of the network.
 #[derive(serde::Serialize, Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -46,9 +46,27 @@ impl Topology {
     ///
     /// A curve ends at a node when exactly one of its edges (face edges or pruned ones) has an
     /// end there, and passes through it when two do. A node lies inside a face side when two
-    /// consecutive edges of one [`FaceSide`](super::FaceSide) meet there.
+    /// consecutive edges of one [`FaceSide`](super::faces::FaceSide) meet there.
     pub fn node_kinds(&self) -> Vec<NodeKind> {
         node_kinds(self)
+    }
+}
+
+/// One curve at one node: how many of its edges end there, and whether one of them bounds a
+/// face.
+#[derive(Clone, Copy, Debug, Default)]
+struct CurveAtNode {
+    /// Edge ends of the curve at the node: 1 when the curve ends there, 2 when it passes
+    /// through.
+    edge_ends: usize,
+    /// Whether one of those edges bounds a face (has half-edges).
+    bounds_face: bool,
+}
+
+impl CurveAtNode {
+    /// The curve ends at the node (one of its edges ends there, none continues).
+    fn ends_here(self) -> bool {
+        self.edge_ends == 1
     }
 }
 
@@ -68,22 +86,21 @@ fn node_kinds(topo: &Topology) -> Vec<NodeKind> {
             }
         }
     }
-    // Per node and curve: edge ends there (1 = the curve ends there, 2 = it passes through),
-    // and whether one of those edges bounds a face.
-    let mut ends: Vec<BTreeMap<usize, (usize, bool)>> = vec![BTreeMap::new(); n];
+    // Per node: each curve through it.
+    let mut ends: Vec<BTreeMap<usize, CurveAtNode>> = vec![BTreeMap::new(); n];
     for e in &brep.edges {
         for v in [e.start, e.end] {
-            let at = ends[v.index()].entry(e.curve).or_insert((0, false));
-            at.0 += 1;
-            at.1 |= e.half_edges.is_some();
+            let at = ends[v.index()].entry(e.curve).or_default();
+            at.edge_ends += 1;
+            at.bounds_face |= e.half_edges.is_some();
         }
     }
     ends.iter()
         .enumerate()
         .map(|(vi, curves)| {
-            let ending = curves.values().filter(|c| c.0 == 1).count();
+            let ending = curves.values().filter(|c| c.ends_here()).count();
             let passing = curves.len() - ending;
-            let face_end = curves.values().any(|&(k, face)| k == 1 && face);
+            let face_end = curves.values().any(|c| c.ends_here() && c.bounds_face);
             match (ending, passing) {
                 (0, _) => NodeKind::Crossing,
                 (1, 0) => NodeKind::FreeEnd,

@@ -14,6 +14,15 @@ use crate::network::PieceCurve;
 /// not define a plane (about 0.06°).
 const PARALLEL_SINE: f64 = 1e-3;
 
+/// A curve's derivative at a node counts as vanishing when the distance it predicts over the
+/// whole stretch (its length times the parameter length) is below this, relative to the size
+/// of the coordinates (`1 + |p|`): near the f64 rounding of the positions.
+const VANISHING_DERIVATIVE: f64 = 1e-9;
+
+/// Where the derivative vanishes, the leaving direction is the chord to the point this
+/// fraction of the stretch's parameter length along it.
+const CHORD_STEP: f64 = 1e-3;
+
 /// Unit direction in which a stretch `[t_from → t_to]` of a curve leaves `t_from`: the
 /// one-sided derivative on the stretch's side, or the chord to a nearby point where the
 /// derivative vanishes.
@@ -27,10 +36,10 @@ pub(crate) fn leaving_direction(
     let (p0, d1, _) = cache.eval(curve, t_from, forward);
     let d = if forward { d1 } else { -d1 };
     let step = (t_to - t_from).abs();
-    if d.length() * step > 1e-9 * (1.0 + p0.length()) {
+    if d.length() * step > VANISHING_DERIVATIVE * (1.0 + p0.length()) {
         return d.normalize();
     }
-    (curve.point(t_from + 1e-3 * (t_to - t_from)) - p0).normalize_or_zero()
+    (curve.point(t_from + CHORD_STEP * (t_to - t_from)) - p0).normalize_or_zero()
 }
 
 /// The last evaluation of [`leaving_direction`], by curve, parameter and piece: the two
@@ -61,6 +70,16 @@ impl EvalCache {
         }
         self.value
     }
+}
+
+/// A node's surface normal from its tangents, before orientation ([`orient_normals`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RawNormal {
+    /// The unit normal, either sign ([`raw_normal`]).
+    pub normal: DVec3,
+    /// How well the tangents define it ([`confidence`]): orientation starts from the most
+    /// confident node of each part.
+    pub confidence: f64,
 }
 
 /// The surface normal at a node from the unit tangents of its edges (unoriented), or `None`
@@ -98,6 +117,18 @@ pub(crate) fn raw_normal(tangents: &[DVec3]) -> Option<DVec3> {
         }
     }
     Some(sum.normalize())
+}
+
+/// How well a set of tangents defines a plane: the largest sine between two of them (the
+/// confidence of a node's [`raw_normal`], which [`orient_normals`] starts from).
+pub(crate) fn confidence(tangents: &[DVec3]) -> f64 {
+    let mut best: f64 = 0.0;
+    for (i, a) in tangents.iter().enumerate() {
+        for b in &tangents[i + 1..] {
+            best = best.max(a.cross(*b).length());
+        }
+    }
+    best
 }
 
 /// Largest distance of a tangent tip from the least-squares plane through the tips (the plane
@@ -156,7 +187,7 @@ fn plane_normal(points: &[DVec3]) -> Option<DVec3> {
 /// tangents parallel) take the normal they are reached from. Returns one unit normal per vertex
 /// (zero for vertices without edges).
 pub(crate) fn orient_normals(
-    raw: &[Option<(DVec3, f64)>],
+    raw: &[Option<RawNormal>],
     neighbours: &Adjacency<usize>,
 ) -> Vec<DVec3> {
     let n = raw.len();
@@ -165,8 +196,8 @@ pub(crate) fn orient_normals(
     let mut order: Vec<usize> = (0..n).filter(|&v| !neighbours.row(v).is_empty()).collect();
     // Start each part at its most confident normal.
     order.sort_by(|&a, &b| {
-        let ca = raw[a].map_or(0.0, |r| r.1);
-        let cb = raw[b].map_or(0.0, |r| r.1);
+        let ca = raw[a].map_or(0.0, |r| r.confidence);
+        let cb = raw[b].map_or(0.0, |r| r.confidence);
         cb.total_cmp(&ca).then(a.cmp(&b))
     });
     let mut queue = VecDeque::new();
@@ -175,7 +206,7 @@ pub(crate) fn orient_normals(
             continue;
         }
         seen[start] = true;
-        out[start] = raw[start].map_or(DVec3::Z, |r| r.0);
+        out[start] = raw[start].map_or(DVec3::Z, |r| r.normal);
         queue.push_back(start);
         while let Some(u) = queue.pop_front() {
             for &v in neighbours.row(u) {
@@ -184,8 +215,8 @@ pub(crate) fn orient_normals(
                 }
                 seen[v] = true;
                 out[v] = match raw[v] {
-                    Some((nv, _)) if nv.dot(out[u]) < 0.0 => -nv,
-                    Some((nv, _)) => nv,
+                    Some(RawNormal { normal: nv, .. }) if nv.dot(out[u]) < 0.0 => -nv,
+                    Some(RawNormal { normal: nv, .. }) => nv,
                     None => out[u],
                 };
                 queue.push_back(v);
@@ -239,7 +270,7 @@ pub(crate) fn ccw_order(
                 (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI
             };
             let mut run: Vec<(f64, usize)> = idx[start..end].iter().map(|&i| (rel(i), i)).collect();
-            run.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            run.sort_by(|(ra, ia), (rb, ib)| ra.total_cmp(rb).then(ia.cmp(ib)));
             for (k, (_, i)) in run.into_iter().enumerate() {
                 idx[start + k] = i;
             }

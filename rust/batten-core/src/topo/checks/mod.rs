@@ -54,7 +54,8 @@ pub(crate) mod fixture {
     use crate::curve::NurbsCurve;
     use crate::network::{Network, NetworkCurve, Role};
     use crate::tolerance::Tolerance;
-    use crate::topo::{Brep, Topology};
+    use crate::topo::brep::Brep;
+    use crate::topo::topology::Topology;
 
     fn line(name: &str, a: [f64; 3], b: [f64; 3]) -> NetworkCurve {
         let curve = NurbsCurve::try_new(

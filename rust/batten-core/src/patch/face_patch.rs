@@ -1,0 +1,216 @@
+//! One surface patch over a face (H-rep paper §3.2.1–3.2.2): its options, construction from
+//! the face's boundary and ribbons, and evaluation by the Gregory (4 sides) or Charrot–Gregory
+//! (N sides) scheme.
+
+use glam::{DVec2, DVec3};
+
+use super::boundary::{prepare_boundary, FaceBoundary, PreparedSide, SideParam};
+use super::charrot_gregory;
+use super::corner::{corner_data, CornerData};
+use super::domain::{Domain, MAX_SIDES};
+use super::error::{PatchError, PatchWarning};
+use super::gregory4;
+use super::ribbon::{prepare_ribbons, PreparedRibbon, SideRibbon};
+use crate::tolerance::Tolerance;
+
+/// Which surface scheme interpolates a face.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PatchKind {
+    /// Gregory for 4 sides, Charrot–Gregory otherwise (the paper's choice, §3.2.1).
+    #[default]
+    Auto,
+    /// The 4-sided Gregory patch with rational twists.
+    Gregory,
+    /// The N-sided Charrot–Gregory patch (also for 4 sides).
+    CharrotGregory,
+}
+
+/// Options of [`Patch::try_new`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PatchOptions {
+    /// The surface scheme.
+    pub kind: PatchKind,
+    /// How composite sides divide their parameter among segments.
+    pub param: SideParam,
+    /// The model tolerance: shorter sides are refused, gaps up to 10× it are closed.
+    pub tolerance: Tolerance,
+}
+
+impl Default for PatchOptions {
+    fn default() -> Self {
+        PatchOptions {
+            kind: PatchKind::Auto,
+            param: SideParam::ArcLength,
+            tolerance: Tolerance::DEFAULT,
+        }
+    }
+}
+
+/// Step in domain units for [`Patch::derivatives`] (the domain has unit size).
+const DERIV_STEP: f64 = 1e-6;
+
+/// One surface patch over a face: the Gregory (4 sides) or Charrot–Gregory (N sides) interpolant
+/// of the face's boundary curves and tangent ribbons (H-rep paper §3.2.1–3.2.2).
+///
+/// Evaluation allocates nothing and is `Sync`: patches of a network can be evaluated in
+/// parallel.
+#[derive(Clone, Debug)]
+pub struct Patch {
+    kind: PatchKind,
+    domain: Domain,
+    sides: Vec<PreparedSide>,
+    ribbons: Vec<PreparedRibbon>,
+    corners: Vec<CornerData>,
+    warnings: Vec<PatchWarning>,
+}
+
+impl Patch {
+    /// Build the patch of a face from its boundary and one ribbon per side (`ribbons` empty:
+    /// default ribbons everywhere).
+    ///
+    /// Errors: fewer than 3 or more than [`MAX_SIDES`] sides, an empty or zero-length side, a
+    /// parameter outside its curve, a gap at a corner or T-joint wider than 10× the tolerance,
+    /// a ribbon list of the wrong shape, or [`PatchKind::Gregory`] on a face without 4 sides.
+    pub fn try_new(
+        boundary: &FaceBoundary,
+        ribbons: &[SideRibbon],
+        options: &PatchOptions,
+    ) -> Result<Patch, PatchError> {
+        let sides = prepare_boundary(boundary, options.param, options.tolerance, MAX_SIDES)?;
+        let n = sides.len();
+        let kind = match (options.kind, n) {
+            (PatchKind::Auto, 4) | (PatchKind::Gregory, 4) => PatchKind::Gregory,
+            (PatchKind::Gregory, _) => return Err(PatchError::GregoryNeedsFourSides { sides: n }),
+            _ => PatchKind::CharrotGregory,
+        };
+        if !ribbons.is_empty() && ribbons.len() != n {
+            return Err(PatchError::RibbonCount {
+                expected: n,
+                got: ribbons.len(),
+            });
+        }
+        for (i, (r, s)) in ribbons.iter().zip(&boundary.sides).enumerate() {
+            if r.segments.len() != s.segments.len() {
+                return Err(PatchError::RibbonSegments {
+                    side: i,
+                    expected: s.segments.len(),
+                    got: r.segments.len(),
+                });
+            }
+        }
+        let mut warnings = Vec::new();
+        let ribs = prepare_ribbons(&sides, ribbons, &mut warnings);
+        let corners = corner_data(&sides, &ribs);
+        Ok(Patch {
+            kind,
+            domain: Domain::new(n),
+            sides,
+            ribbons: ribs,
+            corners,
+            warnings,
+        })
+    }
+
+    /// Number of sides.
+    pub fn sides(&self) -> usize {
+        self.sides.len()
+    }
+
+    /// The validated sides, for the tessellation.
+    pub(super) fn prepared_sides(&self) -> &[PreparedSide] {
+        &self.sides
+    }
+
+    /// The scheme in use ([`PatchKind::Gregory`] or [`PatchKind::CharrotGregory`]).
+    pub fn kind(&self) -> PatchKind {
+        self.kind
+    }
+
+    /// The parameter domain (unit square for 4 sides, regular N-gon otherwise).
+    pub fn domain(&self) -> &Domain {
+        &self.domain
+    }
+
+    /// What was repaired while building the patch.
+    pub fn warnings(&self) -> &[PatchWarning] {
+        &self.warnings
+    }
+
+    /// The surface point at domain point `x` (points outside the domain are clamped onto it).
+    #[inline]
+    pub fn eval(&self, x: [f64; 2]) -> DVec3 {
+        self.eval_v(DVec2::from(x))
+    }
+
+    #[inline]
+    pub(crate) fn eval_v(&self, x: DVec2) -> DVec3 {
+        match self.kind {
+            PatchKind::Gregory => gregory4::eval(&self.sides, &self.ribbons, &self.corners, x),
+            _ => charrot_gregory::eval(&self.domain, &self.sides, &self.ribbons, &self.corners, x),
+        }
+    }
+
+    /// Evaluate many domain points into `out` (same length); allocates nothing.
+    pub fn eval_into(&self, xs: &[[f64; 2]], out: &mut [DVec3]) {
+        for (x, o) in xs.iter().zip(out.iter_mut()) {
+            *o = self.eval(*x);
+        }
+    }
+
+    /// The surface point and its first derivatives along the domain axes at `x`.
+    ///
+    /// Implementation note: the derivatives are finite differences (step 1e-6 in the unit-size
+    /// domain; central inside, one-sided and second-order at the domain boundary, always
+    /// sampling inside the domain), accurate to about 1e-6 relative.
+    pub fn derivatives(&self, x: [f64; 2]) -> (DVec3, DVec3, DVec3) {
+        let x = self.domain.clamp(DVec2::from(x));
+        let p = self.eval_v(x);
+        let h = DERIV_STEP;
+        let axis = |e: DVec2| -> DVec3 {
+            let (fwd, bwd) = (x + e * h, x - e * h);
+            let inside = |y: DVec2| self.domain.contains(y.to_array());
+            match (inside(fwd), inside(bwd)) {
+                (true, true) => (self.eval_v(fwd) - self.eval_v(bwd)) / (2.0 * h),
+                (true, false) => {
+                    (self.eval_v(fwd) * 4.0 - p * 3.0 - self.eval_v(x + e * (2.0 * h))) / (2.0 * h)
+                }
+                (false, true) => {
+                    (p * 3.0 - self.eval_v(bwd) * 4.0 + self.eval_v(x - e * (2.0 * h))) / (2.0 * h)
+                }
+                (false, false) => DVec3::ZERO,
+            }
+        };
+        (p, axis(DVec2::X), axis(DVec2::Y))
+    }
+
+    /// The unit surface normal at domain point `x` (outward for a counter-clockwise face), or
+    /// zero where the patch is singular.
+    pub fn normal(&self, x: [f64; 2]) -> DVec3 {
+        let (_, du, dv) = self.derivatives(x);
+        du.cross(dv).normalize_or_zero()
+    }
+
+    /// The boundary curve of side `i` at side parameter `s ∈ [0, 1]` (the designer curve, with
+    /// the corner corrections that close gaps below the tolerance).
+    pub fn side_point(&self, i: usize, s: f64) -> DVec3 {
+        self.sides[i % self.sides.len()].point(s)
+    }
+
+    /// The side parameter `s ∈ [0, 1]` of the point at fraction `lambda` of segment `segment`
+    /// of side `side` (the segment's curve parameter is then `t0 + lambda·(t1 − t0)`): lets the
+    /// hull report (H-rep §3.2.2, G1 across shared edges) evaluate both faces of an edge at the
+    /// same curve point when the edge is one segment of a composite side.
+    pub(crate) fn segment_side_parameter(&self, side: usize, segment: usize, lambda: f64) -> f64 {
+        let side = &self.sides[side % self.sides.len()];
+        let k = segment.min(side.segs.len() - 1);
+        let (a, b) = (side.breaks[k], side.breaks[k + 1]);
+        a + (b - a) * lambda.clamp(0.0, 1.0)
+    }
+
+    /// The ribbon (cross-boundary derivative pointing into the face, with respect to the cross
+    /// parameter running from 0 on the side to 1 across the domain) of side `i` at `s`.
+    pub fn ribbon(&self, i: usize, s: f64) -> DVec3 {
+        let i = i % self.sides.len();
+        self.ribbons[i].eval(&self.sides[i], s).1
+    }
+}

@@ -1,0 +1,120 @@
+//! Step 4 of [`Topology::build`](super::Topology::build): the rotation system (H-rep paper
+//! §5.2, see [`super::rotation`]) — a surface normal at every node, oriented consistently over
+//! the network, the half-edges leaving each node sorted counter-clockwise about it — and from
+//! it every half-edge's `next` and `prev`: next is the edge immediately clockwise from the
+//! twin.
+
+use glam::DVec3;
+
+use super::adjacency::Adjacency;
+use super::brep::{Brep, HalfEdgeId};
+use super::rotation::{ccw_order, confidence, off_plane, orient_normals, raw_normal, RawNormal};
+use crate::network::PieceCurve;
+
+/// A node whose unit edge tangents have a tip farther than this from the best plane through
+/// the tips is a branching of the surface
+/// ([`Diagnostic::NonManifoldNode`](crate::Diagnostic::NonManifoldNode), H-rep §3.1: faces
+/// form a manifold shell). In one smooth surface the tips lie in the tangent plane (0); at a
+/// cone-like corner they lie in a plane across the cone (0); where three sheets branch off one
+/// curve the farthest tip is 0.75 from the best plane.
+pub const BRANCHING_TIP_DISTANCE: f64 = 0.6;
+
+/// Edges leaving a node with the same tangent are ordered by the direction to their point
+/// this fraction of their parameter interval along (a quarter: far enough to bend apart, near
+/// enough to stay on the node's side of the edge).
+const TIE_BREAK_FRACTION: f64 = 0.25;
+
+/// What the rotation system leaves for the later steps.
+pub(crate) struct RotationSystem {
+    /// Per vertex: the unoriented normal from its tangents, `None` when they are all
+    /// parallel.
+    pub raw: Vec<Option<RawNormal>>,
+    /// Per vertex: the oriented unit normal (zero for vertices without half-edges).
+    pub normals: Vec<DVec3>,
+    /// Per vertex: the vertices its half-edges lead to, in the order they were made.
+    pub neighbours: Adjacency<usize>,
+    /// One half-edge leaving each node where the surface branches
+    /// ([`BRANCHING_TIP_DISTANCE`]).
+    pub branching: Vec<HalfEdgeId>,
+}
+
+/// Estimate and orient the normals, sort every node's half-edges counter-clockwise (setting
+/// each vertex's `outgoing` and `normal`) and link the half-edges into loops. `dirs` holds the
+/// leaving direction of every half-edge, `evals` the network's curves.
+pub(crate) fn link(brep: &mut Brep, dirs: &[DVec3], evals: &[PieceCurve]) -> RotationSystem {
+    // The half-edges leaving each vertex, in the order they were made.
+    let mut outgoing = Adjacency::from_pairs(
+        brep.vertices.len(),
+        brep.half_edges
+            .iter()
+            .enumerate()
+            .map(|(i, he)| (he.origin.index(), HalfEdgeId::from_index(i))),
+    );
+
+    let mut ts: Vec<DVec3> = Vec::new();
+    let mut branching: Vec<HalfEdgeId> = Vec::new();
+    let raw: Vec<Option<RawNormal>> = (0..outgoing.rows())
+        .map(|v| {
+            let hs = outgoing.row(v);
+            ts.clear();
+            ts.extend(hs.iter().map(|h| dirs[h.index()]));
+            if off_plane(&ts) > BRANCHING_TIP_DISTANCE {
+                branching.push(hs[0]);
+            }
+            raw_normal(&ts).map(|normal| RawNormal {
+                normal,
+                confidence: confidence(&ts),
+            })
+        })
+        .collect();
+    let neighbours = outgoing.map(|h| brep.destination(h).index());
+    let normals = orient_normals(&raw, &neighbours);
+
+    let mut position_in_rotation = vec![0usize; brep.half_edges.len()];
+    let (mut keys, mut order, mut hs) = (Vec::new(), Vec::new(), Vec::new());
+    for (v, &normal) in normals.iter().enumerate() {
+        if outgoing.row(v).is_empty() {
+            continue;
+        }
+        hs.clear();
+        hs.extend_from_slice(outgoing.row(v));
+        ts.clear();
+        ts.extend(hs.iter().map(|h| dirs[h.index()]));
+        let d = &ts;
+        // Edges leaving with the same tangent are told apart further along the edge.
+        let further = |i: usize| {
+            let h = hs[i];
+            let e = &brep.edges[brep.half_edges[h.index()].edge.index()];
+            let (from, to) = if brep.half_edges[h.index()].origin == e.start {
+                (e.t0, e.t1)
+            } else {
+                (e.t1, e.t0)
+            };
+            let c = &evals[e.curve];
+            (c.point(from + TIE_BREAK_FRACTION * (to - from)) - c.point(from)).normalize_or_zero()
+        };
+        ccw_order(normal, d, &further, &mut keys, &mut order);
+        let row = outgoing.row_mut(v);
+        for (i, &k) in order.iter().enumerate() {
+            row[i] = hs[k];
+            position_in_rotation[hs[k].index()] = i;
+        }
+        brep.vertices[v].outgoing = Some(row[0]);
+        brep.vertices[v].normal = normal;
+    }
+    for i in 0..brep.half_edges.len() {
+        let twin = brep.half_edges[i].twin;
+        let v = brep.half_edges[twin.index()].origin.index();
+        let rot = outgoing.row(v);
+        let next = rot[(position_in_rotation[twin.index()] + rot.len() - 1) % rot.len()];
+        brep.half_edges[i].next = next;
+        brep.half_edges[next.index()].prev = HalfEdgeId::from_index(i);
+    }
+
+    RotationSystem {
+        raw,
+        normals,
+        neighbours,
+        branching,
+    }
+}
