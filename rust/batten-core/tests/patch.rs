@@ -929,13 +929,10 @@ fn empty_side_gapped_segments_and_wrong_ribbon_count_are_refused() {
     );
 }
 
-/// BUG (found by this test, reported in the issue-12 note, not fixed here): `MeshTooLarge` is
-/// checked in `tessellate_patches` only after every face mesh has been built, so a request large
-/// enough to trip it (here 70 000² ≈ 4.9·10⁹ vertices, ~120 GB) exhausts memory first and
-/// never returns the error. Ignored because running it tries that allocation; it passes once
-/// the vertex count is computed before any face is meshed.
+/// `MeshTooLarge` is decided before any face is meshed: a request for 70 000² ≈ 4.9·10⁹
+/// vertices (~120 GB) is refused at once with the count (it used to be checked only after
+/// every face mesh had been built, so memory ran out first).
 #[test]
-#[ignore = "BUG: MeshTooLarge is checked after the allocation it guards (see doc comment)"]
 fn too_large_a_mesh_is_refused_before_it_is_built() {
     let p = Patch::try_new(
         &single_sides(&square_curves()),

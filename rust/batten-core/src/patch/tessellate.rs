@@ -74,6 +74,44 @@ struct RingPoint {
     along: f64,
 }
 
+/// How the inside of a face is meshed: a structured grid of `nu × nv` quads for a 4-sided face
+/// whose opposite sides have equal sample counts, else `k` rings of triangles towards the
+/// centre of the domain.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Interior {
+    Grid { nu: usize, nv: usize },
+    Rings { k: usize },
+}
+
+impl Interior {
+    /// The layout for a face with `counts[i]` boundary samples on side `i`.
+    fn of(counts: &[usize]) -> Interior {
+        let n = counts.len();
+        if n == 4 && counts[0] == counts[2] && counts[1] == counts[3] {
+            Interior::Grid {
+                nu: counts[0],
+                nv: counts[1],
+            }
+        } else {
+            let total: usize = counts.iter().sum();
+            Interior::Rings {
+                k: ((total as f64 / n as f64).round() as usize).max(1),
+            }
+        }
+    }
+
+    /// Vertices inside the face (saturating, so a count too large for any mesh stays large):
+    /// `(nu − 1)(nv − 1)` for a grid; `n·(k − 1) + … + n·1` ring points and the centre for rings.
+    fn vertices(self, n: usize) -> usize {
+        match self {
+            Interior::Grid { nu, nv } => nu.saturating_sub(1).saturating_mul(nv.saturating_sub(1)),
+            Interior::Rings { k } => n
+                .saturating_mul(k.saturating_mul(k - 1) / 2)
+                .saturating_add(1),
+        }
+    }
+}
+
 /// One face's mesh before welding: the first `boundary` vertices lie on the face boundary.
 struct FaceMesh {
     positions: Vec<DVec3>,
@@ -86,6 +124,21 @@ impl Patch {
     /// Tessellate this patch alone with `resolution` intervals per side segment.
     pub fn tessellate(&self, resolution: usize) -> Result<SurfaceMesh, PatchError> {
         tessellate_patches(std::slice::from_ref(self), resolution)
+    }
+
+    /// Boundary samples per side at resolution `r` ([`Patch::boundary_ring`]: `r` per segment).
+    fn side_counts(&self, r: usize) -> Vec<usize> {
+        self.prepared_sides()
+            .iter()
+            .map(|side| side.segs.len().saturating_mul(r))
+            .collect()
+    }
+
+    /// The vertices [`Patch::face_mesh`] makes at resolution `r`, counted without meshing.
+    fn mesh_vertex_count(&self, r: usize) -> usize {
+        let counts = self.side_counts(r);
+        let boundary = counts.iter().fold(0usize, |a, &c| a.saturating_add(c));
+        boundary.saturating_add(Interior::of(&counts).vertices(counts.len()))
     }
 
     /// The boundary samples of the face in counter-clockwise order starting at corner 0 (each
@@ -135,98 +188,101 @@ impl Patch {
         let mut faces = Vec::new();
         let mut sizes = Vec::new();
         let wrap = |q: usize| (q % b) as u32;
-        if n == 4 && counts[0] == counts[2] && counts[1] == counts[3] {
-            let (nu, nv) = (counts[0], counts[1]);
-            let bidx = |a: usize, c: usize| -> Option<usize> {
-                if c == 0 {
-                    Some(a)
-                } else if a == nu {
-                    Some(nu + c)
-                } else if c == nv {
-                    Some(nu + nv + (nu - a))
-                } else if a == 0 {
-                    Some((2 * nu + nv + (nv - c)) % b)
-                } else {
-                    None
-                }
-            };
-            let idx = |a: usize, c: usize| -> u32 {
-                bidx(a, c).map_or_else(|| (b + (c - 1) * (nu - 1) + (a - 1)) as u32, |q| q as u32)
-            };
-            let bd = |a: usize, c: usize| dom[bidx(a, c).expect("on the boundary")];
-            let (p00, p10, p11, p01) = (bd(0, 0), bd(nu, 0), bd(nu, nv), bd(0, nv));
-            positions.reserve((nu - 1) * (nv - 1));
-            for c in 1..nv {
-                let v = c as f64 / nv as f64;
-                for a in 1..nu {
-                    let u = a as f64 / nu as f64;
-                    let x =
-                        bd(a, 0) * (1.0 - v) + bd(a, nv) * v + bd(0, c) * (1.0 - u) + bd(nu, c) * u
+        match Interior::of(&counts) {
+            Interior::Grid { nu, nv } => {
+                let bidx = |a: usize, c: usize| -> Option<usize> {
+                    if c == 0 {
+                        Some(a)
+                    } else if a == nu {
+                        Some(nu + c)
+                    } else if c == nv {
+                        Some(nu + nv + (nu - a))
+                    } else if a == 0 {
+                        Some((2 * nu + nv + (nv - c)) % b)
+                    } else {
+                        None
+                    }
+                };
+                let idx = |a: usize, c: usize| -> u32 {
+                    bidx(a, c)
+                        .map_or_else(|| (b + (c - 1) * (nu - 1) + (a - 1)) as u32, |q| q as u32)
+                };
+                let bd = |a: usize, c: usize| dom[bidx(a, c).expect("on the boundary")];
+                let (p00, p10, p11, p01) = (bd(0, 0), bd(nu, 0), bd(nu, nv), bd(0, nv));
+                positions.reserve((nu - 1) * (nv - 1));
+                for c in 1..nv {
+                    let v = c as f64 / nv as f64;
+                    for a in 1..nu {
+                        let u = a as f64 / nu as f64;
+                        let x = bd(a, 0) * (1.0 - v)
+                            + bd(a, nv) * v
+                            + bd(0, c) * (1.0 - u)
+                            + bd(nu, c) * u
                             - (p00 * ((1.0 - u) * (1.0 - v))
                                 + p10 * (u * (1.0 - v))
                                 + p11 * (u * v)
                                 + p01 * ((1.0 - u) * v));
-                    positions.push(self.eval_v(x));
-                }
-            }
-            for c in 0..nv {
-                for a in 0..nu {
-                    faces.extend([idx(a, c), idx(a + 1, c), idx(a + 1, c + 1), idx(a, c + 1)]);
-                    sizes.push(4);
-                }
-            }
-        } else {
-            let total: usize = counts.iter().sum();
-            let k = ((total as f64 / n as f64).round() as usize).max(1);
-            let centre = self.domain().centre_v();
-            // Ring r ≥ 1: (k − r) intervals per side, starting index base[r].
-            let mut base = vec![0usize; k];
-            let mut next = b;
-            for (rr, bs) in base.iter_mut().enumerate().skip(1) {
-                *bs = next;
-                let scale = 1.0 - rr as f64 / k as f64;
-                let m = k - rr;
-                for i in 0..n {
-                    let a = centre + (self.domain().vertex(i) - centre) * scale;
-                    let c = centre + (self.domain().vertex(i + 1) - centre) * scale;
-                    for j in 0..m {
-                        positions.push(self.eval_v(a + (c - a) * (j as f64 / m as f64)));
+                        positions.push(self.eval_v(x));
                     }
                 }
-                next += n * m;
-            }
-            let centre_idx = next as u32;
-            positions.push(self.eval_v(centre));
-            let ring_side = |rr: usize, i: usize| -> Vec<RingPoint> {
-                let m = k - rr;
-                (0..=m)
-                    .map(|j| {
-                        let (ii, jj) = if j == m { ((i + 1) % n, 0) } else { (i, j) };
-                        RingPoint {
-                            vertex: (base[rr] + ii * m + jj) as u32,
-                            along: j as f64 / m as f64,
-                        }
-                    })
-                    .collect()
-            };
-            for i in 0..n {
-                let outer: Vec<RingPoint> = (starts[i]..=starts[i + 1])
-                    .map(|q| RingPoint {
-                        vertex: wrap(q),
-                        along: if q == starts[i + 1] { 1.0 } else { lambdas[q] },
-                    })
-                    .collect();
-                if k == 1 {
-                    fan(&outer, centre_idx, &mut faces, &mut sizes);
-                } else {
-                    zipper(&outer, &ring_side(1, i), &mut faces, &mut sizes);
+                for c in 0..nv {
+                    for a in 0..nu {
+                        faces.extend([idx(a, c), idx(a + 1, c), idx(a + 1, c + 1), idx(a, c + 1)]);
+                        sizes.push(4);
+                    }
                 }
-                for rr in 1..k {
-                    let o = ring_side(rr, i);
-                    if rr + 1 < k {
-                        zipper(&o, &ring_side(rr + 1, i), &mut faces, &mut sizes);
+            }
+            Interior::Rings { k } => {
+                let centre = self.domain().centre_v();
+                // Ring r ≥ 1: (k − r) intervals per side, starting index base[r].
+                let mut base = vec![0usize; k];
+                let mut next = b;
+                for (rr, bs) in base.iter_mut().enumerate().skip(1) {
+                    *bs = next;
+                    let scale = 1.0 - rr as f64 / k as f64;
+                    let m = k - rr;
+                    for i in 0..n {
+                        let a = centre + (self.domain().vertex(i) - centre) * scale;
+                        let c = centre + (self.domain().vertex(i + 1) - centre) * scale;
+                        for j in 0..m {
+                            positions.push(self.eval_v(a + (c - a) * (j as f64 / m as f64)));
+                        }
+                    }
+                    next += n * m;
+                }
+                let centre_idx = next as u32;
+                positions.push(self.eval_v(centre));
+                let ring_side = |rr: usize, i: usize| -> Vec<RingPoint> {
+                    let m = k - rr;
+                    (0..=m)
+                        .map(|j| {
+                            let (ii, jj) = if j == m { ((i + 1) % n, 0) } else { (i, j) };
+                            RingPoint {
+                                vertex: (base[rr] + ii * m + jj) as u32,
+                                along: j as f64 / m as f64,
+                            }
+                        })
+                        .collect()
+                };
+                for i in 0..n {
+                    let outer: Vec<RingPoint> = (starts[i]..=starts[i + 1])
+                        .map(|q| RingPoint {
+                            vertex: wrap(q),
+                            along: if q == starts[i + 1] { 1.0 } else { lambdas[q] },
+                        })
+                        .collect();
+                    if k == 1 {
+                        fan(&outer, centre_idx, &mut faces, &mut sizes);
                     } else {
-                        fan(&o, centre_idx, &mut faces, &mut sizes);
+                        zipper(&outer, &ring_side(1, i), &mut faces, &mut sizes);
+                    }
+                    for rr in 1..k {
+                        let o = ring_side(rr, i);
+                        if rr + 1 < k {
+                            zipper(&o, &ring_side(rr + 1, i), &mut faces, &mut sizes);
+                        } else {
+                            fan(&o, centre_idx, &mut faces, &mut sizes);
+                        }
                     }
                 }
             }
@@ -283,14 +339,22 @@ pub fn tessellate_patches<P: Borrow<Patch> + Sync>(
     if resolution == 0 {
         return Err(PatchError::Resolution(resolution));
     }
+    // Counted before anything is allocated: a mesh too large to index is refused up front.
+    let total = patches.iter().fold(0usize, |a, p| {
+        a.saturating_add(p.borrow().mesh_vertex_count(resolution))
+    });
+    if total >= u32::MAX as usize {
+        return Err(PatchError::MeshTooLarge(total));
+    }
     let meshes: Vec<FaceMesh> = patches
         .par_iter()
         .map(|p| p.borrow().face_mesh(resolution))
         .collect();
-    let total: usize = meshes.iter().map(|m| m.positions.len()).sum();
-    if total >= u32::MAX as usize {
-        return Err(PatchError::MeshTooLarge(total));
-    }
+    debug_assert_eq!(
+        meshes.iter().map(|m| m.positions.len()).sum::<usize>(),
+        total,
+        "the vertex count is the meshes' own"
+    );
     let mut out = SurfaceMesh::default();
     out.positions.reserve(total);
     let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
