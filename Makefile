@@ -9,7 +9,6 @@ PROFILE ?= dev
 WHEEL_DIR := build/wheels/$(PROFILE)
 NATIVE_DIR := build/native/$(PROFILE)
 EXT_DIR := build/extension/$(PROFILE)
-# Test builds (dev) carry the test hooks (`_panic_for_tests`); release builds never do.
 OUT ?= out
 # CI (CI=true) runs the proptests from this fixed seed, so a failure there replays exactly;
 # local runs stay random. Failures found either way persist in tests/*.proptest-regressions.
@@ -36,6 +35,7 @@ extension: venv
 package: native
 	$(VPY) blender_scripts/build_extension.py --wheel-dir $(WHEEL_DIR) --out $(EXT_DIR)
 
+## Test builds (dev) carry the test hooks (`_panic_for_tests`); release builds never do.
 native: venv
 	rm -rf $(WHEEL_DIR) $(NATIVE_DIR)
 	$(VPY) -m maturin build --quiet --profile $(PROFILE) $(if $(filter dev,$(PROFILE)),--features test-hooks) --out $(WHEEL_DIR)
