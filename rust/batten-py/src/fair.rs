@@ -31,7 +31,7 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
     start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
     max_parameter_iterations=DEFAULT_PARAMETER_ITERATIONS, role="free"))]
 #[allow(clippy::too_many_arguments)]
-pub fn fair_points<'py>(
+pub(crate) fn fair_points<'py>(
     py: Python<'py>,
     name: &str,
     points: PyReadonlyArray2<'py, f64>,
@@ -121,7 +121,10 @@ pub fn fair_points<'py>(
 
 /// Fairness figures of a curve: inflections, curvature extrema, ∫κ² ds, max curvature.
 #[pyfunction]
-pub fn fairness<'py>(py: Python<'py>, curve: PyRef<'py, Curve>) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn fairness<'py>(
+    py: Python<'py>,
+    curve: PyRef<'py, Curve>,
+) -> PyResult<Bound<'py, PyDict>> {
     let m = guard(&curve.inner.name, || {
         Ok(fairness_metrics(&curve.inner.curve))
     })?;

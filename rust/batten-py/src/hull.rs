@@ -66,7 +66,7 @@ fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
 /// of [x, y, z] along the edge). The GIL is released.
 #[pyfunction]
 #[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
-pub fn build_surface<'py>(
+pub(crate) fn build_surface<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,

@@ -14,7 +14,7 @@ fn to_network(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
 /// The network of `curves` (a list of `Curve`) as batten's versioned JSON text.
 #[pyfunction]
 #[pyo3(signature = (name, curves))]
-pub fn network_to_json(
+pub(crate) fn network_to_json(
     py: Python<'_>,
     name: &str,
     curves: Vec<PyRef<'_, Curve>>,
@@ -26,7 +26,7 @@ pub fn network_to_json(
 /// Read batten's JSON network text: returns `(name, [Curve, ...])`; a bad curve raises
 /// `BattenError` naming it.
 #[pyfunction]
-pub fn network_from_json(py: Python<'_>, text: &str) -> PyResult<(String, Vec<Curve>)> {
+pub(crate) fn network_from_json(py: Python<'_>, text: &str) -> PyResult<(String, Vec<Curve>)> {
     let network = py.detach(|| {
         guard("reading network", || {
             Network::from_json(text).map_err(core_err)
@@ -45,7 +45,7 @@ pub fn network_from_json(py: Python<'_>, text: &str) -> PyResult<(String, Vec<Cu
 /// raises `BattenError` naming the first offending curve.
 #[pyfunction]
 #[pyo3(signature = (curves, tolerance))]
-pub fn check_lengths(
+pub(crate) fn check_lengths(
     py: Python<'_>,
     curves: Vec<PyRef<'_, Curve>>,
     tolerance: f64,

@@ -19,7 +19,7 @@ use crate::hull::warning_dict;
 /// report's warnings).
 #[pyfunction]
 #[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE))]
-pub fn topology<'py>(
+pub(crate) fn topology<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,

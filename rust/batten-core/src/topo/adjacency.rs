@@ -12,7 +12,7 @@ pub(crate) struct Adjacency<T> {
 impl<T: Copy> Adjacency<T> {
     /// Rows `0..rows` holding the items of `pairs` (`(row, item)`), each row in the order the
     /// pairs come. `pairs` is walked twice: once to count, once to fill.
-    pub fn from_pairs<I>(rows: usize, pairs: I) -> Self
+    pub(super) fn from_pairs<I>(rows: usize, pairs: I) -> Self
     where
         I: Iterator<Item = (usize, T)> + Clone,
     {
@@ -37,7 +37,7 @@ impl<T: Copy> Adjacency<T> {
     }
 
     /// A list of the same shape (row lengths) with `f` applied to every item.
-    pub fn map<U: Copy>(&self, f: impl Fn(T) -> U) -> Adjacency<U> {
+    pub(super) fn map<U: Copy>(&self, f: impl Fn(T) -> U) -> Adjacency<U> {
         Adjacency {
             start: self.start.clone(),
             items: self.items.iter().map(|&x| f(x)).collect(),
@@ -45,17 +45,17 @@ impl<T: Copy> Adjacency<T> {
     }
 
     /// Number of rows.
-    pub fn rows(&self) -> usize {
+    pub(super) fn rows(&self) -> usize {
         self.start.len() - 1
     }
 
     /// The items of row `r`.
-    pub fn row(&self, r: usize) -> &[T] {
+    pub(super) fn row(&self, r: usize) -> &[T] {
         &self.items[self.start[r]..self.start[r + 1]]
     }
 
     /// The items of row `r`, to reorder in place.
-    pub fn row_mut(&mut self, r: usize) -> &mut [T] {
+    pub(super) fn row_mut(&mut self, r: usize) -> &mut [T] {
         &mut self.items[self.start[r]..self.start[r + 1]]
     }
 }

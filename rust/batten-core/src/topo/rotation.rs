@@ -55,7 +55,7 @@ pub(crate) struct EvalCache {
 
 impl EvalCache {
     /// Start on curve `curve` (forgets the evaluation of any other curve).
-    pub fn on_curve(&mut self, curve: usize) {
+    pub(super) fn on_curve(&mut self, curve: usize) {
         if self.curve != curve {
             self.curve = curve;
             self.key = None;
