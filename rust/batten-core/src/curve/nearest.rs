@@ -6,8 +6,9 @@ use std::collections::BinaryHeap;
 
 use glam::DVec3;
 
-use super::bezier::{BezierDecomposition, BezierPiece};
+use super::bezier::BezierDecomposition;
 use super::nurbs::NurbsCurve;
+use super::piece::BezierPiece;
 use crate::error::CurveError;
 
 /// The closest point of a curve to a query point.
@@ -72,7 +73,7 @@ impl BezierDecomposition {
             .iter()
             .map(|p| Candidate {
                 lower: p.lower_bound(q),
-                piece: p.clone(),
+                piece: *p,
             })
             .collect();
         while let Some(Candidate { lower, piece }) = heap.pop() {

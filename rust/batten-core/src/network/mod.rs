@@ -13,7 +13,6 @@ use crate::curve::NurbsCurve;
 use crate::error::{CurveError, Error};
 use crate::tolerance::Tolerance;
 
-pub(crate) use approach::PieceCurve;
 pub use format::{NETWORK_FORMAT, NETWORK_VERSION};
 pub use nodes::{Incidence, Junction, Junctions};
 

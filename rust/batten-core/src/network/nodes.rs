@@ -5,12 +5,12 @@
 
 use glam::DVec3;
 
-use super::approach::{box_gap, closest_approach, Approach, PieceCurve, Seg};
+use super::approach::{closest_approach, Approach};
 use super::Network;
-use crate::curve::{Aabb, BezierDecomposition, NurbsCurve};
+use crate::curve::{Aabb, BezierDecomposition, BezierPiece, NurbsCurve, TangentCone};
+use crate::diagnostic::Diagnostic;
 use crate::error::Error;
 use crate::tolerance::Tolerance;
-use crate::diagnostic::Diagnostic;
 
 /// A segment pair is a leaf (handed to Newton) once their tangent cones are separated by more
 /// than this angle (radians, 5°): two pieces whose tangents can never be parallel approach each
@@ -73,7 +73,6 @@ struct Prepared<'a> {
     /// Parameters and points of the curve's two ends.
     ends: [(f64, DVec3); 2],
     decomposition: BezierDecomposition,
-    segs: Vec<Seg>,
     /// Per piece: its control-point box and tangent cone (each piece meets many others in the
     /// narrow phase; these are worked out once).
     bounds: Vec<Bounds>,
@@ -99,8 +98,8 @@ impl Hit {
     /// evaluated.
     fn at(prepared: &[Prepared], a: usize, b: usize, s: f64, t: f64, gap: f64) -> Hit {
         let (ea, eb) = (
-            PieceCurve::new(&prepared[a].decomposition).eval(s),
-            PieceCurve::new(&prepared[b].decomposition).eval(t),
+            prepared[a].decomposition.derivs(s),
+            prepared[b].decomposition.derivs(t),
         );
         Hit {
             a,
@@ -108,9 +107,9 @@ impl Hit {
             s,
             t,
             gap,
-            pa: ea.0,
-            pb: eb.0,
-            sine: sine_between(ea.1, eb.1),
+            pa: ea.point,
+            pb: eb.point,
+            sine: sine_between(ea.d1, eb.d1),
         }
     }
 }
@@ -175,14 +174,10 @@ impl Network {
             .iter()
             .map(|c| {
                 let decomposition = c.curve.bezier_decomposition();
-                let segs: Vec<Seg> = decomposition
-                    .pieces
-                    .iter()
-                    .map(|p| Seg::new(p.t0, p.t1, &p.cw))
-                    .collect();
                 let size = decomposition.hull_box().diagonal();
                 let (a, b) = c.curve.domain();
-                let bounds = segs
+                let bounds = decomposition
+                    .pieces
                     .iter()
                     .map(|s| (s.hull_box(), s.tangent_cone()))
                     .collect();
@@ -190,7 +185,6 @@ impl Network {
                     curve: &c.curve,
                     ends: [(a, c.curve.point(a)), (b, c.curve.point(b))],
                     decomposition,
-                    segs,
                     bounds,
                     size,
                 }
@@ -203,7 +197,7 @@ impl Network {
             if excluded[ci] {
                 continue;
             }
-            for (si, s) in p.segs.iter().enumerate() {
+            for (si, s) in p.decomposition.pieces.iter().enumerate() {
                 items.push(Item {
                     curve: ci,
                     seg: si,
@@ -260,8 +254,8 @@ impl Network {
             for &(_, _, sa, sb) in &pairs[k..group_end] {
                 let (pa, pb) = (&prepared[ca], &prepared[cb]);
                 narrow.recurse(
-                    &pa.segs[sa],
-                    &pb.segs[sb],
+                    &pa.decomposition.pieces[sa],
+                    &pb.decomposition.pieces[sb],
                     Some(pa.bounds[sa]),
                     Some(pb.bounds[sb]),
                     0,
@@ -319,7 +313,7 @@ fn sweep_axis(items: &[Item]) -> usize {
 }
 
 /// A piece's control-point box and tangent cone.
-type Bounds = (Aabb, Option<(DVec3, f64)>);
+type Bounds = (Aabb, Option<TangentCone>);
 
 struct Narrow<'a, 'h> {
     a: &'a Prepared<'a>,
@@ -334,12 +328,19 @@ struct Narrow<'a, 'h> {
 
 impl Narrow<'_, '_> {
     /// Halve the pair until it is a leaf; `kx`, `ky` are the pieces' box and cone when known.
-    fn recurse(&mut self, x: &Seg, y: &Seg, kx: Option<Bounds>, ky: Option<Bounds>, depth: u32) {
+    fn recurse(
+        &mut self,
+        x: &BezierPiece,
+        y: &BezierPiece,
+        kx: Option<Bounds>,
+        ky: Option<Bounds>,
+        depth: u32,
+    ) {
         let (bx, by) = (
             kx.map_or_else(|| x.hull_box(), |k| k.0),
             ky.map_or_else(|| y.hull_box(), |k| k.0),
         );
-        if box_gap(&bx, &by) > self.near || self.leaves >= MAX_LEAVES {
+        if bx.gap_to(&by) > self.near || self.leaves >= MAX_LEAVES {
             return;
         }
         let (dx, dy) = (bx.diagonal(), by.diagonal());
@@ -351,9 +352,9 @@ impl Narrow<'_, '_> {
                 kx.map_or_else(|| x.tangent_cone(), |k| k.1),
                 ky.map_or_else(|| y.tangent_cone(), |k| k.1),
             ) {
-                (Some((ax, hx)), Some((ay, hy))) => {
-                    let between = ax.dot(ay).abs().min(1.0).acos();
-                    between > hx + hy + CONE_MARGIN
+                (Some(cx), Some(cy)) => {
+                    let between = cx.axis.dot(cy.axis).abs().min(1.0).acos();
+                    between > cx.half_angle + cy.half_angle + CONE_MARGIN
                 }
                 _ => false,
             };
@@ -372,7 +373,7 @@ impl Narrow<'_, '_> {
         }
     }
 
-    fn leaf(&mut self, x: &Seg, y: &Seg) {
+    fn leaf(&mut self, x: &BezierPiece, y: &BezierPiece) {
         self.leaves += 1;
         // A join already found inside this pair of pieces is not looked for again.
         if self
@@ -390,17 +391,20 @@ impl Narrow<'_, '_> {
         } else {
             (self.a.curve.domain(), self.b.curve.domain())
         };
-        let (ea, eb) = (
-            PieceCurve::new(&self.a.decomposition),
-            PieceCurve::new(&self.b.decomposition),
-        );
         let Approach {
             s,
             t,
             gap,
             points,
             tangents,
-        } = closest_approach(&ea, &eb, start, sr, tr, self.accuracy);
+        } = closest_approach(
+            &self.a.decomposition,
+            &self.b.decomposition,
+            start,
+            sr,
+            tr,
+            self.accuracy,
+        );
         if gap <= self.near {
             self.hits.push(Hit {
                 a: self.ca,
@@ -418,9 +422,13 @@ impl Narrow<'_, '_> {
 
 /// A Newton start for a leaf pair: the closest points of the two chords, mapped linearly to
 /// the pieces' parameters (the pieces are nearly straight, so this is close already).
-fn chord_start(x: &Seg, y: &Seg) -> (f64, f64) {
-    let (p, u) = x.chord();
-    let (q, v) = y.chord();
+fn chord_start(x: &BezierPiece, y: &BezierPiece) -> (f64, f64) {
+    let chord = |piece: &BezierPiece| {
+        let (a, b) = piece.ends();
+        (a, b - a)
+    };
+    let (p, u) = chord(x);
+    let (q, v) = chord(y);
     let w = p - q;
     let (a, b, c) = (u.dot(u), u.dot(v), v.dot(v));
     let (d, e) = (u.dot(w), v.dot(w));

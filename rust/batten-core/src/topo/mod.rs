@@ -26,7 +26,7 @@ use adjacency::Adjacency;
 use crate::curve::BezierDecomposition;
 use crate::diagnostic::Diagnostic;
 use crate::error::Error;
-use crate::network::{Network, PieceCurve};
+use crate::network::Network;
 use crate::tolerance::Tolerance;
 
 /// Faces with more corners than this are reported ([`Diagnostic::UnusualFace`]): the N-sided
@@ -170,11 +170,10 @@ impl Topology {
         }
 
         let core = prune_branches(&brep);
-        let decompositions: Vec<BezierDecomposition> = curves
+        let evals: Vec<BezierDecomposition> = curves
             .iter()
             .map(|c| c.curve.bezier_decomposition())
             .collect();
-        let evals: Vec<PieceCurve> = decompositions.iter().map(PieceCurve::new).collect();
         report_ends(network, &junctions, &brep, &core, &mut diagnostics);
 
         // Half-edges: 2k runs along edge k's curve, 2k + 1 against it.
