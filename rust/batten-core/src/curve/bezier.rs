@@ -20,6 +20,7 @@ pub struct BezierDecomposition {
 impl BezierDecomposition {
     /// The index of the piece holding `t`; at a piece boundary, the piece after it when
     /// `after` is true (the one a curve leaves the knot on), else the piece before it.
+    #[inline]
     pub(crate) fn piece_at(&self, t: f64, after: bool) -> usize {
         if after {
             self.pieces.partition_point(|p| p.t1 <= t)
@@ -31,17 +32,20 @@ impl BezierDecomposition {
 
     /// Point, first and second derivative at `t` (clamped into the domain) by de Casteljau on
     /// the piece holding it; at a knot, of the piece before it.
+    #[inline]
     pub(crate) fn derivs(&self, t: f64) -> PointDerivs {
         self.derivs_in(self.piece_at(t, false), t)
     }
 
     /// Point, first and second derivative at `t` on piece `k` (`t` clamped into it): at a
     /// knot, the one-sided derivatives of the piece chosen by [`BezierDecomposition::piece_at`].
+    #[inline]
     pub(crate) fn derivs_in(&self, k: usize, t: f64) -> PointDerivs {
         self.pieces[k].derivs_at(t)
     }
 
     /// C(t) as [`BezierDecomposition::derivs`] gives it.
+    #[inline]
     pub(crate) fn point(&self, t: f64) -> DVec3 {
         self.derivs(t).point
     }

@@ -79,6 +79,7 @@ fn casteljau_down_to(work: &mut [DVec4], n: usize, stop: usize, u: f64, blend: B
 /// Homogeneous point, first and second derivative (with respect to the local parameter
 /// `u ∈ [0, 1]`) of a rational Bézier piece whose `n` control points fill `work[..n]`, by de
 /// Casteljau down to three points (the last step blended as a quadratic).
+#[inline]
 fn casteljau_derivs(work: &mut [DVec4], n: usize, u: f64) -> [DVec4; 3] {
     let p = (n - 1) as f64;
     let stop = n.min(3);
@@ -104,6 +105,7 @@ fn cartesian_d1(h: DVec4, d1: DVec4) -> (DVec3, DVec3) {
 
 /// Point, first and second derivative from their homogeneous forms (the quotient rule,
 /// Piegl & Tiller eq. 4.8).
+#[inline]
 fn cartesian([h, d1, d2]: [DVec4; 3]) -> PointDerivs {
     let (point, c1) = cartesian_d1(h, d1);
     let c2 = (d2.truncate() - 2.0 * d1.w * c1 - d2.w * point) / h.w;
@@ -146,6 +148,7 @@ impl BezierPiece {
     }
 
     /// Control point `i` projected to 3D.
+    #[inline]
     fn control_point(&self, i: usize) -> DVec3 {
         self.cw[i].truncate() / self.cw[i].w
     }
@@ -256,11 +259,13 @@ impl BezierPiece {
 
     /// Homogeneous point, first and second derivative with respect to the local parameter
     /// `u ∈ [0, 1]`.
+    #[inline]
     fn homogeneous_derivs(&self, u: f64) -> [DVec4; 3] {
         self.with_work(|work| casteljau_derivs(work, self.n, u))
     }
 
     /// Point, first and second derivative with respect to the local parameter `u ∈ [0, 1]`.
+    #[inline]
     fn local_derivs(&self, u: f64) -> PointDerivs {
         cartesian(self.homogeneous_derivs(u))
     }
@@ -268,6 +273,7 @@ impl BezierPiece {
     /// Point, first and second derivative at the curve parameter `t` (clamped into the piece),
     /// with respect to `t`, by homogeneous de Casteljau: no allocation and no basis-function
     /// tables.
+    #[inline]
     pub fn derivs_at(&self, t: f64) -> PointDerivs {
         let len = self.t1 - self.t0;
         let [h, d1, d2] = self.homogeneous_derivs(self.local(t));
@@ -281,6 +287,7 @@ impl BezierPiece {
     /// (monotonic blends, the degree folded into the parameter scale); the surface patches
     /// are evaluated with this one and the node finding and fairing with that one, and both
     /// results are kept bit for bit.
+    #[inline]
     pub fn point_d1_at(&self, t: f64) -> (DVec3, DVec3) {
         let x = self.local(t);
         let n = self.n;
