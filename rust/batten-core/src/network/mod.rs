@@ -134,7 +134,7 @@ impl Network {
 /// Error when the curve's length is below the model tolerance.
 pub(crate) fn check_length(curve: &NurbsCurve, tolerance: Tolerance) -> Result<(), CurveError> {
     let tol = tolerance.get();
-    let length = curve.arc_length(tol * 1e-3)?;
+    let length = curve.arc_length(tolerance.length_check_accuracy())?;
     if length < tol {
         return Err(CurveError::ZeroLength {
             length,

@@ -12,13 +12,13 @@ struct Item {
 }
 
 /// Candidate pairs of pieces `(curve a, curve b, piece of a, piece of b)`, sorted: pieces of
-/// the curves not `excluded` whose boxes, grown by half the near-miss distance `near`,
+/// the curves not `excluded` whose boxes, grown by `margin` on every side,
 /// overlap (sort-and-sweep along the axis of largest spread); the same piece and neighbouring
 /// pieces of one curve are left out (they share an end point).
 pub(super) fn candidate_pairs(
     prepared: &[Prepared],
     excluded: &[bool],
-    near: f64,
+    margin: f64,
 ) -> Vec<(usize, usize, usize, usize)> {
     let mut items: Vec<Item> = Vec::new();
     for (ci, p) in prepared.iter().enumerate() {
@@ -29,7 +29,7 @@ pub(super) fn candidate_pairs(
             items.push(Item {
                 curve: ci,
                 piece: si,
-                bbox: s.hull_box().expanded(0.5 * near),
+                bbox: s.hull_box().expanded(margin),
             });
         }
     }

@@ -11,9 +11,7 @@ use crate::diagnostic::Diagnostic;
 use crate::tolerance::Tolerance;
 
 /// A stretch where two curves stay within tolerance is an overlap (not a tangential touch)
-/// when longer than this many tolerances…
-const OVERLAP_MIN_TOLERANCES: f64 = 100.0;
-/// …and longer than this fraction of the shorter curve.
+/// when longer than [`Tolerance::overlap_min_length`] and this fraction of the shorter curve.
 const OVERLAP_MIN_FRACTION: f64 = 0.05;
 
 /// Report where a curve crosses itself (pieces that are not neighbours along the curve).
@@ -33,15 +31,18 @@ pub(super) fn self_hits(
         let (lo, hi) = if h.s < h.t { (h.s, h.t) } else { (h.t, h.s) };
         let mut along = p
             .curve
-            .arc_length_between(lo, hi, tol * 1e-2)
+            .arc_length_between(lo, hi, tolerance.search_accuracy())
             .unwrap_or(0.0);
         let (a, b) = p.curve.domain();
         if (p.curve.point(a) - p.curve.point(b)).length() <= tol {
             // A closed curve: its ends are neighbours across the seam.
-            let total = p.curve.arc_length(tol * 1e-2).unwrap_or(along);
+            let total = p
+                .curve
+                .arc_length(tolerance.search_accuracy())
+                .unwrap_or(along);
             along = along.min(total - along);
         }
-        if along <= 2.0 * tolerance.near_miss() {
+        if along <= tolerance.self_crossing_min_arc() {
             continue;
         }
         let location = h.pa;
@@ -78,7 +79,6 @@ pub(super) fn sort_out_pair(
     out: PairOutcome,
 ) {
     let tol = tolerance.get();
-    let near = tolerance.near_miss();
     let Some(first) = pair_hits.first() else {
         return;
     };
@@ -95,8 +95,8 @@ pub(super) fn sort_out_pair(
     if pair_hits.len() == 1 && first.gap <= tol {
         // The usual case, one crossing: only the end snapping applies.
         let mut h = *first;
-        snap_to_end(prepared, &mut h, tol, false);
-        snap_to_end(prepared, &mut h, tol, true);
+        snap_to_end(prepared, &mut h, tolerance, false);
+        snap_to_end(prepared, &mut h, tolerance, true);
         out.joins.push(h);
         return;
     }
@@ -104,8 +104,8 @@ pub(super) fn sort_out_pair(
     // Curves meeting at a shallow angle are within tolerance along a short stretch; where that
     // stretch reaches a curve end, the join is at the end (else jitter moves it along).
     for h in &mut joins {
-        snap_to_end(prepared, h, tol, false);
-        snap_to_end(prepared, h, tol, true);
+        snap_to_end(prepared, h, tolerance, false);
+        snap_to_end(prepared, h, tolerance, true);
     }
     joins.sort_by(|x, y| x.s.total_cmp(&y.s));
     // Merge joins that are the same point of curve a.
@@ -123,7 +123,7 @@ pub(super) fn sort_out_pair(
     let mut i = 0;
     while i < joins.len() {
         let mut j = i;
-        while j + 1 < joins.len() && stays_close(pa, pb, joins[j].s, joins[j + 1].s, tol) {
+        while j + 1 < joins.len() && stays_close(pa, pb, joins[j].s, joins[j + 1].s, tolerance) {
             j += 1;
         }
         if j == i {
@@ -132,15 +132,15 @@ pub(super) fn sort_out_pair(
             let chain = &joins[i..=j];
             let extent: f64 = chain.windows(2).map(|w| (w[1].pa - w[0].pa).length()).sum();
             let shorter = pa.size.min(pb.size);
-            if extent > (OVERLAP_MIN_TOLERANCES * tol).max(OVERLAP_MIN_FRACTION * shorter) {
+            if extent > (tolerance.overlap_min_length()).max(OVERLAP_MIN_FRACTION * shorter) {
                 // The joins sample the shared stretch; find where it really ends.
                 let (a0, a1) = pa.curve.domain();
-                let s_lo = stretch_end(pa, pb, chain[0].s, a0, tol);
-                let s_hi = stretch_end(pa, pb, chain[chain.len() - 1].s, a1, tol);
+                let s_lo = stretch_end(pa, pb, chain[0].s, a0, tolerance);
+                let s_hi = stretch_end(pa, pb, chain[chain.len() - 1].s, a1, tolerance);
                 let (from, to) = (pa.curve.point(s_lo), pa.curve.point(s_hi));
                 let on_b = |p: DVec3| {
                     pb.decomposition
-                        .nearest(p, tol * 1e-2)
+                        .nearest(p, tolerance.search_accuracy())
                         .map_or((pb.curve.domain().0, f64::INFINITY), |n| (n.t, n.distance))
                 };
                 let ((t_lo, g_lo), (t_hi, g_hi)) = (on_b(from), on_b(to));
@@ -198,14 +198,18 @@ pub(super) fn sort_out_pair(
         .iter()
         .copied()
         .filter(|h| h.gap > tol)
-        .filter(|h| !kept.iter().any(|k| (k.pa - h.pa).length() <= 2.0 * near))
+        .filter(|h| {
+            !kept
+                .iter()
+                .any(|k| (k.pa - h.pa).length() <= tolerance.near_miss_clearance())
+        })
         .collect();
     misses.sort_by(|x, y| x.s.total_cmp(&y.s));
     let mut reported: Vec<Hit> = Vec::new();
     for m in misses {
         if let Some(r) = reported
             .iter_mut()
-            .find(|r| (r.pa - m.pa).length() <= 10.0 * near)
+            .find(|r| (r.pa - m.pa).length() <= tolerance.near_miss_merge())
         {
             if m.gap < r.gap {
                 *r = m;
@@ -233,13 +237,13 @@ fn is_end(curve: &NurbsCurve, t: f64, tol: f64) -> bool {
 
 /// Where a stretch of curve a that stays within `tol` of curve b ends, going from `inside`
 /// (close) towards `bound`: `bound` itself when it is close, else found by bisection.
-fn stretch_end(pa: &Prepared, pb: &Prepared, inside: f64, bound: f64, tol: f64) -> f64 {
+fn stretch_end(pa: &Prepared, pb: &Prepared, inside: f64, bound: f64, tolerance: Tolerance) -> f64 {
     // Half the tolerance: the end found is then well within the tolerance of the true end of
     // the shared stretch (where the curves part, or where one of them ends).
     let close = |s: f64| {
         pb.decomposition
-            .nearest(pa.curve.point(s), tol * 1e-2)
-            .is_ok_and(|n| n.distance <= 0.5 * tol)
+            .nearest(pa.curve.point(s), tolerance.search_accuracy())
+            .is_ok_and(|n| n.distance <= tolerance.shared_stretch())
     };
     if close(bound) {
         return bound;
@@ -264,7 +268,8 @@ const SHALLOW_SINE: f64 = 0.5;
 /// curve, when that lies on the stretch where the two stay within tolerance: the join of two
 /// nearly tangent curves can lie anywhere on that stretch, and would otherwise make a second
 /// node beside the one where a third curve crosses them.
-pub(super) fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tol: f64) {
+pub(super) fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tolerance: Tolerance) {
+    let tol = tolerance.get();
     let mut on_curve: Vec<Vec<f64>> = vec![Vec::new(); prepared.len()];
     for h in hits.iter() {
         on_curve[h.a].push(h.s);
@@ -285,13 +290,13 @@ pub(super) fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tol: f
             for &u in list {
                 let pu = p.curve.point(u);
                 let d = (pu - at).length();
-                if u == here || d > OVERLAP_MIN_TOLERANCES * tol {
+                if u == here || d > tolerance.overlap_min_length() {
                     continue;
                 }
-                let Ok(n) = q.decomposition.nearest(pu, tol * 1e-2) else {
+                let Ok(n) = q.decomposition.nearest(pu, tolerance.search_accuracy()) else {
                     continue;
                 };
-                if n.distance > tol || !stays_close(p, q, here, u, tol) {
+                if n.distance > tol || !stays_close(p, q, here, u, tolerance) {
                     continue;
                 }
                 let (s, t) = if swapped { (n.t, u) } else { (u, n.t) };
@@ -313,7 +318,8 @@ pub(super) fn snap_shallow_joins(prepared: &[Prepared], hits: &mut [Hit], tol: f
 /// Move a join to an end of curve `p` (the join's `s` side, or its `t` side when `swapped`)
 /// when that end is within `tol` of curve `q` and the stretch of `p` from the join to the end
 /// stays within `tol` of `q`.
-fn snap_to_end(prepared: &[Prepared], h: &mut Hit, tol: f64, swapped: bool) {
+fn snap_to_end(prepared: &[Prepared], h: &mut Hit, tolerance: Tolerance, swapped: bool) {
+    let tol = tolerance.get();
     let (p, q) = if swapped {
         (&prepared[h.b], &prepared[h.a])
     } else {
@@ -323,13 +329,16 @@ fn snap_to_end(prepared: &[Prepared], h: &mut Hit, tol: f64, swapped: bool) {
     for (end, end_point) in p.ends {
         let to_end = (end_point - here).length();
         // Within the tolerance the clustering already puts the join on the end.
-        if to_end <= tol || to_end > OVERLAP_MIN_TOLERANCES * tol {
+        if to_end <= tol || to_end > tolerance.overlap_min_length() {
             continue;
         }
-        let Ok(n) = q.decomposition.nearest(end_point, tol * 1e-2) else {
+        let Ok(n) = q
+            .decomposition
+            .nearest(end_point, tolerance.search_accuracy())
+        else {
             continue;
         };
-        if n.distance <= tol && stays_close(p, q, s, end, tol) {
+        if n.distance <= tol && stays_close(p, q, s, end, tolerance) {
             let (ns, nt) = if swapped { (n.t, end) } else { (end, n.t) };
             *h = Hit::at(prepared, h.a, h.b, ns, nt, n.distance);
             return;
@@ -338,11 +347,12 @@ fn snap_to_end(prepared: &[Prepared], h: &mut Hit, tol: f64, swapped: bool) {
 }
 
 /// True when curve a between parameters `s0` and `s1` stays within `tol` of curve b.
-fn stays_close(pa: &Prepared, pb: &Prepared, s0: f64, s1: f64, tol: f64) -> bool {
+fn stays_close(pa: &Prepared, pb: &Prepared, s0: f64, s1: f64, tolerance: Tolerance) -> bool {
+    let tol = tolerance.get();
     [0.25, 0.5, 0.75].iter().all(|f| {
         let q = pa.curve.point(s0 + f * (s1 - s0));
         pb.decomposition
-            .nearest(q, tol * 1e-2)
+            .nearest(q, tolerance.search_accuracy())
             .is_ok_and(|n| n.distance <= tol)
     })
 }

@@ -17,9 +17,6 @@ use crate::diagnostic::Diagnostic;
 use crate::error::Error;
 use crate::tolerance::Tolerance;
 
-/// Newton stops at this fraction of the tolerance (distance, or step length).
-const NEWTON_ACCURACY: f64 = 1e-4;
-
 /// A curve passing through a node: which curve (index in the network) and at which parameter
 /// (H-rep paper §3.1: the vertices of the edge–vertex topology lie on the designer's curves).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -177,7 +174,7 @@ impl Network {
             .collect();
 
         // Broad phase: sort-and-sweep along the axis of largest spread.
-        let pairs = broad::candidate_pairs(&prepared, &excluded, near);
+        let pairs = broad::candidate_pairs(&prepared, &excluded, tolerance.sweep_margin());
 
         // Narrow phase, one curve pair at a time.
         let mut hits: Vec<Hit> = Vec::with_capacity(pairs.len());
@@ -196,7 +193,7 @@ impl Network {
                 ca,
                 cb,
                 near,
-                accuracy: tol * NEWTON_ACCURACY,
+                accuracy: tolerance.newton_accuracy(),
                 leaves: 0,
                 hits: &mut pair_hits,
             };
@@ -236,7 +233,7 @@ impl Network {
         }
         // A duplicate found late must not keep joins made with it.
         hits.retain(|h| !excluded[h.a] && !excluded[h.b]);
-        joins::snap_shallow_joins(&prepared, &mut hits, tol);
+        joins::snap_shallow_joins(&prepared, &mut hits, tolerance);
 
         let mut out = cluster::cluster(self, &prepared, &hits, &excluded, tol, diagnostics);
         out.suppressed = suppressed;
