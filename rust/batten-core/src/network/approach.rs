@@ -11,10 +11,14 @@ pub(crate) struct Approach {
     pub s: f64,
     pub t: f64,
     pub gap: f64,
-    /// The points of the two curves at `s` and `t`.
-    pub points: (DVec3, DVec3),
-    /// Their first derivatives there.
-    pub tangents: (DVec3, DVec3),
+    /// The first curve's point at `s`.
+    pub pa: DVec3,
+    /// The second curve's point at `t`.
+    pub pb: DVec3,
+    /// The first curve's derivative at `s`.
+    pub ta: DVec3,
+    /// The second curve's derivative at `t`.
+    pub tb: DVec3,
 }
 
 /// Local minimum of `f(s, t) = ½|C1(s) − C2(t)|²` from `(s, t)` by Newton's method, kept in
@@ -115,7 +119,9 @@ pub(crate) fn closest_approach(
         s,
         t,
         gap: f.sqrt(),
-        points: (e1.point, e2.point),
-        tangents: (e1.d1, e2.d1),
+        pa: e1.point,
+        pb: e2.point,
+        ta: e1.d1,
+        tb: e2.d1,
     }
 }

@@ -3,6 +3,17 @@
 use super::Prepared;
 use crate::curve::Aabb;
 
+/// Two pieces whose grown boxes overlap: piece `piece_a` of curve `curve_a` and piece
+/// `piece_b` of curve `curve_b` (`(curve_a, piece_a) < (curve_b, piece_b)`). Ordered by curves,
+/// then pieces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(super) struct CandidatePair {
+    pub(super) curve_a: usize,
+    pub(super) curve_b: usize,
+    pub(super) piece_a: usize,
+    pub(super) piece_b: usize,
+}
+
 /// One piece in the sweep: its curve, its index on the curve and its grown box.
 #[derive(Clone, Copy)]
 struct Item {
@@ -11,7 +22,7 @@ struct Item {
     bbox: Aabb,
 }
 
-/// Candidate pairs of pieces `(curve a, curve b, piece of a, piece of b)`, sorted: pieces of
+/// Candidate pairs of pieces, sorted (by curves, then pieces): pieces of
 /// the curves not `excluded` whose boxes, grown by `margin` on every side,
 /// overlap (sort-and-sweep along the axis of largest spread); the same piece and neighbouring
 /// pieces of one curve are left out (they share an end point).
@@ -19,7 +30,7 @@ pub(super) fn candidate_pairs(
     prepared: &[Prepared],
     excluded: &[bool],
     margin: f64,
-) -> Vec<(usize, usize, usize, usize)> {
+) -> Vec<CandidatePair> {
     let mut items: Vec<Item> = Vec::new();
     for (ci, p) in prepared.iter().enumerate() {
         if excluded[ci] {
@@ -35,7 +46,7 @@ pub(super) fn candidate_pairs(
     }
     let axis = sweep_axis(&items);
     items.sort_by(|a, b| a.bbox.min[axis].total_cmp(&b.bbox.min[axis]));
-    let mut pairs: Vec<(usize, usize, usize, usize)> = Vec::new();
+    let mut pairs: Vec<CandidatePair> = Vec::new();
     for i in 0..items.len() {
         let a = items[i];
         for b in &items[i + 1..] {
@@ -53,7 +64,12 @@ pub(super) fn candidate_pairs(
             if x.curve == y.curve && y.piece <= x.piece + 1 {
                 continue; // the same piece or neighbours: they share an end point
             }
-            pairs.push((x.curve, y.curve, x.piece, y.piece));
+            pairs.push(CandidatePair {
+                curve_a: x.curve,
+                curve_b: y.curve,
+                piece_a: x.piece,
+                piece_b: y.piece,
+            });
         }
     }
     pairs.sort_unstable();

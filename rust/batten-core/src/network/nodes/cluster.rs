@@ -26,6 +26,13 @@ impl UnionFind {
     }
 }
 
+/// A curve through a place (a curve end or one side of a join) and its point there.
+#[derive(Clone, Copy, Debug)]
+struct CurvePoint {
+    incidence: Incidence,
+    point: DVec3,
+}
+
 /// Cluster curve ends and joins into nodes (union–find: joined pairs, and any two curve points
 /// within the tolerance, found by a sweep along x).
 pub(super) fn cluster(
@@ -37,33 +44,42 @@ pub(super) fn cluster(
     diagnostics: Vec<Diagnostic>,
 ) -> Junctions {
     let curves = network.curves();
-    let mut incs: Vec<(Incidence, DVec3)> = Vec::new();
+    let mut incs: Vec<CurvePoint> = Vec::new();
     for (ci, p) in prepared.iter().enumerate() {
         if excluded[ci] {
             continue;
         }
         let (a, b) = p.curve.domain();
         for t in [a, b] {
-            incs.push((Incidence { curve: ci, t }, p.curve.point(t)));
+            incs.push(CurvePoint {
+                incidence: Incidence { curve: ci, t },
+                point: p.curve.point(t),
+            });
         }
     }
     let mut uf = UnionFind((0..incs.len() + 2 * hits.len()).collect());
     for h in hits {
         let ia = incs.len();
-        incs.push((Incidence { curve: h.a, t: h.s }, h.pa));
-        incs.push((Incidence { curve: h.b, t: h.t }, h.pb));
+        incs.push(CurvePoint {
+            incidence: Incidence { curve: h.a, t: h.s },
+            point: h.pa,
+        });
+        incs.push(CurvePoint {
+            incidence: Incidence { curve: h.b, t: h.t },
+            point: h.pb,
+        });
         uf.union(ia, ia + 1);
     }
     // Any two curve points within the tolerance are one node: sweep along x.
-    let mut by_x: Vec<(f64, usize)> = incs.iter().map(|(_, p)| p.x).zip(0..).collect();
+    let mut by_x: Vec<(f64, usize)> = incs.iter().map(|c| c.point.x).zip(0..).collect();
     by_x.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     for (k, &(x, i)) in by_x.iter().enumerate() {
-        let p = incs[i].1;
+        let p = incs[i].point;
         for &(qx, j) in &by_x[k + 1..] {
             if qx - x > tol {
                 break;
             }
-            if (incs[j].1 - p).length() <= tol {
+            if (incs[j].point - p).length() <= tol {
                 uf.union(i, j);
             }
         }
@@ -94,17 +110,24 @@ pub(super) fn cluster(
     }
     let mut nodes = Vec::with_capacity(count.len());
     let mut splits: Vec<Vec<(f64, usize)>> = vec![Vec::new(); curves.len()];
-    let mut list: Vec<(Incidence, DVec3)> = Vec::new();
-    let mut merged: Vec<(Incidence, DVec3)> = Vec::new();
+    let mut list: Vec<CurvePoint> = Vec::new();
+    let mut merged: Vec<CurvePoint> = Vec::new();
     for node in 0..count.len() {
         let members = &flat[start[node]..start[node + 1]];
-        let position = members.iter().map(|&i| incs[i].1).sum::<DVec3>() / members.len() as f64;
+        let position = members.iter().map(|&i| incs[i].point).sum::<DVec3>() / members.len() as f64;
         list.clear();
         list.extend(members.iter().map(|&i| incs[i]));
-        list.sort_by(|x, y| x.0.curve.cmp(&y.0.curve).then(x.0.t.total_cmp(&y.0.t)));
+        list.sort_by(|x, y| {
+            let (x, y) = (x.incidence, y.incidence);
+            x.curve.cmp(&y.curve).then(x.t.total_cmp(&y.t))
+        });
         // One incidence per curve and place: ends win, otherwise the point nearest the node.
         merged.clear();
-        for &(inc, p) in &list {
+        for &CurvePoint {
+            incidence: inc,
+            point: p,
+        } in &list
+        {
             let curve = prepared[inc.curve].curve;
             let end_param = {
                 let (a, b) = curve.domain();
@@ -114,28 +137,36 @@ pub(super) fn cluster(
             // The two ends of a closed curve stay two incidences.
             let opposite_ends =
                 |m: &Incidence| (m.t == a && inc.t == b) || (m.t == b && inc.t == a);
-            match merged.iter_mut().find(|(m, q)| {
-                m.curve == inc.curve && (*q - p).length() <= tol && !opposite_ends(m)
+            match merged.iter_mut().find(|m| {
+                m.incidence.curve == inc.curve
+                    && (m.point - p).length() <= tol
+                    && !opposite_ends(&m.incidence)
             }) {
                 Some(m) => {
-                    let m_end = m.0.t == a || m.0.t == b;
+                    let m_end = m.incidence.t == a || m.incidence.t == b;
                     if end_param.is_some() && !m_end
                         || (!m_end
                             && end_param.is_none()
-                            && (p - position).length() < (m.1 - position).length())
+                            && (p - position).length() < (m.point - position).length())
                     {
-                        *m = (inc, p);
+                        *m = CurvePoint {
+                            incidence: inc,
+                            point: p,
+                        };
                     }
                 }
-                None => merged.push((inc, p)),
+                None => merged.push(CurvePoint {
+                    incidence: inc,
+                    point: p,
+                }),
             }
         }
-        for (inc, _) in &merged {
-            splits[inc.curve].push((inc.t, node));
+        for c in &merged {
+            splits[c.incidence.curve].push((c.incidence.t, node));
         }
         nodes.push(Junction {
             position,
-            incidences: merged.iter().map(|(i, _)| *i).collect(),
+            incidences: merged.iter().map(|c| c.incidence).collect(),
         });
     }
     for s in &mut splits {

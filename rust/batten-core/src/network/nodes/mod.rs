@@ -56,36 +56,36 @@ pub struct Junctions {
 }
 
 /// A curve made ready for the node search: its ends, Bézier pieces and their bounds.
-pub(super) struct Prepared<'a> {
-    pub(super) curve: &'a NurbsCurve,
+struct Prepared<'a> {
+    curve: &'a NurbsCurve,
     /// Parameters and points of the curve's two ends.
-    pub(super) ends: [(f64, DVec3); 2],
-    pub(super) decomposition: BezierDecomposition,
+    ends: [(f64, DVec3); 2],
+    decomposition: BezierDecomposition,
     /// Per piece: its control-point box and tangent cone (each piece meets many others in the
     /// narrow phase; these are worked out once).
-    pub(super) bounds: Vec<narrow::Bounds>,
-    pub(super) size: f64,
+    bounds: Vec<narrow::PieceBounds>,
+    size: f64,
 }
 
 /// An approach of two curves found by the narrow phase (a join when within the tolerance).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Hit {
-    pub(super) a: usize,
-    pub(super) b: usize,
-    pub(super) s: f64,
-    pub(super) t: f64,
-    pub(super) gap: f64,
+struct Hit {
+    a: usize,
+    b: usize,
+    s: f64,
+    t: f64,
+    gap: f64,
     /// Curve a at `s` and curve b at `t` (kept so later stages need not evaluate again).
-    pub(super) pa: DVec3,
-    pub(super) pb: DVec3,
+    pa: DVec3,
+    pb: DVec3,
     /// Sine of the angle between the two curves' tangents there.
-    pub(super) sine: f64,
+    sine: f64,
 }
 
 impl Hit {
     /// A join of curve `a` at `s` with curve `b` at `t`, with its points and crossing angle
     /// evaluated.
-    pub(super) fn at(prepared: &[Prepared], a: usize, b: usize, s: f64, t: f64, gap: f64) -> Hit {
+    fn at(prepared: &[Prepared], a: usize, b: usize, s: f64, t: f64, gap: f64) -> Hit {
         let (ea, eb) = (
             prepared[a].decomposition.derivs(s),
             prepared[b].decomposition.derivs(t),
@@ -104,7 +104,7 @@ impl Hit {
 }
 
 /// Sine of the angle between two tangent vectors (0 when one of them vanishes).
-pub(super) fn sine_between(ta: DVec3, tb: DVec3) -> f64 {
+fn sine_between(ta: DVec3, tb: DVec3) -> f64 {
     ta.cross(tb).length() / (ta.length() * tb.length()).max(f64::MIN_POSITIVE)
 }
 
@@ -161,7 +161,7 @@ impl Network {
                 let bounds = decomposition
                     .pieces
                     .iter()
-                    .map(|s| (s.hull_box(), s.tangent_cone()))
+                    .map(narrow::PieceBounds::of)
                     .collect();
                 Prepared {
                     curve: &c.curve,
@@ -181,9 +181,11 @@ impl Network {
         let mut pair_hits: Vec<Hit> = Vec::new();
         let mut k = 0;
         while k < pairs.len() {
-            let (ca, cb) = (pairs[k].0, pairs[k].1);
+            let (ca, cb) = (pairs[k].curve_a, pairs[k].curve_b);
             let mut group_end = k;
-            while group_end < pairs.len() && (pairs[group_end].0, pairs[group_end].1) == (ca, cb) {
+            while group_end < pairs.len()
+                && (pairs[group_end].curve_a, pairs[group_end].curve_b) == (ca, cb)
+            {
                 group_end += 1;
             }
             pair_hits.clear();
@@ -197,7 +199,12 @@ impl Network {
                 leaves: 0,
                 hits: &mut pair_hits,
             };
-            for &(_, _, sa, sb) in &pairs[k..group_end] {
+            for &broad::CandidatePair {
+                piece_a: sa,
+                piece_b: sb,
+                ..
+            } in &pairs[k..group_end]
+            {
                 let (pa, pb) = (&prepared[ca], &prepared[cb]);
                 narrow.recurse(
                     &pa.decomposition.pieces[sa],

@@ -17,8 +17,25 @@ const MAX_DEPTH: u32 = 48;
 /// Leaves examined per curve pair at most (a guard for long overlaps).
 const MAX_LEAVES: usize = 512;
 
-/// A piece's control-point box and tangent cone.
-pub(super) type Bounds = (Aabb, Option<TangentCone>);
+/// A piece's control-point box and tangent cone (each piece meets many others in the narrow
+/// phase; these are worked out once).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PieceBounds {
+    /// The box of the control points.
+    pub(super) hull: Aabb,
+    /// The cone of tangent directions (`None` for a zero chord).
+    pub(super) cone: Option<TangentCone>,
+}
+
+impl PieceBounds {
+    /// The bounds of `piece`.
+    pub(super) fn of(piece: &BezierPiece) -> PieceBounds {
+        PieceBounds {
+            hull: piece.hull_box(),
+            cone: piece.tangent_cone(),
+        }
+    }
+}
 
 /// The narrow phase of one pair of curves: halves candidate piece pairs until they are
 /// leaves, and runs Newton on each leaf.
@@ -39,13 +56,13 @@ impl Narrow<'_, '_> {
         &mut self,
         x: &BezierPiece,
         y: &BezierPiece,
-        kx: Option<Bounds>,
-        ky: Option<Bounds>,
+        kx: Option<PieceBounds>,
+        ky: Option<PieceBounds>,
         depth: u32,
     ) {
         let (bx, by) = (
-            kx.map_or_else(|| x.hull_box(), |k| k.0),
-            ky.map_or_else(|| y.hull_box(), |k| k.0),
+            kx.map_or_else(|| x.hull_box(), |k| k.hull),
+            ky.map_or_else(|| y.hull_box(), |k| k.hull),
         );
         if bx.gap_to(&by) > self.near || self.leaves >= MAX_LEAVES {
             return;
@@ -56,8 +73,8 @@ impl Narrow<'_, '_> {
         let leaf = (small_x && small_y)
             || depth >= MAX_DEPTH
             || match (
-                kx.map_or_else(|| x.tangent_cone(), |k| k.1),
-                ky.map_or_else(|| y.tangent_cone(), |k| k.1),
+                kx.map_or_else(|| x.tangent_cone(), |k| k.cone),
+                ky.map_or_else(|| y.tangent_cone(), |k| k.cone),
             ) {
                 (Some(cx), Some(cy)) => {
                     let between = cx.axis.dot(cy.axis).abs().min(1.0).acos();
@@ -102,8 +119,10 @@ impl Narrow<'_, '_> {
             s,
             t,
             gap,
-            points,
-            tangents,
+            pa,
+            pb,
+            ta,
+            tb,
         } = closest_approach(
             &self.a.decomposition,
             &self.b.decomposition,
@@ -119,9 +138,9 @@ impl Narrow<'_, '_> {
                 s,
                 t,
                 gap,
-                pa: points.0,
-                pb: points.1,
-                sine: sine_between(tangents.0, tangents.1),
+                pa,
+                pb,
+                sine: sine_between(ta, tb),
             });
         }
     }
