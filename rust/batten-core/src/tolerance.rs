@@ -48,6 +48,66 @@ impl Tolerance {
     pub fn side_length_accuracy(self) -> f64 {
         0.1 * self.0
     }
+
+    // --- network and fairing ---
+
+    /// Accuracy of the arc length that decides whether a curve is shorter than the tolerance:
+    /// a thousandth of it, so the quadrature does not blur the decision.
+    pub fn length_check_accuracy(self) -> f64 {
+        self.0 * 1e-3
+    }
+
+    /// Accuracy of the closest points and arc lengths of the node search: a hundredth of the
+    /// tolerance, so that a distance compared with the tolerance is decided by the curves and
+    /// not by the search.
+    pub fn search_accuracy(self) -> f64 {
+        self.0 * 1e-2
+    }
+
+    /// Where Newton's method on the distance of two curves stops (distance, or step length):
+    /// 10⁻⁴ tolerance, far below what the clustering of nodes can see.
+    pub fn newton_accuracy(self) -> f64 {
+        self.0 * 1e-4
+    }
+
+    /// Margin by which the broad phase grows every piece's box: half the near-miss distance,
+    /// so the boxes of two pieces closer than that overlap.
+    pub fn sweep_margin(self) -> f64 {
+        0.5 * self.near_miss()
+    }
+
+    /// A curve meeting itself is a self-intersection only where the two parameters lie
+    /// farther apart along it than this (twice the near-miss distance); closer, the pieces are
+    /// neighbours.
+    pub fn self_crossing_min_arc(self) -> f64 {
+        2.0 * self.near_miss()
+    }
+
+    /// A near miss is reported only farther than this from every join of the same two curves
+    /// (twice the near-miss distance): the approach beside a crossing is not a second finding.
+    pub fn near_miss_clearance(self) -> f64 {
+        2.0 * self.near_miss()
+    }
+
+    /// Near misses of one pair of curves closer to each other than this (10× the near-miss
+    /// distance) are one finding, reported at the smallest gap.
+    pub fn near_miss_merge(self) -> f64 {
+        10.0 * self.near_miss()
+    }
+
+    /// Two curves share a stretch where one stays within this of the other (half the
+    /// tolerance): the end of the stretch found by bisection is then well within the tolerance
+    /// of where the curves part, or one of them ends.
+    pub fn shared_stretch(self) -> f64 {
+        0.5 * self.0
+    }
+
+    /// Shortest stretch along which two curves within tolerance make an overlap rather than a
+    /// tangential touch (100 tolerances, with a fraction of the shorter curve), and the
+    /// farthest a join of nearly tangent curves is moved to a curve end or a third curve's join.
+    pub fn overlap_min_length(self) -> f64 {
+        100.0 * self.0
+    }
 }
 
 impl Default for Tolerance {

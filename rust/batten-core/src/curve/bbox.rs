@@ -56,6 +56,15 @@ impl Aabb {
         d.length()
     }
 
+    /// Distance between two boxes (0 when they overlap): a lower bound of the distance between
+    /// anything inside them.
+    pub fn gap_to(&self, other: &Aabb) -> f64 {
+        (self.min - other.max)
+            .max(other.min - self.max)
+            .max(DVec3::ZERO)
+            .length()
+    }
+
     /// The box grown by `margin` on every side.
     pub fn expanded(&self, margin: f64) -> Aabb {
         Aabb {

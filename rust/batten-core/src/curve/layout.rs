@@ -190,7 +190,7 @@ impl NurbsCurve {
         let mut out = Vec::with_capacity(1 + dec.piece_count() * self.degree());
         for (i, piece) in dec.pieces.iter().enumerate() {
             let skip = usize::from(i > 0);
-            out.extend_from_slice(&piece.cw[skip..]);
+            out.extend_from_slice(&piece.points()[skip..]);
         }
         out
     }

@@ -15,15 +15,16 @@ mod error;
 mod layout;
 mod nearest;
 mod nurbs;
+mod piece;
 
 pub(crate) use arclen::GL8;
 pub use basis::MAX_DEGREE;
 // The fairing module builds least-squares rows from the same basis functions.
 pub(crate) use basis::{basis_funs, ders_basis_funs, find_span, MAX_ORDER};
 pub use bbox::Aabb;
-pub(crate) use bezier::segment_distance;
 pub use bezier::BezierDecomposition;
 pub use error::CurveError;
 pub use layout::KnotLayout;
 pub use nearest::Nearest;
 pub use nurbs::{CurveDerivs, NurbsCurve};
+pub(crate) use piece::{segment_distance, BezierPiece, PointDerivs, TangentCone};

@@ -6,9 +6,10 @@ use std::collections::BinaryHeap;
 
 use glam::DVec3;
 
-use super::bezier::{BezierDecomposition, BezierPiece};
+use super::bezier::BezierDecomposition;
 use super::error::CurveError;
 use super::nurbs::NurbsCurve;
+use super::piece::BezierPiece;
 
 /// The closest point of a curve to a query point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,9 +22,11 @@ pub struct Nearest {
     pub distance: f64,
 }
 
+/// A piece waiting in the branch-and-bound queue: its lower bound and its index in the
+/// search's arena of pieces (the queue moves these small entries, not the pieces).
 struct Candidate {
     lower: f64,
-    piece: BezierPiece,
+    piece: usize,
 }
 
 impl PartialEq for Candidate {
@@ -67,18 +70,20 @@ impl BezierDecomposition {
         let mut best = self.endpoint_nearest(q);
         // True while `best` is the exact minimum of a convex piece (no polish needed).
         let mut polished = false;
-        let mut heap: BinaryHeap<Candidate> = self
-            .pieces
+        let mut arena: Vec<BezierPiece> = self.pieces.clone();
+        let mut heap: BinaryHeap<Candidate> = arena
             .iter()
-            .map(|p| Candidate {
+            .enumerate()
+            .map(|(i, p)| Candidate {
                 lower: p.lower_bound(q),
-                piece: p.clone(),
+                piece: i,
             })
             .collect();
         while let Some(Candidate { lower, piece }) = heap.pop() {
             if lower >= best.distance - accuracy {
                 break;
             }
+            let piece = arena[piece];
             if piece.flatness() <= leaf
                 || piece.t1 - piece.t0 <= f64::EPSILON * piece.t1.abs().max(1.0)
             {
@@ -115,7 +120,11 @@ impl BezierDecomposition {
             for half in [l, r] {
                 let lower = half.lower_bound(q);
                 if lower < best.distance - accuracy {
-                    heap.push(Candidate { lower, piece: half });
+                    heap.push(Candidate {
+                        lower,
+                        piece: arena.len(),
+                    });
+                    arena.push(half);
                 }
             }
         }

@@ -150,8 +150,8 @@ fn energy_on(bez: &BezierDecomposition, curve: &NurbsCurve) -> f64 {
 /// First and second derivative at `t` on the Bézier piece holding it (de Casteljau, no
 /// basis-function tables); `t` is inside a span.
 fn piece_derivs(bez: &BezierDecomposition, t: f64) -> (DVec3, DVec3) {
-    let (_, d1, d2) = bez.pieces[bez.piece_at(t, false)].derivs_at(t);
-    (d1, d2)
+    let d = bez.derivs(t);
+    (d.d1, d.d2)
 }
 
 fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
@@ -383,7 +383,7 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
                 sub.pieces.clear();
                 for (piece, &l) in bez.pieces.iter().zip(&lower) {
                     if l <= upper {
-                        sub.pieces.push(piece.clone());
+                        sub.pieces.push(*piece);
                     }
                 }
                 let near = sub.nearest(*q, accuracy)?;

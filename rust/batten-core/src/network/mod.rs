@@ -14,7 +14,6 @@ use crate::curve::NurbsCurve;
 use crate::error::Error;
 use crate::tolerance::Tolerance;
 
-pub(crate) use approach::PieceCurve;
 pub use format::{NETWORK_FORMAT, NETWORK_VERSION};
 pub use nodes::{Incidence, Junction, Junctions};
 
@@ -136,7 +135,7 @@ impl Network {
 /// Error when the curve's length is below the model tolerance.
 pub(crate) fn check_length(curve: &NurbsCurve, tolerance: Tolerance) -> Result<(), CurveError> {
     let tol = tolerance.get();
-    let length = curve.arc_length(tol * 1e-3)?;
+    let length = curve.arc_length(tolerance.length_check_accuracy())?;
     if length < tol {
         return Err(CurveError::ZeroLength {
             length,

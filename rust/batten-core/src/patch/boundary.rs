@@ -8,10 +8,10 @@
 //! proportion to its arc length (or its chord, [`SideParam`]), and within a segment `s` is
 //! mapped linearly onto the curve's own parameter, so the side is exactly the designer curve.
 
-use glam::{DVec3, DVec4};
+use glam::DVec3;
 
 use super::error::PatchError;
-use crate::curve::{BezierDecomposition, NurbsCurve, MAX_ORDER};
+use crate::curve::{BezierDecomposition, NurbsCurve};
 use crate::tolerance::Tolerance;
 
 /// How far a segment's parameter may lie outside its curve's domain, relative to the domain's
@@ -179,64 +179,13 @@ pub(crate) fn canonical_sample(t0: f64, t1: f64, r: usize, j: usize) -> f64 {
     }
 }
 
-/// A curve's Bézier pieces in homogeneous form, for fast evaluation of a point and its first
-/// derivative (rational de Casteljau; no basis-function derivatives, no allocation).
-#[derive(Clone, Debug)]
-pub(crate) struct FastCurve {
-    degree: usize,
-    /// Piece `k` spans `[breaks[k], breaks[k + 1]]`.
-    breaks: Vec<f64>,
-    /// `degree + 1` homogeneous control points per piece.
-    cw: Vec<DVec4>,
-}
-
-impl FastCurve {
-    pub(crate) fn new(curve: &NurbsCurve) -> FastCurve {
-        let dec = BezierDecomposition::new(curve);
-        let mut breaks = Vec::with_capacity(dec.pieces.len() + 1);
-        let mut cw = Vec::with_capacity(dec.pieces.len() * (curve.degree() + 1));
-        for piece in &dec.pieces {
-            breaks.push(piece.t0);
-            cw.extend_from_slice(&piece.cw);
-        }
-        breaks.push(dec.pieces.last().map_or(curve.domain().1, |p| p.t1));
-        FastCurve {
-            degree: curve.degree(),
-            breaks,
-            cw,
-        }
-    }
-
-    /// C(t) and C'(t) (t clamped into the domain).
-    #[inline]
-    pub(crate) fn eval_d1(&self, t: f64) -> (DVec3, DVec3) {
-        let m = self.breaks.len() - 1;
-        let k = (self.breaks[1..m].partition_point(|&b| b <= t)).min(m - 1);
-        let (a, b) = (self.breaks[k], self.breaks[k + 1]);
-        let x = ((t - a) / (b - a)).clamp(0.0, 1.0);
-        let p = self.degree;
-        let mut q = [DVec4::ZERO; MAX_ORDER];
-        q[..=p].copy_from_slice(&self.cw[k * (p + 1)..(k + 1) * (p + 1)]);
-        for level in 1..p {
-            for j in 0..=p - level {
-                q[j] = q[j] + (q[j + 1] - q[j]) * x;
-            }
-        }
-        let h = q[0] + (q[1] - q[0]) * x;
-        let dh = (q[1] - q[0]) * (p as f64 / (b - a));
-        let c = h.truncate() / h.w;
-        let dc = (dh.truncate() - c * dh.w) / h.w;
-        (c, dc)
-    }
-}
-
 /// One segment ready for evaluation: traversal parameters and the linear end corrections that
 /// make consecutive segments and sides meet exactly at the resolved node positions.
 #[derive(Clone, Debug)]
 pub(crate) struct PreparedSegment {
     pub(crate) curve: NurbsCurve,
-    /// The same curve for fast point-and-derivative evaluation.
-    pub(crate) fast: FastCurve,
+    /// The same curve's Bézier pieces, for fast point-and-derivative evaluation.
+    pub(crate) fast: BezierDecomposition,
     /// Curve parameter at the segment start (traversal order).
     pub(crate) ta: f64,
     /// Curve parameter at the segment end.
@@ -291,7 +240,7 @@ impl PreparedSide {
         } else {
             seg.ta + lam * dt
         };
-        let (c, d1) = seg.fast.eval_d1(t);
+        let (c, d1) = seg.fast.point_d1(t);
         let du = self.breaks[k + 1] - self.breaks[k];
         let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
         let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
@@ -516,7 +465,7 @@ pub(crate) fn prepare_boundary(
             .enumerate()
             .map(|(k, seg)| PreparedSegment {
                 curve: seg.curve.clone(),
-                fast: FastCurve::new(&seg.curve),
+                fast: seg.curve.bezier_decomposition(),
                 ta: seg.t0,
                 tb: seg.t1,
                 d0: starts[k] - raw[si][k].start,

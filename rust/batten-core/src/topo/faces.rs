@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::brep::{Brep, EdgeId, HalfEdgeId, LoopId};
-use crate::network::PieceCurve;
+use crate::curve::BezierDecomposition;
 
 /// The boundary of a face runs on smoothly through a node (no corner) when its direction turns
 /// by less than this (15°, the H-rep paper's minimum angle between tangents, §3.2.2).
@@ -91,7 +91,7 @@ pub(crate) fn corners_and_sides(
 /// normals) and negative for a boundary loop traced round the outside.
 pub(crate) fn orientation(
     brep: &Brep,
-    curves: &[PieceCurve],
+    curves: &[BezierDecomposition],
     normals: &[DVec3],
     l: LoopId,
 ) -> (DVec3, DVec3) {
@@ -130,7 +130,7 @@ pub(crate) fn orientation(
 /// direction), from the polyline through its end vertices and its middle point; zero for edges
 /// without half-edges. Shares of the edges of a loop add up to the loop's vector area, because
 /// the polylines of consecutive edges meet at the shared vertex.
-pub(crate) fn edge_areas(brep: &Brep, curves: &[PieceCurve]) -> Vec<DVec3> {
+pub(crate) fn edge_areas(brep: &Brep, curves: &[BezierDecomposition]) -> Vec<DVec3> {
     brep.edges
         .iter()
         .map(|e| {
@@ -149,7 +149,7 @@ pub(crate) fn edge_areas(brep: &Brep, curves: &[PieceCurve]) -> Vec<DVec3> {
 /// or two edges (whose three-point polylines may enclose nothing) are sampled more finely.
 pub(crate) fn loop_orientation(
     brep: &Brep,
-    curves: &[PieceCurve],
+    curves: &[BezierDecomposition],
     areas: &[DVec3],
     normals: &[DVec3],
     l: LoopId,

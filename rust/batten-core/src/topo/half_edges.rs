@@ -6,12 +6,16 @@ use glam::DVec3;
 
 use super::brep::{Brep, EdgeId, HalfEdge, HalfEdgeId, LoopId};
 use super::rotation::{leaving_direction, EvalCache};
-use crate::network::PieceCurve;
+use crate::curve::BezierDecomposition;
 
 /// Give every edge with `core[k]` its two half-edges (the first runs along the edge's curve,
 /// from `t0` to `t1`, the second against it), each for now its own `next` and `prev`, in loop
 /// 0. Returns, per half-edge, the unit direction in which it leaves its origin.
-pub(crate) fn add_half_edges(brep: &mut Brep, core: &[bool], evals: &[PieceCurve]) -> Vec<DVec3> {
+pub(crate) fn add_half_edges(
+    brep: &mut Brep,
+    core: &[bool],
+    evals: &[BezierDecomposition],
+) -> Vec<DVec3> {
     let core_edges = core.iter().filter(|&&c| c).count();
     brep.half_edges.reserve_exact(2 * core_edges);
     let mut dirs: Vec<DVec3> = Vec::with_capacity(2 * core_edges);

@@ -9,7 +9,7 @@ use glam::DVec3;
 use super::adjacency::Adjacency;
 use super::brep::{Brep, HalfEdgeId};
 use super::rotation::{ccw_order, confidence, off_plane, orient_normals, raw_normal, RawNormal};
-use crate::network::PieceCurve;
+use crate::curve::BezierDecomposition;
 
 /// A node whose unit edge tangents have a tip farther than this from the best plane through
 /// the tips is a branching of the surface
@@ -41,7 +41,11 @@ pub(crate) struct RotationSystem {
 /// Estimate and orient the normals, sort every node's half-edges counter-clockwise (setting
 /// each vertex's `outgoing` and `normal`) and link the half-edges into loops. `dirs` holds the
 /// leaving direction of every half-edge, `evals` the network's curves.
-pub(crate) fn link(brep: &mut Brep, dirs: &[DVec3], evals: &[PieceCurve]) -> RotationSystem {
+pub(crate) fn link(
+    brep: &mut Brep,
+    dirs: &[DVec3],
+    evals: &[BezierDecomposition],
+) -> RotationSystem {
     // The half-edges leaving each vertex, in the order they were made.
     let mut outgoing = Adjacency::from_pairs(
         brep.vertices.len(),

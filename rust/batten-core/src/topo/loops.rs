@@ -8,8 +8,9 @@ use glam::DVec3;
 use super::brep::{Brep, Face, FaceId, HalfEdgeId, Loop, LoopId, ShellId};
 use super::faces;
 use super::topology::{BoundaryLoop, TopoFace};
+use crate::curve::BezierDecomposition;
 use crate::diagnostic::Diagnostic;
-use crate::network::{NetworkCurve, PieceCurve};
+use crate::network::NetworkCurve;
 
 /// Trace every loop of the half-edges along `next`, setting each half-edge's `loop_id`; each
 /// loop belongs to the shell of its first half-edge's origin (`shell_of`, per vertex).
@@ -46,7 +47,7 @@ pub(crate) fn trace_loops(brep: &mut Brep, shell_of: &[usize]) {
 pub(crate) fn sort_loops(
     brep: &mut Brep,
     curves: &[NetworkCurve],
-    evals: &[PieceCurve],
+    evals: &[BezierDecomposition],
     dirs: &[DVec3],
     normals: &[DVec3],
     diagnostics: &mut Vec<Diagnostic>,

@@ -34,7 +34,7 @@ pub use topology::{BoundaryLoop, TopoFace, Topology};
 
 use crate::curve::BezierDecomposition;
 use crate::error::Error;
-use crate::network::{Network, PieceCurve};
+use crate::network::Network;
 use crate::tolerance::Tolerance;
 
 impl Topology {
@@ -72,11 +72,10 @@ impl Topology {
         };
         brep.edges = edges::cut_curves(curves, &junctions, &brep.vertices, tolerance);
         let core = edges::prune_branches(&brep);
-        let decompositions: Vec<BezierDecomposition> = curves
+        let evals: Vec<BezierDecomposition> = curves
             .iter()
             .map(|c| c.curve.bezier_decomposition())
             .collect();
-        let evals: Vec<PieceCurve> = decompositions.iter().map(PieceCurve::new).collect();
         findings::loose_ends(curves, &junctions, &brep, &core, &mut diagnostics);
         let dirs = half_edges::add_half_edges(&mut brep, &core, &evals);
 

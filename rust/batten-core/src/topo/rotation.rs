@@ -8,7 +8,7 @@ use std::collections::VecDeque;
 use glam::DVec3;
 
 use super::adjacency::Adjacency;
-use crate::network::PieceCurve;
+use crate::curve::{BezierDecomposition, PointDerivs};
 
 /// Below this sine of the angle between two tangents they are taken as parallel, so they do
 /// not define a plane (about 0.06°).
@@ -27,13 +27,13 @@ const CHORD_STEP: f64 = 1e-3;
 /// one-sided derivative on the stretch's side, or the chord to a nearby point where the
 /// derivative vanishes.
 pub(crate) fn leaving_direction(
-    curve: &PieceCurve,
+    curve: &BezierDecomposition,
     t_from: f64,
     t_to: f64,
     cache: &mut EvalCache,
 ) -> DVec3 {
     let forward = t_to > t_from;
-    let (p0, d1, _) = cache.eval(curve, t_from, forward);
+    let PointDerivs { point: p0, d1, .. } = cache.eval(curve, t_from, forward);
     let d = if forward { d1 } else { -d1 };
     let step = (t_to - t_from).abs();
     if d.length() * step > VANISHING_DERIVATIVE * (1.0 + p0.length()) {
@@ -50,7 +50,7 @@ pub(crate) fn leaving_direction(
 pub(crate) struct EvalCache {
     curve: usize,
     key: Option<(u64, usize)>,
-    value: (DVec3, DVec3, DVec3),
+    value: PointDerivs,
 }
 
 impl EvalCache {
@@ -62,10 +62,10 @@ impl EvalCache {
         }
     }
 
-    fn eval(&mut self, curve: &PieceCurve, t: f64, after: bool) -> (DVec3, DVec3, DVec3) {
+    fn eval(&mut self, curve: &BezierDecomposition, t: f64, after: bool) -> PointDerivs {
         let key = (t.to_bits(), curve.piece_at(t, after));
         if self.key != Some(key) {
-            self.value = curve.eval_in(key.1, t);
+            self.value = curve.derivs_in(key.1, t);
             self.key = Some(key);
         }
         self.value

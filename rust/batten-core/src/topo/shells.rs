@@ -8,8 +8,8 @@ use super::adjacency::Adjacency;
 use super::brep::{Brep, LoopId, Shell};
 use super::faces;
 use super::rotation::RawNormal;
+use crate::curve::BezierDecomposition;
 use crate::diagnostic::Diagnostic;
-use crate::network::PieceCurve;
 
 /// Connected parts of the graph: a part index per vertex (`usize::MAX` for lone vertices).
 pub(crate) fn components(neighbours: &Adjacency<usize>) -> Vec<usize> {
@@ -59,7 +59,7 @@ pub(crate) fn add_shells(brep: &mut Brep, shell_of: &[usize]) {
 /// first loop's vector area, in `normals` and in the B-rep.
 pub(crate) fn orient_lone_parts(
     brep: &mut Brep,
-    evals: &[PieceCurve],
+    evals: &[BezierDecomposition],
     raw: &[Option<RawNormal>],
     normals: &mut [DVec3],
     shell_of: &[usize],

@@ -1,0 +1,182 @@
+//! Clustering the curve ends and joins into nodes: union–find over joined pairs and over any
+//! two curve points within the tolerance.
+
+use glam::DVec3;
+
+use super::{Hit, Incidence, Junction, Junctions, Prepared};
+use crate::diagnostic::Diagnostic;
+use crate::network::Network;
+
+/// Disjoint sets of incidences (path halving; the smaller root wins a union).
+struct UnionFind(Vec<usize>);
+
+impl UnionFind {
+    fn find(&mut self, mut x: usize) -> usize {
+        while self.0[x] != x {
+            self.0[x] = self.0[self.0[x]];
+            x = self.0[x];
+        }
+        x
+    }
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            self.0[ra.max(rb)] = ra.min(rb);
+        }
+    }
+}
+
+/// A curve through a place (a curve end or one side of a join) and its point there.
+#[derive(Clone, Copy, Debug)]
+struct CurvePoint {
+    incidence: Incidence,
+    point: DVec3,
+}
+
+/// Cluster curve ends and joins into nodes (union–find: joined pairs, and any two curve points
+/// within the tolerance, found by a sweep along x).
+pub(super) fn cluster(
+    network: &Network,
+    prepared: &[Prepared],
+    hits: &[Hit],
+    excluded: &[bool],
+    tol: f64,
+    diagnostics: Vec<Diagnostic>,
+) -> Junctions {
+    let curves = network.curves();
+    let mut incs: Vec<CurvePoint> = Vec::new();
+    for (ci, p) in prepared.iter().enumerate() {
+        if excluded[ci] {
+            continue;
+        }
+        let (a, b) = p.curve.domain();
+        for t in [a, b] {
+            incs.push(CurvePoint {
+                incidence: Incidence { curve: ci, t },
+                point: p.curve.point(t),
+            });
+        }
+    }
+    let mut uf = UnionFind((0..incs.len() + 2 * hits.len()).collect());
+    for h in hits {
+        let ia = incs.len();
+        incs.push(CurvePoint {
+            incidence: Incidence { curve: h.a, t: h.s },
+            point: h.pa,
+        });
+        incs.push(CurvePoint {
+            incidence: Incidence { curve: h.b, t: h.t },
+            point: h.pb,
+        });
+        uf.union(ia, ia + 1);
+    }
+    // Any two curve points within the tolerance are one node: sweep along x.
+    let mut by_x: Vec<(f64, usize)> = incs.iter().map(|c| c.point.x).zip(0..).collect();
+    by_x.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    for (k, &(x, i)) in by_x.iter().enumerate() {
+        let p = incs[i].point;
+        for &(qx, j) in &by_x[k + 1..] {
+            if qx - x > tol {
+                break;
+            }
+            if (incs[j].point - p).length() <= tol {
+                uf.union(i, j);
+            }
+        }
+    }
+    // Groups, in order of their smallest member (curve ends come first, in curve order), as
+    // runs of one flat array (counting sort by node).
+    let mut node_of_root = vec![usize::MAX; incs.len()];
+    let mut node_of = vec![0usize; incs.len()];
+    let mut count: Vec<usize> = Vec::new();
+    for i in 0..incs.len() {
+        let r = uf.find(i);
+        if node_of_root[r] == usize::MAX {
+            node_of_root[r] = count.len();
+            count.push(0);
+        }
+        node_of[i] = node_of_root[r];
+        count[node_of[i]] += 1;
+    }
+    let mut start = vec![0usize; count.len() + 1];
+    for (n, c) in count.iter().enumerate() {
+        start[n + 1] = start[n] + c;
+    }
+    let mut fill = start.clone();
+    let mut flat = vec![0usize; incs.len()];
+    for (i, &n) in node_of.iter().enumerate() {
+        flat[fill[n]] = i;
+        fill[n] += 1;
+    }
+    let mut nodes = Vec::with_capacity(count.len());
+    let mut splits: Vec<Vec<(f64, usize)>> = vec![Vec::new(); curves.len()];
+    let mut list: Vec<CurvePoint> = Vec::new();
+    let mut merged: Vec<CurvePoint> = Vec::new();
+    for node in 0..count.len() {
+        let members = &flat[start[node]..start[node + 1]];
+        let position = members.iter().map(|&i| incs[i].point).sum::<DVec3>() / members.len() as f64;
+        list.clear();
+        list.extend(members.iter().map(|&i| incs[i]));
+        list.sort_by(|x, y| {
+            let (x, y) = (x.incidence, y.incidence);
+            x.curve.cmp(&y.curve).then(x.t.total_cmp(&y.t))
+        });
+        // One incidence per curve and place: ends win, otherwise the point nearest the node.
+        merged.clear();
+        for &CurvePoint {
+            incidence: inc,
+            point: p,
+        } in &list
+        {
+            let curve = prepared[inc.curve].curve;
+            let end_param = {
+                let (a, b) = curve.domain();
+                (inc.t == a || inc.t == b).then_some(inc.t)
+            };
+            let (a, b) = curve.domain();
+            // The two ends of a closed curve stay two incidences.
+            let opposite_ends =
+                |m: &Incidence| (m.t == a && inc.t == b) || (m.t == b && inc.t == a);
+            match merged.iter_mut().find(|m| {
+                m.incidence.curve == inc.curve
+                    && (m.point - p).length() <= tol
+                    && !opposite_ends(&m.incidence)
+            }) {
+                Some(m) => {
+                    let m_end = m.incidence.t == a || m.incidence.t == b;
+                    if end_param.is_some() && !m_end
+                        || (!m_end
+                            && end_param.is_none()
+                            && (p - position).length() < (m.point - position).length())
+                    {
+                        *m = CurvePoint {
+                            incidence: inc,
+                            point: p,
+                        };
+                    }
+                }
+                None => merged.push(CurvePoint {
+                    incidence: inc,
+                    point: p,
+                }),
+            }
+        }
+        for c in &merged {
+            splits[c.incidence.curve].push((c.incidence.t, node));
+        }
+        nodes.push(Junction {
+            position,
+            incidences: merged.iter().map(|c| c.incidence).collect(),
+        });
+    }
+    for s in &mut splits {
+        s.sort_by(|x, y| x.0.total_cmp(&y.0));
+    }
+    Junctions {
+        nodes,
+        splits,
+        excluded: excluded.to_vec(),
+        suppressed: Vec::new(),
+        diagnostics,
+    }
+}
