@@ -15,6 +15,9 @@ use super::piece::{BezierPiece, PointDerivs};
 pub struct BezierDecomposition {
     pub(crate) curve: NurbsCurve,
     pub(crate) pieces: Vec<BezierPiece>,
+    /// `pieces[k].t1` for every piece, packed: the piece lookup of every evaluation searches
+    /// this instead of striding over the (large, fixed-size) pieces.
+    ends: Vec<f64>,
 }
 
 impl BezierDecomposition {
@@ -23,9 +26,9 @@ impl BezierDecomposition {
     #[inline]
     pub(crate) fn piece_at(&self, t: f64, after: bool) -> usize {
         if after {
-            self.pieces.partition_point(|p| p.t1 <= t)
+            self.ends.partition_point(|&t1| t1 <= t)
         } else {
-            self.pieces.partition_point(|p| p.t1 < t)
+            self.ends.partition_point(|&t1| t1 < t)
         }
         .min(self.pieces.len() - 1)
     }
@@ -85,10 +88,40 @@ impl BezierDecomposition {
             .filter(|&k| knots[k] < knots[k + 1])
             .map(|k| BezierPiece::new(knots[k], knots[k + 1], &cw[k - p..=k]))
             .collect();
+        BezierDecomposition::from_pieces(curve.clone(), pieces)
+    }
+
+    /// A decomposition of `curve` from its pieces (in parameter order).
+    fn from_pieces(curve: NurbsCurve, pieces: Vec<BezierPiece>) -> BezierDecomposition {
+        let ends = pieces.iter().map(|p| p.t1).collect();
         BezierDecomposition {
-            curve: curve.clone(),
+            curve,
             pieces,
+            ends,
         }
+    }
+
+    /// The same curve restricted to the pieces of `self` that `keep` selects (by index), for a
+    /// search that may skip pieces it has ruled out; `into` is reused to avoid allocation.
+    pub(crate) fn select_into(
+        &self,
+        into: &mut BezierDecomposition,
+        mut keep: impl FnMut(usize) -> bool,
+    ) {
+        into.pieces.clear();
+        into.ends.clear();
+        for (k, piece) in self.pieces.iter().enumerate() {
+            if keep(k) {
+                into.pieces.push(*piece);
+                into.ends.push(piece.t1);
+            }
+        }
+    }
+
+    /// An empty decomposition of the same curve, to be filled by
+    /// [`BezierDecomposition::select_into`].
+    pub(crate) fn empty_like(&self) -> BezierDecomposition {
+        BezierDecomposition::from_pieces(self.curve.clone(), Vec::new())
     }
 
     /// Number of Bézier pieces.

@@ -335,10 +335,7 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
             (p.hull_box(), a, b, p.flatness())
         })
         .collect();
-    let mut sub = BezierDecomposition {
-        curve: bez.curve.clone(),
-        pieces: Vec::new(),
-    };
+    let mut sub = bez.empty_like();
     let mut out = Deviation {
         max: 0.0,
         max_index: 0,
@@ -380,12 +377,7 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
                 for (_, a, b, _) in &bounds {
                     upper = upper.min((*a - *q).length()).min((*b - *q).length());
                 }
-                sub.pieces.clear();
-                for (piece, &l) in bez.pieces.iter().zip(&lower) {
-                    if l <= upper {
-                        sub.pieces.push(*piece);
-                    }
-                }
+                bez.select_into(&mut sub, |k| lower[k] <= upper);
                 let near = sub.nearest(*q, accuracy)?;
                 (near.t, near.distance)
             }
