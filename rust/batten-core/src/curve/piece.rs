@@ -131,7 +131,7 @@ pub(crate) fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
 impl BezierPiece {
     /// The piece on `[t0, t1]` with homogeneous control points `points` (1 to [`MAX_ORDER`]
     /// of them).
-    pub fn new(t0: f64, t1: f64, points: &[DVec4]) -> BezierPiece {
+    pub(crate) fn new(t0: f64, t1: f64, points: &[DVec4]) -> BezierPiece {
         let mut cw = [DVec4::ZERO; MAX_ORDER];
         cw[..points.len()].copy_from_slice(points);
         BezierPiece {
@@ -143,7 +143,7 @@ impl BezierPiece {
     }
 
     /// The homogeneous control points `(w·P, w)`.
-    pub fn points(&self) -> &[DVec4] {
+    pub(crate) fn points(&self) -> &[DVec4] {
         &self.cw[..self.n]
     }
 
@@ -155,7 +155,7 @@ impl BezierPiece {
 
     /// Box of the projected control points. Weights are positive, so the piece lies inside
     /// the convex hull of these points and hence inside this box.
-    pub fn hull_box(&self) -> Aabb {
+    pub(crate) fn hull_box(&self) -> Aabb {
         Aabb::from_points((0..self.n).map(|i| self.control_point(i))).expect("a piece has points")
     }
 
@@ -165,7 +165,7 @@ impl BezierPiece {
     /// of its control points, so within that distance of the chord). The chord bound is exact
     /// to O(width²), which keeps branch and bound from splitting a flat minimum into
     /// thousands of pieces.
-    pub fn lower_bound(&self, q: DVec3) -> f64 {
+    pub(crate) fn lower_bound(&self, q: DVec3) -> f64 {
         let (a, b) = self.ends();
         let chord = segment_distance(q, a, b) - self.flatness();
         chord.max(self.hull_box().distance_to(q))
@@ -173,7 +173,7 @@ impl BezierPiece {
 
     /// Largest distance of a control point from the chord: how far the piece can stray from
     /// the straight line between its ends.
-    pub fn flatness(&self) -> f64 {
+    pub(crate) fn flatness(&self) -> f64 {
         let (a, b) = self.ends();
         (0..self.n)
             .map(|i| segment_distance(self.control_point(i), a, b))
@@ -181,7 +181,7 @@ impl BezierPiece {
     }
 
     /// End points, which lie on the curve.
-    pub fn ends(&self) -> (DVec3, DVec3) {
+    pub(crate) fn ends(&self) -> (DVec3, DVec3) {
         (self.control_point(0), self.control_point(self.n - 1))
     }
 
@@ -189,7 +189,7 @@ impl BezierPiece {
     /// direction the piece can take, bounded by the control polygon (the legs of a polynomial
     /// piece; every pair of control points of a rational one). `None` when the chord has zero
     /// length.
-    pub fn tangent_cone(&self) -> Option<TangentCone> {
+    pub(crate) fn tangent_cone(&self) -> Option<TangentCone> {
         let (a, b) = self.ends();
         let axis = (b - a).try_normalize()?;
         let rational = self.points().iter().any(|c| c.w != self.cw[0].w);
@@ -216,7 +216,7 @@ impl BezierPiece {
     }
 
     /// De Casteljau subdivision at the parametric middle, in homogeneous coordinates.
-    pub fn halves(&self) -> (BezierPiece, BezierPiece) {
+    pub(crate) fn halves(&self) -> (BezierPiece, BezierPiece) {
         let n = self.n;
         let mut work = self.cw;
         let mut left = *self;
@@ -274,7 +274,7 @@ impl BezierPiece {
     /// with respect to `t`, by homogeneous de Casteljau: no allocation and no basis-function
     /// tables.
     #[inline]
-    pub fn derivs_at(&self, t: f64) -> PointDerivs {
+    pub(crate) fn derivs_at(&self, t: f64) -> PointDerivs {
         let len = self.t1 - self.t0;
         let [h, d1, d2] = self.homogeneous_derivs(self.local(t));
         cartesian([h, d1 * (1.0 / len), d2 * (1.0 / (len * len))])
@@ -288,7 +288,7 @@ impl BezierPiece {
     /// are evaluated with this one and the node finding and fairing with that one, and both
     /// results are kept bit for bit.
     #[inline]
-    pub fn point_d1_at(&self, t: f64) -> (DVec3, DVec3) {
+    pub(crate) fn point_d1_at(&self, t: f64) -> (DVec3, DVec3) {
         let x = self.local(t);
         let n = self.n;
         let (q0, q1) = self.with_work(|work| {
@@ -305,7 +305,7 @@ impl BezierPiece {
     /// `½ d²/du² |C − q|² = |C′|² + C″·(C − q)`, and `|C′| ≥ min_i H_i·e` (hodograph control
     /// points `H_i` along the unit chord `e`), `|C″| ≤ max_i |C″_i|` (second hodograph),
     /// `|C − q| ≤ max_i |P_i − q|` (convex hull). Always false for rational pieces.
-    pub fn distance_convex(&self, q: DVec3) -> bool {
+    pub(crate) fn distance_convex(&self, q: DVec3) -> bool {
         let w0 = self.cw[0].w;
         if self.points().iter().any(|c| c.w != w0) || self.n < 2 {
             return false;
@@ -337,7 +337,7 @@ impl BezierPiece {
     /// end evaluations; where it would leave the piece (the foot may be an end), the
     /// bracketed search of `convex_foot`. The same foot: `g` increases along the piece, so a
     /// root inside it is the only one.
-    pub fn convex_foot_near(&self, q: DVec3, hint: f64) -> (f64, DVec3) {
+    pub(crate) fn convex_foot_near(&self, q: DVec3, hint: f64) -> (f64, DVec3) {
         let len = self.t1 - self.t0;
         let mut u = (hint - self.t0) / len;
         if u > 0.0 && u < 1.0 {
@@ -365,7 +365,7 @@ impl BezierPiece {
     /// the root of `g(u) = C′(u)·(C(u) − q)`, which increases along the piece, by Newton's
     /// method kept inside a bisection bracket (or an end, where `g` does not change sign).
     /// Returns the global parameter and the point.
-    pub fn convex_foot(&self, q: DVec3) -> (f64, DVec3) {
+    pub(crate) fn convex_foot(&self, q: DVec3) -> (f64, DVec3) {
         let g = |u: f64| {
             let PointDerivs { point, d1, d2 } = self.local_derivs(u);
             let r = point - q;

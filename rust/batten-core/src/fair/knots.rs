@@ -27,7 +27,7 @@ pub(crate) struct Design {
 
 impl Design {
     /// Rows for `params` (each inside `[knots[k], knots[n]]`).
-    pub fn new(knots: &[f64], degree: usize, params: &[f64]) -> Design {
+    pub(super) fn new(knots: &[f64], degree: usize, params: &[f64]) -> Design {
         let n = knots.len() - degree - 1;
         let mut span = Vec::with_capacity(params.len());
         let mut basis = Vec::with_capacity(params.len());
@@ -47,7 +47,7 @@ impl Design {
 
     /// Recompute the rows of `params[from..to]` for new `knots` (after a knot insertion, only
     /// the data near the new knot get new basis values).
-    pub fn update_range(&mut self, knots: &[f64], params: &[f64], from: usize, to: usize) {
+    pub(super) fn update_range(&mut self, knots: &[f64], params: &[f64], from: usize, to: usize) {
         let k = self.degree;
         let n = knots.len() - k - 1;
         for (i, &u) in params.iter().enumerate().take(to).skip(from) {
@@ -59,7 +59,7 @@ impl Design {
 
     /// The spline value at data parameter `i` for coefficients `c`.
     #[inline]
-    pub fn value(&self, i: usize, c: &[DVec3]) -> DVec3 {
+    pub(super) fn value(&self, i: usize, c: &[DVec3]) -> DVec3 {
         let (s, k) = (self.span[i], self.degree);
         let b = &self.basis[i];
         let mut acc = DVec3::ZERO;

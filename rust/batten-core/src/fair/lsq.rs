@@ -31,7 +31,7 @@ fn givens(piv: f64, diag: f64) -> (f64, f64, f64) {
 
 impl BandedQr {
     /// An empty (all-zero) system of `n` unknowns and bandwidth `band`.
-    pub fn new(n: usize, band: usize) -> Self {
+    pub(super) fn new(n: usize, band: usize) -> Self {
         BandedQr {
             n,
             band,
@@ -41,29 +41,29 @@ impl BandedQr {
     }
 
     /// Number of unknowns.
-    pub fn unknowns(&self) -> usize {
+    pub(super) fn unknowns(&self) -> usize {
         self.n
     }
 
     /// Bandwidth.
-    pub fn band(&self) -> usize {
+    pub(super) fn band(&self) -> usize {
         self.band
     }
 
     /// Row `i` of the triangle (diagonal first) and its rotated right-hand side.
-    pub fn row(&self, i: usize) -> (&[f64], DVec3) {
+    pub(super) fn row(&self, i: usize) -> (&[f64], DVec3) {
         (&self.r[i * self.band..(i + 1) * self.band], self.z[i])
     }
 
     /// Overwrite row `i` and its right-hand side.
-    pub fn set_row(&mut self, i: usize, row: &[f64], z: DVec3) {
+    pub(super) fn set_row(&mut self, i: usize, row: &[f64], z: DVec3) {
         self.r[i * self.band..(i + 1) * self.band].copy_from_slice(row);
         self.z[i] = z;
     }
 
     /// Resize to `n` unknowns keeping rows `..keep` and zeroing the rest (for rebuilding the
     /// triangle from the first observation a knot insertion changes).
-    pub fn truncate_resize(&mut self, n: usize, keep: usize) {
+    pub(super) fn truncate_resize(&mut self, n: usize, keep: usize) {
         let keep = keep.min(self.n).min(n);
         self.n = n;
         self.r.truncate(keep * self.band);
@@ -74,7 +74,7 @@ impl BandedQr {
 
     /// The same triangle in a wider band (the extra columns zero), so that rows with more
     /// non-zeros (the derivative-jump rows of the smoothing term) can be rotated in.
-    pub fn widened(&self, band: usize) -> Self {
+    pub(super) fn widened(&self, band: usize) -> Self {
         debug_assert!(band >= self.band, "widening only");
         let mut out = BandedQr::new(self.n, band);
         for i in 0..self.n {
@@ -90,7 +90,7 @@ impl BandedQr {
     /// Entries at columns `>= n` must be zero. As in Dierckx's ordered processing, the
     /// triangle rows the row meets must have no entries beyond its last column (true when rows
     /// come with non-decreasing last columns, as observations in span order do).
-    pub fn add_row(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
+    pub(super) fn add_row(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
         // The common widths pass through an array, so that the inlined loop has a constant
         // length and unrolls.
         match h.len() {
@@ -143,7 +143,7 @@ impl BandedQr {
 
     /// Back substitution (Dierckx `fpback`); `None` when a diagonal entry is negligible, i.e.
     /// the observations do not determine every unknown (Schoenberg–Whitney violated).
-    pub fn solve(&self) -> Option<Vec<DVec3>> {
+    pub(super) fn solve(&self) -> Option<Vec<DVec3>> {
         let n = self.n;
         let b = self.band;
         let scale = (0..n).map(|i| self.r[i * b].abs()).fold(0.0, f64::max);
@@ -169,7 +169,7 @@ impl BandedQr {
     /// substitution with `Rᵀ` and a back substitution with `R` (for the Lagrange correction of
     /// a linearly constrained fit, Lawson & Hanson 1974 ch. 20). `None` on a negligible pivot,
     /// as [`BandedQr::solve`].
-    pub fn solve_normal(&self, g: &[f64]) -> Option<Vec<f64>> {
+    pub(super) fn solve_normal(&self, g: &[f64]) -> Option<Vec<f64>> {
         let n = self.n;
         let b = self.band;
         debug_assert_eq!(g.len(), n, "one entry per unknown");
@@ -203,7 +203,7 @@ impl BandedQr {
     }
 
     /// Sum of the diagonal entries (Dierckx's initial value for p is `n / Σ diag`).
-    pub fn diagonal_sum(&self) -> f64 {
+    pub(super) fn diagonal_sum(&self) -> f64 {
         (0..self.n).map(|i| self.r[i * self.band]).sum()
     }
 }

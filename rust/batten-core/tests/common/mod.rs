@@ -19,7 +19,7 @@ macro_rules! assert_near {
 }
 
 /// Distance between two values of one kind.
-pub trait Distance {
+pub(crate) trait Distance {
     /// |a − b|.
     fn distance(&self, other: &Self) -> f64;
 }
@@ -36,7 +36,7 @@ impl Distance for DVec3 {
 
 /// A full circle of radius `r` about the origin in the xy plane: rational quadratic with nine
 /// control points (Piegl & Tiller Ex. 7.2), exact.
-pub fn circle(r: f64) -> NurbsCurve {
+pub(crate) fn circle(r: f64) -> NurbsCurve {
     let s = std::f64::consts::FRAC_1_SQRT_2;
     let pts = [
         (1., 0.),
@@ -56,7 +56,7 @@ pub fn circle(r: f64) -> NurbsCurve {
 }
 
 /// A cubic S-bend: a B-spline whose curvature changes sign twice, a trap for local Newton.
-pub fn s_bend() -> NurbsCurve {
+pub(crate) fn s_bend() -> NurbsCurve {
     let pts = [
         (0., 0.),
         (1., 2.),
@@ -76,7 +76,7 @@ pub fn s_bend() -> NurbsCurve {
 /// explicitly: proptest's default looks for a `lib.rs` above the file, finds none for an
 /// integration test, warns and falls back to the same place. The seed comes from
 /// `PROPTEST_RNG_SEED` when set (the Makefile sets it on CI), else it is random.
-pub fn proptest_config(cases: u32) -> proptest::test_runner::Config {
+pub(crate) fn proptest_config(cases: u32) -> proptest::test_runner::Config {
     proptest::test_runner::Config {
         cases,
         failure_persistence: Some(Box::new(

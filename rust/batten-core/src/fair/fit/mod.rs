@@ -61,7 +61,7 @@ pub(crate) struct Target {
 
 impl Target {
     /// Knots are added until `F(∞) ≤ s` (Dierckx's rule).
-    pub fn exact(s: f64) -> Self {
+    pub(super) fn exact(s: f64) -> Self {
         Target { s, accept: s }
     }
 }

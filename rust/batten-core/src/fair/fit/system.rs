@@ -326,12 +326,12 @@ impl System {
     }
 
     /// `F(0)` as found by the search for p (NaN when there was none).
-    pub fn f_zero(&self) -> f64 {
+    pub(crate) fn f_zero(&self) -> f64 {
         self.f_zero
     }
 
     /// Number of data points.
-    pub fn data_count(&self) -> usize {
+    pub(crate) fn data_count(&self) -> usize {
         self.points.len()
     }
 

@@ -73,7 +73,7 @@ pub(crate) mod fixture {
     }
 
     /// Three horizontal and three vertical lines: 9 nodes, 12 edges, 4 faces, 1 boundary.
-    pub fn grid() -> Brep {
+    pub(crate) fn grid() -> Brep {
         let mut curves = Vec::new();
         for i in 0..3 {
             let c = i as f64;
