@@ -50,6 +50,7 @@ from batten_native import topology as _topology
 
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
+from .file_text import read_text
 from .fit_data import fit_data
 from .object_names import errors_named_by_object, objects_of, with_objects
 
@@ -175,10 +176,7 @@ def read_network(path) -> tuple[str, list[Curve]]:
     """The network file at ``path`` as ``(name, curves)``; NetworkFileError naming the file
     (and the problem) if it cannot be read or is not a valid network."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as e:
-        raise NetworkFileError(f"network file '{path}': {e.strerror or e}") from e
+    text = read_text(path, "network file")
     try:
         return network_from_json(text)
     except BattenError as e:

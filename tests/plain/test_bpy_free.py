@@ -9,6 +9,7 @@ ADDON = Path(__file__).resolve().parents[2] / "addon"
 BPY_FREE = (
     "batten",
     "batten.atomic_write",
+    "batten.file_text",
     "batten.fit_data",
     "batten.network_markers",
     "batten.object_names",

@@ -17,6 +17,8 @@ from pathlib import Path
 import numpy as np
 from batten_native import NetworkFileError
 
+from ..file_text import read_text
+
 #: The batten role a curve of each kind gets.
 ROLE_OF_KIND = {
     "station": "free",
@@ -44,10 +46,7 @@ def read_sections(path) -> tuple[str, list[PointCurve]]:
     """``(name, curves)`` from a neutral JSON or CSV point file; NetworkFileError naming the file
     (and the curve or row) when it cannot be read."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as e:
-        raise NetworkFileError(f"section file '{path}': {e.strerror or e}") from None
+    text = read_text(path, "section file")
     if path.suffix.lower() == ".csv":
         return path.stem, _read_csv(path, text)
     return _read_json(path, text)
