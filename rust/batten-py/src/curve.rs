@@ -3,7 +3,8 @@
 use batten_core::{KnotLayout, NetworkCurve, NurbsCurve, Role};
 use glam::DVec3;
 use numpy::{
-    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+    AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyArrayLike2, PyArrayMethods,
+    PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 
@@ -32,7 +33,7 @@ fn parse_role(name: &str, role: &str) -> PyResult<Role> {
 fn points_of(
     name: &str,
     what: &str,
-    a: &PyReadonlyArray2<'_, f64>,
+    a: &PyArrayLike2<'_, f64, AllowTypeChange>,
     cols: &[usize],
 ) -> PyResult<Vec<DVec3>> {
     let shape = a.shape();
@@ -117,9 +118,9 @@ impl Curve {
     fn py_new(
         name: &str,
         degree: usize,
-        knots: PyReadonlyArray1<'_, f64>,
-        points: PyReadonlyArray2<'_, f64>,
-        weights: Option<PyReadonlyArray1<'_, f64>>,
+        knots: PyArrayLike1<'_, f64, AllowTypeChange>,
+        points: PyArrayLike2<'_, f64, AllowTypeChange>,
+        weights: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
         role: &str,
     ) -> PyResult<Curve> {
         let pts = points_of(name, "points", &points, &[3])?;
@@ -136,7 +137,7 @@ impl Curve {
     #[pyo3(signature = (name, points, order, endpoint=false, bezier=false, cyclic=false, role="free"))]
     fn from_nurbs(
         name: &str,
-        points: PyReadonlyArray2<'_, f64>,
+        points: PyArrayLike2<'_, f64, AllowTypeChange>,
         order: usize,
         endpoint: bool,
         bezier: bool,
@@ -167,9 +168,9 @@ impl Curve {
     #[pyo3(signature = (name, co, left, right, cyclic=false, role="free"))]
     fn from_bezier(
         name: &str,
-        co: PyReadonlyArray2<'_, f64>,
-        left: PyReadonlyArray2<'_, f64>,
-        right: PyReadonlyArray2<'_, f64>,
+        co: PyArrayLike2<'_, f64, AllowTypeChange>,
+        left: PyArrayLike2<'_, f64, AllowTypeChange>,
+        right: PyArrayLike2<'_, f64, AllowTypeChange>,
         cyclic: bool,
         role: &str,
     ) -> PyResult<Curve> {
@@ -198,7 +199,7 @@ impl Curve {
     #[pyo3(signature = (name, points, cyclic=false, role="free"))]
     fn from_poly(
         name: &str,
-        points: PyReadonlyArray2<'_, f64>,
+        points: PyArrayLike2<'_, f64, AllowTypeChange>,
         cyclic: bool,
         role: &str,
     ) -> PyResult<Curve> {
@@ -275,7 +276,7 @@ impl Curve {
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
-        t: PyReadonlyArray1<'py, f64>,
+        t: PyArrayLike1<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let ts = t
             .as_slice()
@@ -312,7 +313,7 @@ impl Curve {
     fn curvature<'py>(
         &self,
         py: Python<'py>,
-        t: PyReadonlyArray1<'py, f64>,
+        t: PyArrayLike1<'py, f64, AllowTypeChange>,
     ) -> PyResult<ArrayPair<'py>> {
         let ts = t
             .as_slice()

@@ -6,7 +6,7 @@ use batten_core::{
     DEFAULT_PARAMETER_ITERATIONS, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
-use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -34,7 +34,7 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 pub(crate) fn fair_points<'py>(
     py: Python<'py>,
     name: &str,
-    points: PyReadonlyArray2<'py, f64>,
+    points: PyArrayLike2<'py, f64, AllowTypeChange>,
     degree: usize,
     tolerance: Option<f64>,
     noise: Option<f64>,
@@ -75,7 +75,11 @@ pub(crate) fn fair_points<'py>(
         corner_angle: corner_angle_deg.map(f64::to_radians),
         start_tangent: start_tangent.map(DVec3::from_array),
         end_tangent: end_tangent.map(DVec3::from_array),
-        model_tolerance: Tolerance::try_new(model_tolerance).map_err(core_err)?,
+        model_tolerance: Tolerance::try_new(model_tolerance).map_err(|_| {
+            arg_err(format!(
+                "curve '{name}': model_tolerance {model_tolerance} must be a positive finite number of metres"
+            ))
+        })?,
         max_parameter_iterations,
     };
     let faired = py.detach(|| {

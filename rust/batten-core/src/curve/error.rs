@@ -16,6 +16,15 @@ pub enum CurveError {
         /// The largest degree supported.
         max: usize,
     },
+    /// The order (degree + 1) of a spline given by its order, as Blender's NURBS splines are,
+    /// is outside what the kernel supports.
+    #[error("order {order} is outside 2..={max} (degree 1 to {})", max - 1)]
+    Order {
+        /// The order asked for.
+        order: usize,
+        /// The largest order supported.
+        max: usize,
+    },
     /// Not enough control points for the order.
     #[error("{count} control points are fewer than order {order} needs ({order} at least)")]
     TooFewPoints {

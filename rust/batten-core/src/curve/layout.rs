@@ -87,10 +87,10 @@ impl NurbsCurve {
         layout: KnotLayout,
         cyclic: bool,
     ) -> Result<NurbsCurve, CurveError> {
-        if order < 2 {
-            return Err(CurveError::Degree {
-                degree: order.saturating_sub(1),
-                max: super::MAX_DEGREE,
+        if !(2..=super::MAX_DEGREE + 1).contains(&order) {
+            return Err(CurveError::Order {
+                order,
+                max: super::MAX_DEGREE + 1,
             });
         }
         if points.len() < order {

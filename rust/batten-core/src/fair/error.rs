@@ -59,7 +59,7 @@ pub enum FairError {
     #[error("the smoothing factor S = {0} must be a positive finite number of square metres")]
     SmoothingFactor(f64),
     /// The corner-detection angle is not in (0, π).
-    #[error("the corner angle {0} rad must lie strictly between 0 and π")]
+    #[error("the corner angle {}° must lie strictly between 0° and 180°", .0.to_degrees())]
     CornerAngle(f64),
     /// A corner index given by the caller does not name an interior point.
     #[error("corner index {index} is not an interior point of the {count} points given")]

@@ -88,9 +88,14 @@ impl Network {
         }
         match header.version {
             Some(v) if (1..=NETWORK_VERSION).contains(&v) => {}
-            Some(v) => {
+            Some(v) if v > NETWORK_VERSION => {
                 return Err(Error::Format(format!(
                     "version {v} is newer than this batten reads ({NETWORK_VERSION})"
+                )))
+            }
+            Some(v) => {
+                return Err(Error::Format(format!(
+                    "version {v} is not a batten network version (versions start at 1)"
                 )))
             }
             None => return Err(Error::Format("missing \"version\"".to_owned())),

@@ -1,0 +1,63 @@
+"""Hostile input found by fuzzing (issue 21), each a clear BattenError naming the curve or
+the file and the parameter, or a finite result: the error-message and argument-type cases."""
+
+import json
+
+import batten.api as api
+import batten_native as bn
+import numpy as np
+import pytest
+
+
+def test_array_likes_are_accepted_as_the_stub_promises():
+    """Python lists, ints and float32 arrays are converted (they raised TypeError before)."""
+    c = bn.Curve.from_poly("p", [[0, 0, 0], [1, 2, 2]])
+    assert c.arc_length() == pytest.approx(3.0, abs=1e-12)
+    assert np.allclose(c.evaluate([0.5]), [[0.5, 1.0, 1.0]])
+    assert np.allclose(c.evaluate(np.array([1.0], dtype=np.float32)), [[1, 2, 2]])
+    q = bn.Curve("q", 1, [0, 0, 1, 1], [[0, 0, 0], [3, 4, 0]])
+    assert q.arc_length() == pytest.approx(5.0, abs=1e-12)
+    pts = [[x, 0.1 * x * x, 0] for x in range(8)]
+    curve, report = bn.fair_points("st", pts, tolerance=1e-3)
+    assert report["max_deviation"] <= 1e-3 and np.isfinite(curve.control_points).all()
+
+
+def test_model_tolerance_zero_names_the_curve_and_the_parameter():
+    with pytest.raises(bn.InvalidArgumentError, match=r"curve 'st 4': model_tolerance 0 must be"):
+        bn.fair_points("st 4", np.random.default_rng(1).random((20, 3)), model_tolerance=0)
+
+
+def test_order_one_says_order_not_degree_zero():
+    with pytest.raises(bn.CurveError, match=r"curve 'n': order 1 is outside 2\.\.=16") as e:
+        bn.Curve.from_nurbs("n", [[0, 0, 0], [1, 0, 0]], 1)
+    assert e.value.curve == "n"
+
+
+def test_corner_angles_are_printed_in_degrees():
+    with pytest.raises(bn.FairError, match="the corner angle 200° must lie strictly between 0° and 180°"):
+        bn.fair_points("st", np.random.default_rng(2).random((20, 3)), corner_angle_deg=200)
+
+
+@pytest.mark.parametrize(
+    ("version", "says"),
+    [(0, "version 0 is not a batten network version"), (99, "version 99 is newer than this batten reads")],
+)
+def test_a_version_below_one_is_not_called_newer(tmp_path, version, says):
+    f = tmp_path / "net.json"
+    f.write_text(json.dumps({"format": "batten-network", "version": version, "name": "n", "curves": []}))
+    with pytest.raises(bn.NetworkFileError, match=says):
+        api.read_network(f)
+
+
+def test_a_network_file_that_is_not_utf8_is_a_network_file_error(tmp_path):
+    f = tmp_path / "latin1.json"
+    f.write_bytes('{"name": "Ægir"}'.encode("latin-1"))
+    with pytest.raises(bn.NetworkFileError, match=r"network file '.*latin1.json': not UTF-8 text"):
+        api.read_network(f)
+
+
+def test_a_byte_order_mark_is_read_past(tmp_path, examples_dir):
+    f = tmp_path / "bom.json"
+    f.write_bytes(b"\xef\xbb\xbf" + (examples_dir / "wigley.json").read_bytes())
+    name, curves = api.read_network(f)
+    assert name == "wigley" and len(curves) == 14
