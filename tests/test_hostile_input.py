@@ -61,3 +61,25 @@ def test_a_byte_order_mark_is_read_past(tmp_path, examples_dir):
     f.write_bytes(b"\xef\xbb\xbf" + (examples_dir / "wigley.json").read_bytes())
     name, curves = api.read_network(f)
     assert name == "wigley" and len(curves) == 14
+
+
+def _cubic():
+    return bn.Curve("c", 3, [0, 0, 0, 0, 1, 1, 1, 1], [[0, 0, 0], [1, 1, 0], [2, -1, 0], [3, 0, 0]])
+
+
+def test_parameters_outside_the_domain_are_clamped_as_documented():
+    """evaluate([2.0]) on [0, 1] is the end point, not the extrapolated cubic (6, 24, −12)."""
+    c = _cubic()
+    assert np.array_equal(c.evaluate([2.0, -1.0]), c.evaluate([1.0, 0.0]))
+    assert np.array_equal(c.derivatives(2.0), c.derivatives(1.0))
+    pts, kappa = c.curvature([5.0])
+    assert np.array_equal(pts, c.evaluate([1.0])) and np.isfinite(kappa).all()
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), -float("inf")])
+def test_a_non_finite_parameter_is_an_error_naming_the_curve(bad):
+    c = _cubic()
+    for call in (lambda: c.evaluate([0.5, bad]), lambda: c.derivatives(bad), lambda: c.curvature([bad])):
+        with pytest.raises(bn.CurveError, match=r"curve 'c': parameter .* is not a finite number") as e:
+            call()
+        assert e.value.curve == "c"

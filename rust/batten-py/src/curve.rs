@@ -1,6 +1,6 @@
 //! `batten_native.Curve`: a named designer curve (NURBS) with its role.
 
-use batten_core::{KnotLayout, NetworkCurve, NurbsCurve, Role};
+use batten_core::{CurveError, KnotLayout, NetworkCurve, NurbsCurve, Role};
 use glam::DVec3;
 use numpy::{
     AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyArrayLike2, PyArrayMethods,
@@ -9,6 +9,16 @@ use numpy::{
 use pyo3::prelude::*;
 
 use crate::errors::{arg_err, curve_err, guard};
+
+/// The parameters `ts` for evaluating curve `name`: every one finite (a NaN or infinite
+/// parameter is a `CurveError` naming the curve; finite ones outside the domain are clamped by
+/// the core).
+fn finite_parameters<'a>(name: &str, ts: &'a [f64]) -> PyResult<&'a [f64]> {
+    match ts.iter().find(|t| !t.is_finite()) {
+        Some(&bad) => Err(curve_err(name, CurveError::NonFiniteParameter(bad))),
+        None => Ok(ts),
+    }
+}
 
 /// Below this many parameters evaluation stays on one thread (spawning costs more than it saves).
 const PARALLEL_MIN: usize = 1 << 15;
@@ -281,6 +291,7 @@ impl Curve {
         let ts = t
             .as_slice()
             .map_err(|_| arg_err("t must be a contiguous 1-D float64 array"))?;
+        let ts = finite_parameters(self.name(), ts)?;
         let curve = &self.inner.curve;
         let out = py.detach(|| {
             guard(self.name(), || {
@@ -304,6 +315,7 @@ impl Curve {
 
     /// C(t), C'(t), C''(t), C'''(t) as a (4, 3) array.
     fn derivatives<'py>(&self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        finite_parameters(self.name(), &[t])?;
         let d = guard(self.name(), || Ok(self.inner.curve.derivs(t)))?;
         points_array(py, &[d.point, d.d1, d.d2, d.d3])
     }
@@ -318,6 +330,7 @@ impl Curve {
         let ts = t
             .as_slice()
             .map_err(|_| arg_err("t must be a contiguous 1-D float64 array"))?;
+        let ts = finite_parameters(self.name(), ts)?;
         let curve = &self.inner.curve;
         let (pts, ks) = py.detach(|| {
             guard(self.name(), || {

@@ -134,6 +134,9 @@ pub enum CurveError {
     /// An accuracy argument must be positive and finite.
     #[error("accuracy {0} must be a positive finite number")]
     Accuracy(f64),
+    /// A parameter to evaluate at is NaN or infinite.
+    #[error("parameter {0} is not a finite number")]
+    NonFiniteParameter(f64),
     /// A query point is not finite.
     #[error("query point has a non-finite coordinate")]
     NonFiniteQuery,

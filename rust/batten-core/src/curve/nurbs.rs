@@ -153,6 +153,14 @@ impl NurbsCurve {
         self.rational
     }
 
+    /// `t` clamped into the domain (a parameter outside it evaluates at the nearer end, never
+    /// on the extrapolated polynomial).
+    #[inline]
+    pub(crate) fn clamp(&self, t: f64) -> f64 {
+        let (a, b) = self.domain();
+        t.clamp(a, b)
+    }
+
     /// The parameter domain `[knots[p], knots[n]]`.
     pub fn domain(&self) -> (f64, f64) {
         (self.knots[self.degree], self.knots[self.cw.len()])
@@ -161,6 +169,7 @@ impl NurbsCurve {
     /// The point C(t); `t` is clamped into the domain.
     #[inline]
     pub fn point(&self, t: f64) -> DVec3 {
+        let t = self.clamp(t);
         let p = self.degree;
         let span = find_span(&self.knots, p, self.cw.len(), t);
         let mut b = [0.0; MAX_ORDER];
@@ -172,7 +181,8 @@ impl NurbsCurve {
         acc.truncate() / acc.w
     }
 
-    /// Evaluate at many parameters, writing `x, y, z` triples into `out` (`3 * ts.len()` long).
+    /// Evaluate at many parameters, writing `x, y, z` triples into `out` (`3 * ts.len()` long);
+    /// each parameter is clamped into the domain.
     ///
     /// The inner loop allocates nothing; parameters may come in any order.
     pub fn points_into(&self, ts: &[f64], out: &mut [f64]) {
@@ -185,6 +195,7 @@ impl NurbsCurve {
         let n = self.cw.len();
         let mut b = [0.0; MAX_ORDER];
         for (t, o) in ts.iter().zip(out.chunks_exact_mut(3)) {
+            let t = &self.clamp(*t);
             let span = find_span(&self.knots, p, n, *t);
             basis_funs(&self.knots, span, *t, p, &mut b);
             let cw = &self.cw[span - p..=span];
@@ -197,8 +208,10 @@ impl NurbsCurve {
         }
     }
 
-    /// C(t) and its first three derivatives (A3.2 with A2.3; rational curves by A4.2, eq. 4.8).
+    /// C(t) and its first three derivatives (A3.2 with A2.3; rational curves by A4.2, eq. 4.8);
+    /// `t` is clamped into the domain.
     pub fn derivs(&self, t: f64) -> CurveDerivs {
+        let t = self.clamp(t);
         let span = find_span(&self.knots, self.degree, self.cw.len(), t);
         self.derivs_in_span(span, t)
     }
