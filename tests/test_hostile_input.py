@@ -83,3 +83,25 @@ def test_a_non_finite_parameter_is_an_error_naming_the_curve(bad):
         with pytest.raises(bn.CurveError, match=r"curve 'c': parameter .* is not a finite number") as e:
             call()
         assert e.value.curve == "c"
+
+
+def test_a_length_check_finer_than_f64_resolves_is_refused_not_frozen(examples_dir, tmp_path):
+    """check_lengths on the frigate's 120 m deck at tolerance 1e-11 (an arc-length accuracy of
+    1e-14 m) froze Blender; it is now refused at once, naming the curve."""
+    _, curves = api.read_network(examples_dir / "frigate_network.json")
+    deck = [c for c in curves if c.name == "deck"]
+    refused = r"curve 'deck': accuracy 1\.000e-14 m is finer than f64 resolves"
+    with pytest.raises(bn.CurveError, match=refused):
+        bn.check_lengths(deck, 1e-11)
+    bn.check_lengths(deck, 1e-7)  # the smallest tolerance the panel offers is fine
+    hull = api.load_network(examples_dir / "frigate_network.json")
+    with pytest.raises(bn.CurveError, match="finer than f64 resolves"):
+        api.export_network(hull, tmp_path / "frigate.json", tolerance=1e-11)
+    assert not (tmp_path / "frigate.json").exists()
+
+
+def test_lengths_that_overflow_are_errors_not_hangs():
+    with pytest.raises(bn.CurveError, match="curve 'big': the curve's length is not finite"):
+        bn.Curve.from_poly("big", [[0, 0, 0], [1e200, 0, 0]]).arc_length()
+    with pytest.raises(bn.CurveError, match="curve 'big': accuracy .* is finer than f64 resolves"):
+        bn.Curve.from_poly("big", [[0, 0, 0], [1e150, 0, 0]]).arc_length()

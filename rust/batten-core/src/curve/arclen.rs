@@ -19,6 +19,12 @@ pub(crate) const GL8: [(f64, f64); 8] = [
 
 const MAX_DEPTH: u32 = 40;
 
+/// Relative rounding noise of one Gauss–Legendre estimate (a sum of 8 terms, each a length
+/// from three squared coordinates): 16 ulps. A difference between two estimates below this
+/// share of their size is rounding, not quadrature error, so halving further cannot help, and
+/// an accuracy finer than this share of the length cannot be reached in f64.
+const ROUNDING: f64 = 16.0 * f64::EPSILON;
+
 impl NurbsCurve {
     /// Length of the whole curve, within `accuracy` (metres).
     pub fn arc_length(&self, accuracy: f64) -> Result<f64, CurveError> {
@@ -30,6 +36,11 @@ impl NurbsCurve {
     /// `accuracy`. Each knot span is integrated separately (the integrand is smooth there);
     /// a span's estimate is accepted when it agrees with the sum over its halves within its
     /// share of the accuracy budget, otherwise both halves recurse with half the budget.
+    ///
+    /// Errors: an accuracy that is not positive and finite, or finer than f64 resolves for this
+    /// length ([`CurveError::AccuracyBelowResolution`]: `ROUNDING` × the length), and a length
+    /// that is not finite ([`CurveError::NonFiniteLength`], coordinates too large). A halving that
+    /// cannot split its interval any more (spans of a few ulps) ends the recursion there.
     pub fn arc_length_between(&self, t0: f64, t1: f64, accuracy: f64) -> Result<f64, CurveError> {
         if !(accuracy.is_finite() && accuracy > 0.0) {
             return Err(CurveError::Accuracy(accuracy));
@@ -44,12 +55,27 @@ impl NurbsCurve {
         breaks.push(hi);
         breaks.dedup();
         let spans = (breaks.len() - 1) as f64;
+        let wholes: Vec<f64> = breaks.windows(2).map(|w| self.gauss(w[0], w[1])).collect();
+        let estimate: f64 = wholes.iter().sum();
+        if !estimate.is_finite() {
+            return Err(CurveError::NonFiniteLength);
+        }
+        let resolvable = ROUNDING * estimate;
+        if accuracy < resolvable {
+            return Err(CurveError::AccuracyBelowResolution {
+                accuracy,
+                resolvable,
+            });
+        }
         let mut total = 0.0;
-        for w in breaks.windows(2) {
-            let whole = self.gauss(w[0], w[1]);
+        for (w, &whole) in breaks.windows(2).zip(&wholes) {
             total += self.adaptive(w[0], w[1], whole, accuracy / spans, 0);
         }
-        Ok(total)
+        if total.is_finite() {
+            Ok(total)
+        } else {
+            Err(CurveError::NonFiniteLength)
+        }
     }
 
     fn gauss(&self, a: f64, b: f64) -> f64 {
@@ -62,11 +88,79 @@ impl NurbsCurve {
 
     fn adaptive(&self, a: f64, b: f64, whole: f64, budget: f64, depth: u32) -> f64 {
         let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            return whole; // the interval is a few ulps wide: nothing left to halve
+        }
         let (left, right) = (self.gauss(a, m), self.gauss(m, b));
-        if (left + right - whole).abs() <= budget || depth >= MAX_DEPTH {
+        let diff = (left + right - whole).abs();
+        let noise = ROUNDING * (left.abs() + right.abs());
+        if diff <= budget || diff <= noise || !diff.is_finite() || depth >= MAX_DEPTH {
             return left + right;
         }
         self.adaptive(a, m, left, 0.5 * budget, depth + 1)
             + self.adaptive(m, b, right, 0.5 * budget, depth + 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::*;
+
+    fn line(to: f64) -> NurbsCurve {
+        NurbsCurve::try_new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![DVec3::ZERO, DVec3::X * to],
+            None,
+        )
+        .expect("line")
+    }
+
+    #[test]
+    fn an_accuracy_f64_cannot_reach_is_refused_not_chased() {
+        // 1e150 m: an absolute 1e-9 m is 1e-159 of the length (the recursion used to halve its
+        // budget to depth 40, 2^40 evaluations).
+        assert!(
+            matches!(
+                line(1e150).arc_length(1e-9),
+                Err(CurveError::AccuracyBelowResolution { resolvable, .. }) if resolvable > 1e130
+            ),
+            "refused with what f64 resolves"
+        );
+        // The same relative accuracy a designer asks for is met exactly.
+        let l = line(120.0).arc_length(1e-9).expect("120 m to 1 nm");
+        assert!((l - 120.0).abs() <= 1e-9, "{l}");
+    }
+
+    #[test]
+    fn an_overflowing_length_is_an_error() {
+        assert_eq!(
+            line(1e200).arc_length(1e-3),
+            Err(CurveError::NonFiniteLength),
+            "|C'| = 1e200 squares past f64"
+        );
+    }
+
+    #[test]
+    fn a_span_of_a_few_ulps_ends_the_recursion() {
+        // A piece over [0, 5e-324]: halving cannot split the span; the call returns at once
+        // (it used to recurse to depth 40), with a finite length or an error, never NaN.
+        let c = NurbsCurve::try_new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0)],
+            None,
+        )
+        .expect("line");
+        let (left, _) = c
+            .split(f64::from_bits(1))
+            .expect("split at the first subnormal");
+        let length = left.arc_length(1e-9);
+        assert!(
+            length.as_ref().map_or(true, |l| l.is_finite()),
+            "{length:?}"
+        );
     }
 }

@@ -134,6 +134,17 @@ pub enum CurveError {
     /// An accuracy argument must be positive and finite.
     #[error("accuracy {0} must be a positive finite number")]
     Accuracy(f64),
+    /// An accuracy finer than f64 can resolve for the quantity measured.
+    #[error("accuracy {accuracy:.3e} m is finer than f64 resolves for this curve ({resolvable:.3e} m); ask for a coarser accuracy or tolerance")]
+    AccuracyBelowResolution {
+        /// The accuracy asked for.
+        accuracy: f64,
+        /// The finest accuracy f64 resolves here.
+        resolvable: f64,
+    },
+    /// The curve's length overflows f64 (coordinates or derivatives too large).
+    #[error("the curve's length is not finite: its derivative overflows f64 (coordinates too large, or a knot span too short)")]
+    NonFiniteLength,
     /// A parameter to evaluate at is NaN or infinite.
     #[error("parameter {0} is not a finite number")]
     NonFiniteParameter(f64),
