@@ -105,3 +105,21 @@ def test_lengths_that_overflow_are_errors_not_hangs():
         bn.Curve.from_poly("big", [[0, 0, 0], [1e200, 0, 0]]).arc_length()
     with pytest.raises(bn.CurveError, match="curve 'big': accuracy .* is finer than f64 resolves"):
         bn.Curve.from_poly("big", [[0, 0, 0], [1e150, 0, 0]]).arc_length()
+
+
+def test_results_that_overflow_are_errors_naming_the_curve(examples_dir):
+    """Never an infinite or NaN figure as if it were a result (issue 21)."""
+    cubic = _cubic()
+    with pytest.raises(bn.CurveError, match="curve 'c': the distance to the query point overflows") as e:
+        cubic.nearest([1e300] * 3)
+    assert e.value.curve == "c"
+    assert cubic.nearest([3, 1, 0])[1] == pytest.approx(1.0)  # an ordinary query is unchanged
+    huge = bn.Curve("huge", 3, cubic.knots, cubic.control_points * 1e200)
+    with pytest.raises(bn.CurveError, match="curve 'huge': its fairness figures overflow"):
+        bn.fairness(huge)
+    _, curves = api.read_network(examples_dir / "wigley.json")
+    scaled = [
+        bn.Curve(c.name, c.degree, c.knots, c.control_points * 1e150, c.weights, c.role) for c in curves
+    ]
+    with pytest.raises(bn.NoSurfaceError, match="the surface's figures overflow f64 \\(volume inf"):
+        bn.build_surface(scaled, 1e146, 4)

@@ -1,9 +1,9 @@
 //! Curve fairing: `fair_points` (Dierckx smoothing spline) and `fairness` metrics.
 
 use batten_core::{
-    fair_points as core_fair, fairness_metrics, FairOptions, FairnessMetrics, Smoothing, Tolerance,
-    DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE, DEFAULT_FAIR_TOLERANCE,
-    DEFAULT_PARAMETER_ITERATIONS, DEFAULT_TOLERANCE,
+    fair_points as core_fair, fairness_metrics, CurveError, FairOptions, FairnessMetrics,
+    Smoothing, Tolerance, DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE,
+    DEFAULT_FAIR_TOLERANCE, DEFAULT_PARAMETER_ITERATIONS, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
 use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{arg_err, core_err, guard};
+use crate::errors::{arg_err, core_err, curve_err, guard};
 
 fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
     d.set_item("inflections", m.inflections)?;
@@ -132,6 +132,10 @@ pub(crate) fn fairness<'py>(
     let m = guard(&curve.inner.name, || {
         Ok(fairness_metrics(&curve.inner.curve))
     })?;
+    let figures = [m.fairness_energy, m.max_curvature];
+    if !figures.iter().all(|f| f.is_finite()) || !m.plane_normal.is_finite() {
+        return Err(curve_err(&curve.inner.name, CurveError::FiguresOverflow));
+    }
     let d = PyDict::new(py);
     metrics_into(&d, &m)?;
     Ok(d)

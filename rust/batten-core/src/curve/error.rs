@@ -148,6 +148,13 @@ pub enum CurveError {
     /// A parameter to evaluate at is NaN or infinite.
     #[error("parameter {0} is not a finite number")]
     NonFiniteParameter(f64),
+    /// The distance from a query point to the curve overflows f64 (the point or the curve lies
+    /// too far out).
+    #[error("the distance to the query point overflows f64 (coordinates too large)")]
+    DistanceOverflow,
+    /// A figure measured on the curve (curvature, its integral) overflows f64.
+    #[error("its fairness figures overflow f64 (coordinates too large)")]
+    FiguresOverflow,
     /// A query point is not finite.
     #[error("query point has a non-finite coordinate")]
     NonFiniteQuery,

@@ -68,6 +68,9 @@ impl BezierDecomposition {
         // curves with very unequal spans: 54 mm off on a 230 m waterline.)
         let leaf = 0.5 * accuracy;
         let mut best = self.endpoint_nearest(q);
+        if !best.distance.is_finite() {
+            return Err(CurveError::DistanceOverflow);
+        }
         // True while `best` is the exact minimum of a convex piece (no polish needed).
         let mut polished = false;
         let mut arena: Vec<BezierPiece> = self.pieces.clone();

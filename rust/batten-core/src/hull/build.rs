@@ -290,6 +290,13 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
         warnings,
     };
     let report = report::report(network, &topology, &patched, &mesh, findings);
+    let figures = [report.volume, report.max_gap, report.max_normal_angle_deg];
+    if !figures.iter().all(|f| f.is_finite()) {
+        return Err(Error::NoSurface(format!(
+            "network '{}': the surface's figures overflow f64 (volume {}, max gap {}); its coordinates are too large",
+            network.name, report.volume, report.max_gap
+        )));
+    }
     // The mesh names the topology's face of every polygon (skipped faces leave gaps).
     for p in &mut mesh.face_patch {
         *p = patched[*p as usize].face as u32;
