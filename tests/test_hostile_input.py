@@ -123,3 +123,23 @@ def test_results_that_overflow_are_errors_naming_the_curve(examples_dir):
     ]
     with pytest.raises(bn.NoSurfaceError, match="the surface's figures overflow f64 \\(volume inf"):
         bn.build_surface(scaled, 1e146, 4)
+
+
+def test_weights_that_overflow_or_underflow_are_refused():
+    """w·P must be representable: evaluate returned inf, and network_to_json wrote null."""
+    pts = [[0, 0, 0], [1e300, 0, 0], [2, 0, 0]]
+    with pytest.raises(
+        bn.CurveError, match="curve 'w': control point 1 times its weight is not representable"
+    ):
+        bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 1e10, 1.0])
+    with pytest.raises(bn.CurveError, match="control point 0 times its weight"):
+        bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], [[1, 0, 0], [1, 1, 0], [2, 0, 0]], [1e-320, 1.0, 1.0])
+
+
+@pytest.mark.parametrize("edit", ["split", "insert_knot"])
+def test_an_edit_at_the_first_subnormal_is_refused(edit):
+    """split(5e-324) and insert_knot(5e-324, 3) made curves that evaluate to NaN."""
+    c = _cubic()
+    t = float(np.nextafter(0, 1))
+    with pytest.raises(bn.CurveError, match="curve 'c': an edit at parameter 5e-324 leaves a knot span"):
+        c.split(t) if edit == "split" else c.insert_knot(t, 3)

@@ -144,23 +144,40 @@ mod tests {
     }
 
     #[test]
-    fn a_span_of_a_few_ulps_ends_the_recursion() {
-        // A piece over [0, 5e-324]: halving cannot split the span; the call returns at once
-        // (it used to recurse to depth 40), with a finite length or an error, never NaN.
+    fn a_knot_span_of_1e_300_returns_at_once() {
+        // |C'| ~ 1e300 over a span of 1e-300: the length is not computable in f64 (its
+        // derivative squares past f64) and is refused at once instead of halving to depth 40.
         let c = NurbsCurve::try_new(
-            1,
-            vec![0.0, 0.0, 1.0, 1.0],
-            vec![DVec3::ZERO, DVec3::new(3.0, 4.0, 0.0)],
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1e-300, 1e-300, 1e-300, 1e-300],
+            vec![
+                DVec3::ZERO,
+                DVec3::new(1.0, 1.0, 0.0),
+                DVec3::new(2.0, -1.0, 0.0),
+                DVec3::new(3.0, 0.0, 0.0),
+            ],
             None,
         )
-        .expect("line");
-        let (left, _) = c
-            .split(f64::from_bits(1))
-            .expect("split at the first subnormal");
-        let length = left.arc_length(1e-9);
+        .expect("a valid, if extreme, cubic");
+        assert_eq!(
+            c.arc_length(1e-9),
+            Err(CurveError::NonFiniteLength),
+            "refused"
+        );
+        // Splitting a curve at the first subnormal would leave such a span, and is refused.
         assert!(
-            length.as_ref().map_or(true, |l| l.is_finite()),
-            "{length:?}"
+            matches!(
+                line(5.0).split(f64::from_bits(1)),
+                Err(CurveError::SpanTooShort { .. })
+            ),
+            "split at 5e-324"
+        );
+        assert!(
+            matches!(
+                line(5.0).insert_knot(f64::from_bits(1), 1),
+                Err(CurveError::SpanTooShort { .. })
+            ),
+            "knot inserted at 5e-324"
         );
     }
 }

@@ -57,7 +57,7 @@ impl NurbsCurve {
         if l + 1 < k - s {
             qw[l + 1..k - s].copy_from_slice(&rw[1..k - s - l]);
         }
-        Ok(NurbsCurve::new_unchecked(p, uq, qw))
+        NurbsCurve::new_unchecked(p, uq, qw).resolvable(t)
     }
 
     /// Split the curve at an interior parameter `t` into the pieces on `[start, t]` and
@@ -76,10 +76,35 @@ impl NurbsCurve {
         let a = knots.partition_point(|&u| u < t);
         let mut left_knots = knots[..a + p].to_vec();
         left_knots.push(t);
-        let left = NurbsCurve::new_unchecked(p, left_knots, cw[..a].to_vec());
+        let left = NurbsCurve::new_unchecked(p, left_knots, cw[..a].to_vec()).resolvable(t)?;
         let mut right_knots = vec![t];
         right_knots.extend_from_slice(&knots[a..]);
-        let right = NurbsCurve::new_unchecked(p, right_knots, cw[a - 1..].to_vec());
+        let right =
+            NurbsCurve::new_unchecked(p, right_knots, cw[a - 1..].to_vec()).resolvable(t)?;
         Ok((left, right))
+    }
+
+    /// This curve, made by an edit at `t`, if f64 can still evaluate it: every homogeneous
+    /// control point finite with a positive normal weight, and every non-empty knot span wide
+    /// enough that its reciprocal is finite (a span of a few subnormals, as a split or knot
+    /// insertion at 5e-324 makes, evaluates to NaN). Else [`CurveError::SpanTooShort`] or
+    /// [`CurveError::WeightedPointOverflow`].
+    fn resolvable(self, t: f64) -> Result<NurbsCurve, CurveError> {
+        if let Some(span) = self
+            .knots()
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .find(|&d| d > 0.0 && !(1.0 / d).is_finite())
+        {
+            return Err(CurveError::SpanTooShort { t, span });
+        }
+        if let Some(index) = self
+            .homogeneous_points()
+            .iter()
+            .position(|c| !(c.is_finite() && c.w >= f64::MIN_POSITIVE))
+        {
+            return Err(CurveError::WeightedPointOverflow { index });
+        }
+        Ok(self)
     }
 }

@@ -95,6 +95,13 @@ pub enum CurveError {
         /// The offending value.
         value: f64,
     },
+    /// A control point times its weight is not representable (overflows, or the weight is
+    /// below the smallest normal f64).
+    #[error("control point {index} times its weight is not representable in f64 (overflow or a subnormal weight)")]
+    WeightedPointOverflow {
+        /// Index of the control point.
+        index: usize,
+    },
     /// The number of weights differs from the number of control points.
     #[error("{got} weights given for {expected} control points")]
     WeightCount {
@@ -145,6 +152,16 @@ pub enum CurveError {
     /// The curve's length overflows f64 (coordinates or derivatives too large).
     #[error("the curve's length is not finite: its derivative overflows f64 (coordinates too large, or a knot span too short)")]
     NonFiniteLength,
+    /// An edit at `t` would leave a knot span too short for f64 to evaluate.
+    #[error(
+        "an edit at parameter {t:e} leaves a knot span of {span:e}, too short for f64 to evaluate"
+    )]
+    SpanTooShort {
+        /// Where the edit was made.
+        t: f64,
+        /// The span it leaves.
+        span: f64,
+    },
     /// A parameter to evaluate at is NaN or infinite.
     #[error("parameter {0} is not a finite number")]
     NonFiniteParameter(f64),

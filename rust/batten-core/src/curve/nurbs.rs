@@ -81,7 +81,7 @@ impl NurbsCurve {
         let rational = weights
             .as_ref()
             .is_some_and(|w| w.iter().any(|&v| v != 1.0));
-        let cw = match &weights {
+        let cw: Vec<DVec4> = match &weights {
             Some(w) => points
                 .iter()
                 .zip(w)
@@ -89,6 +89,14 @@ impl NurbsCurve {
                 .collect(),
             None => points.iter().map(|p| p.extend(1.0)).collect(),
         };
+        // w·P must be representable: a weight below the smallest normal f64 or a product that
+        // overflows would evaluate to NaN or inf.
+        if let Some(index) = cw
+            .iter()
+            .position(|c| !(c.is_finite() && c.w >= f64::MIN_POSITIVE))
+        {
+            return Err(CurveError::WeightedPointOverflow { index });
+        }
         Ok(NurbsCurve {
             degree,
             knots,
