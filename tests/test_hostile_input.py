@@ -143,3 +143,25 @@ def test_an_edit_at_the_first_subnormal_is_refused(edit):
     t = float(np.nextafter(0, 1))
     with pytest.raises(bn.CurveError, match="curve 'c': an edit at parameter 5e-324 leaves a knot span"):
         c.split(t) if edit == "split" else c.insert_knot(t, 3)
+
+
+def test_a_reversal_that_rounds_knots_together_is_refused():
+    """Knots ending at 1e17: a + b − u rounds 0.3 onto 1e17, the curve fell apart (NaN)."""
+    pts = [[0, 0, 0], [1, 1, 0], [2, -1, 0], [3, 0, 0], [4, 0, 0]]
+    c = bn.Curve("r", 3, [0, 0, 0, 0, 0.3, 1e17, 1e17, 1e17, 1e17], pts)
+    with pytest.raises(bn.CurveError, match="curve 'r': knot 100000000000000000 is repeated 5 times") as e:
+        c.reversed()
+    assert e.value.curve == "r"
+    ok = bn.Curve("ok", 3, [0, 0, 0, 0, 0.3, 1, 1, 1, 1], pts).reversed()
+    assert np.allclose(ok.knots, [0, 0, 0, 0, 0.7, 1, 1, 1, 1])
+
+
+def test_network_text_errors_name_the_curve_or_say_what_is_wrong(examples_dir):
+    text = (examples_dir / "wigley.json").read_text()
+    assert bn.network_from_json("\ufeff" + text)[0] == "wigley"  # a byte-order mark is read past
+    with pytest.raises(bn.NetworkFileError, match=r"not valid JSON \(trailing characters"):
+        bn.network_from_json(text + "x")
+    data = json.loads(text)
+    del data["curves"][2]["points"]
+    with pytest.raises(bn.NetworkFileError, match=r"curve 2 \('station -12\.5'\): missing field `points`"):
+        bn.network_from_json(json.dumps(data))

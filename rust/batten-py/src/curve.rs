@@ -419,8 +419,13 @@ impl Curve {
     }
 
     /// The curve traversed the other way.
-    fn reversed(&self) -> Curve {
-        self.wrap(self.inner.curve.reversed())
+    fn reversed(&self) -> PyResult<Curve> {
+        let r = self
+            .inner
+            .curve
+            .try_reversed()
+            .map_err(|e| curve_err(self.name(), e))?;
+        Ok(self.wrap(r))
     }
 
     /// Parameters of interior corners where the tangent turns by more than `min_angle_deg`.

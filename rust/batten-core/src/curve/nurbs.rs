@@ -269,6 +269,15 @@ impl NurbsCurve {
         NurbsCurve::new_unchecked(self.degree, knots, cw)
     }
 
+    /// [`NurbsCurve::reversed`], checked: near the top of a large knot range, `a + b − u` can
+    /// round distinct knots together so that the curve falls apart (knots ending at 1e17);
+    /// such a reversal is refused with the knot error instead of evaluating to NaN.
+    pub fn try_reversed(&self) -> Result<NurbsCurve, CurveError> {
+        let r = self.reversed();
+        validate_knots(&r.knots, r.degree, r.cw.len())?;
+        Ok(r)
+    }
+
     /// Multiplicity of the knot value `u` (exact comparison).
     pub(crate) fn multiplicity(&self, u: f64) -> usize {
         self.knots.iter().filter(|&&k| k == u).count()

@@ -43,6 +43,22 @@ struct CurveRecord {
     weights: Option<Vec<f64>>,
 }
 
+/// A network file as read: the curves kept as JSON values first, so that an error in one
+/// names the curve (by index and name) rather than a line and column.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileIn {
+    /// Checked by [`Header`] first; declared so that it is not an unknown field.
+    #[serde(rename = "format")]
+    _format: String,
+    /// Checked by [`Header`] first.
+    #[serde(rename = "version")]
+    _version: u32,
+    #[serde(default)]
+    name: String,
+    curves: Vec<serde_json::Value>,
+}
+
 #[derive(Deserialize)]
 struct Header {
     format: Option<String>,
@@ -79,8 +95,10 @@ impl Network {
 
     /// Read a network from JSON text, validating every curve; an error names the curve.
     pub fn from_json(text: &str) -> Result<Network, Error> {
-        let header: Header =
-            serde_json::from_str(text).map_err(|e| Error::Format(e.to_string()))?;
+        // A byte-order mark is not JSON, but editors write one.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let header: Header = serde_json::from_str(text)
+            .map_err(|e| Error::Format(format!("not valid JSON ({e})")))?;
         if header.format.as_deref() != Some(NETWORK_FORMAT) {
             return Err(Error::Format(format!(
                 "not a batten network (expected \"format\": \"{NETWORK_FORMAT}\")"
@@ -100,11 +118,18 @@ impl Network {
             }
             None => return Err(Error::Format("missing \"version\"".to_owned())),
         }
-        let file: FileV1 = serde_json::from_str(text).map_err(|e| Error::Format(e.to_string()))?;
+        let file: FileIn = serde_json::from_str(text).map_err(|e| Error::Format(e.to_string()))?;
         let curves = file
             .curves
             .into_iter()
-            .map(|r| {
+            .enumerate()
+            .map(|(i, v)| {
+                let named = match v.get("name").and_then(|n| n.as_str()) {
+                    Some(n) => format!("curve {i} ('{n}')"),
+                    None => format!("curve {i}"),
+                };
+                let r: CurveRecord = serde_json::from_value(v)
+                    .map_err(|e| Error::Format(format!("{named}: {e}")))?;
                 let points = r.points.iter().map(|p| DVec3::from_array(*p)).collect();
                 NurbsCurve::try_new(r.degree, r.knots, points, r.weights)
                     .map(|curve| NetworkCurve {
