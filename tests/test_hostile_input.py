@@ -165,3 +165,26 @@ def test_network_text_errors_name_the_curve_or_say_what_is_wrong(examples_dir):
     del data["curves"][2]["points"]
     with pytest.raises(bn.NetworkFileError, match=r"curve 2 \('station -12\.5'\): missing field `points`"):
         bn.network_from_json(json.dumps(data))
+
+
+@pytest.mark.parametrize(
+    ("call", "says"),
+    [
+        (
+            lambda: bn.fair_points("st", np.zeros((9, 3)), degree=-1),
+            "curve 'st': degree -1 must not be negative",
+        ),
+        (
+            lambda: bn.fair_points("st", np.zeros((9, 3)), corners=[-2]),
+            "curve 'st': corner index -2 must not be",
+        ),
+        (lambda: bn.Curve("c", -3, [0, 1], [[0, 0, 0]]), "curve 'c': degree -3 must not be negative"),
+        (lambda: bn.Curve.from_nurbs("n", [[0, 0, 0], [1, 0, 0]], -4), "curve 'n': order -4 must not be"),
+        (lambda: _cubic().insert_knot(0.5, -1), "curve 'c': times -1 must not be negative"),
+        (lambda: bn.build_surface([_cubic()], 1e-4, -8), "resolution -8 must not be negative"),
+    ],
+)
+def test_negative_counts_are_invalid_arguments_not_overflow_errors(call, says):
+    """A negative int for a count raised OverflowError from Python's conversion."""
+    with pytest.raises(bn.InvalidArgumentError, match=says):
+        call()

@@ -8,7 +8,7 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use crate::errors::{arg_err, curve_err, guard};
+use crate::errors::{arg_err, count, curve_err, guard};
 
 /// The parameters `ts` for evaluating curve `name`: every one finite (a NaN or infinite
 /// parameter is a `CurveError` naming the curve; finite ones outside the domain are clamped by
@@ -127,12 +127,13 @@ impl Curve {
     #[pyo3(signature = (name, degree, knots, points, weights=None, role="free"))]
     fn py_new(
         name: &str,
-        degree: usize,
+        degree: i64,
         knots: PyArrayLike1<'_, f64, AllowTypeChange>,
         points: PyArrayLike2<'_, f64, AllowTypeChange>,
         weights: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
         role: &str,
     ) -> PyResult<Curve> {
+        let degree = count(degree, || format!("curve '{name}': degree"))?;
         let pts = points_of(name, "points", &points, &[3])?;
         let knots = knots.as_array().to_vec();
         let weights = weights.map(|w| w.as_array().to_vec());
@@ -148,12 +149,13 @@ impl Curve {
     fn from_nurbs(
         name: &str,
         points: PyArrayLike2<'_, f64, AllowTypeChange>,
-        order: usize,
+        order: i64,
         endpoint: bool,
         bezier: bool,
         cyclic: bool,
         role: &str,
     ) -> PyResult<Curve> {
+        let order = count(order, || format!("curve '{name}': order"))?;
         let pts = points_of(name, "points", &points, &[3, 4])?;
         let view = points.as_array();
         let weights: Option<Vec<f64>> = (view.ncols() == 4).then(|| view.column(3).to_vec());
@@ -407,7 +409,8 @@ impl Curve {
 
     /// The same curve with the knot `t` inserted `times` times.
     #[pyo3(signature = (t, times=1))]
-    fn insert_knot(&self, t: f64, times: usize) -> PyResult<Curve> {
+    fn insert_knot(&self, t: f64, times: i64) -> PyResult<Curve> {
+        let times = count(times, || format!("curve '{}': times", self.name()))?;
         guard(self.name(), || {
             let c = self
                 .inner

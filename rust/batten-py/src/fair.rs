@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{arg_err, core_err, curve_err, guard};
+use crate::errors::{arg_err, core_err, count, curve_err, guard};
 
 fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
     d.set_item("inflections", m.inflections)?;
@@ -26,27 +26,40 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 /// smoothing spline). Give at most one of `tolerance` (max deviation, m; default 1 mm),
 /// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). Returns `(Curve, report dict)`.
 #[pyfunction]
-#[pyo3(signature = (name, points, *, degree=DEFAULT_FAIR_DEGREE, tolerance=None, noise=None,
+#[pyo3(signature = (name, points, *, degree=None, tolerance=None, noise=None,
     smoothing_factor=None, corners=None, corner_angle_deg=Some(DEFAULT_CORNER_ANGLE_DEGREES),
     start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
-    max_parameter_iterations=DEFAULT_PARAMETER_ITERATIONS, role="free"))]
+    max_parameter_iterations=None, role="free"))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_points<'py>(
     py: Python<'py>,
     name: &str,
     points: PyArrayLike2<'py, f64, AllowTypeChange>,
-    degree: usize,
+    degree: Option<i64>,
     tolerance: Option<f64>,
     noise: Option<f64>,
     smoothing_factor: Option<f64>,
-    corners: Option<Vec<usize>>,
+    corners: Option<Vec<i64>>,
     corner_angle_deg: Option<f64>,
     start_tangent: Option<[f64; 3]>,
     end_tangent: Option<[f64; 3]>,
     model_tolerance: f64,
-    max_parameter_iterations: usize,
+    max_parameter_iterations: Option<i64>,
     role: &str,
 ) -> PyResult<(Curve, Bound<'py, PyDict>)> {
+    let degree = match degree {
+        Some(d) => count(d, || format!("curve '{name}': degree"))?,
+        None => DEFAULT_FAIR_DEGREE,
+    };
+    let max_parameter_iterations = match max_parameter_iterations {
+        Some(n) => count(n, || format!("curve '{name}': max_parameter_iterations"))?,
+        None => DEFAULT_PARAMETER_ITERATIONS,
+    };
+    let corners = corners
+        .unwrap_or_default()
+        .into_iter()
+        .map(|c| count(c, || format!("curve '{name}': corner index")))
+        .collect::<PyResult<Vec<usize>>>()?;
     if points.shape()[1] != 3 {
         return Err(arg_err(format!(
             "curve '{name}': points must have shape (n, 3)"
@@ -71,7 +84,7 @@ pub(crate) fn fair_points<'py>(
     let options = FairOptions {
         degree,
         smoothing,
-        corners: corners.unwrap_or_default(),
+        corners,
         corner_angle: corner_angle_deg.map(f64::to_radians),
         start_tangent: start_tangent.map(DVec3::from_array),
         end_tangent: end_tangent.map(DVec3::from_array),

@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{core_err, guard, NoSurfaceError};
+use crate::errors::{core_err, count, guard, NoSurfaceError};
 
 /// A warning (or a topology diagnostic) as a dict: `kind`, `message`, `curves` (names),
 /// `location` ([x, y, z] or None) and `error` (`{"kind", "message"}` of the underlying face or
@@ -65,13 +65,17 @@ fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
 /// corners made an automatic knuckle), `crease_deg` (`(min, max)` or None) and `points` (list
 /// of [x, y, z] along the edge). The GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None))]
 pub(crate) fn build_surface<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,
-    resolution: usize,
+    resolution: Option<i64>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
+    let resolution = match resolution {
+        Some(r) => count(r, || "resolution".to_owned())?,
+        None => DEFAULT_RESOLUTION,
+    };
     let options = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
     let network =
         Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)?;

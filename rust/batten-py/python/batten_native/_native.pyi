@@ -112,7 +112,7 @@ def fair_points(
     name: str,
     points: _ArrayLike,
     *,
-    degree: int = ...,  # DEFAULT_FAIR_DEGREE
+    degree: int | None = None,  # None: DEFAULT_FAIR_DEGREE
     tolerance: float | None = None,
     noise: float | None = None,
     smoothing_factor: float | None = None,
@@ -121,7 +121,7 @@ def fair_points(
     start_tangent: tuple[float, float, float] | None = None,
     end_tangent: tuple[float, float, float] | None = None,
     model_tolerance: float = ...,  # DEFAULT_TOLERANCE
-    max_parameter_iterations: int = ...,  # 20 rounds of parameter correction
+    max_parameter_iterations: int | None = None,  # None: 20 rounds of parameter correction
     role: str = "free",
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
@@ -129,5 +129,5 @@ def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAUL
 def build_surface(
     curves: list[Curve],
     tolerance: float = ...,  # DEFAULT_TOLERANCE
-    resolution: int = ...,  # DEFAULT_RESOLUTION
+    resolution: int | None = None,  # None: DEFAULT_RESOLUTION
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
