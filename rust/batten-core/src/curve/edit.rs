@@ -3,7 +3,7 @@
 use glam::DVec4;
 
 use super::error::CurveError;
-use super::nurbs::NurbsCurve;
+use super::nurbs::{unrepresentable_point, NurbsCurve};
 
 impl NurbsCurve {
     /// Insert the knot `t` `times` times without changing the curve's shape (A5.1, applied to
@@ -98,11 +98,7 @@ impl NurbsCurve {
         {
             return Err(CurveError::SpanTooShort { t, span });
         }
-        if let Some(index) = self
-            .homogeneous_points()
-            .iter()
-            .position(|c| !(c.is_finite() && c.w >= f64::MIN_POSITIVE))
-        {
+        if let Some(index) = unrepresentable_point(self.homogeneous_points()) {
             return Err(CurveError::WeightedPointOverflow { index });
         }
         Ok(self)

@@ -89,12 +89,7 @@ impl NurbsCurve {
                 .collect(),
             None => points.iter().map(|p| p.extend(1.0)).collect(),
         };
-        // w·P must be representable: a weight below the smallest normal f64 or a product that
-        // overflows would evaluate to NaN or inf.
-        if let Some(index) = cw
-            .iter()
-            .position(|c| !(c.is_finite() && c.w >= f64::MIN_POSITIVE))
-        {
+        if let Some(index) = unrepresentable_point(&cw) {
             return Err(CurveError::WeightedPointOverflow { index });
         }
         Ok(NurbsCurve {
@@ -282,6 +277,13 @@ impl NurbsCurve {
     pub(crate) fn multiplicity(&self, u: f64) -> usize {
         self.knots.iter().filter(|&&k| k == u).count()
     }
+}
+
+/// The first homogeneous control point `(w·P, w)` that f64 cannot carry: non-finite (w·P
+/// overflowed) or with a weight below the smallest normal f64 (evaluation would divide by it).
+pub(crate) fn unrepresentable_point(cw: &[DVec4]) -> Option<usize> {
+    cw.iter()
+        .position(|c| !(c.is_finite() && c.w >= f64::MIN_POSITIVE))
 }
 
 fn validate_knots(knots: &[f64], degree: usize, n: usize) -> Result<(), CurveError> {
