@@ -25,7 +25,7 @@ test: venv sysdeps lint
 	$(MAKE) --no-print-directory package PROFILE=dev
 	PYTHONPATH=build/native/dev $(VPY) -m pytest -q tests/plain
 	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \
-	  PYTHONPATH=build/native/dev:addon $(VPY) -m pytest -q tests
+	  PYTHONPATH=build/native/dev:addon $(VPY) -m pytest -q --ignore=tests/plain tests
 
 ## The installable Blender extension zip (release build) in build/extension/release/.
 extension: venv
