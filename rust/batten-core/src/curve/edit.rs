@@ -76,11 +76,11 @@ impl NurbsCurve {
         let a = knots.partition_point(|&u| u < t);
         let mut left_knots = knots[..a + p].to_vec();
         left_knots.push(t);
-        let left = NurbsCurve::new_unchecked(p, left_knots, cw[..a].to_vec()).resolvable(t)?;
+        // Both pieces' spans and control points are the checked insertion's own.
+        let left = NurbsCurve::new_unchecked(p, left_knots, cw[..a].to_vec());
         let mut right_knots = vec![t];
         right_knots.extend_from_slice(&knots[a..]);
-        let right =
-            NurbsCurve::new_unchecked(p, right_knots, cw[a - 1..].to_vec()).resolvable(t)?;
+        let right = NurbsCurve::new_unchecked(p, right_knots, cw[a - 1..].to_vec());
         Ok((left, right))
     }
 
