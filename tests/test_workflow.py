@@ -7,7 +7,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from batten import live, operators
+from batten import live, operators, scene_build
 from test_build import mesh_arrays
 
 
@@ -182,7 +182,7 @@ def test_hard_chine_knuckle_edges_by_role_and_found(examples_dir):
     scene = bpy.context.scene
     scene.batten.source = coll
     scene.batten.resolution = 8
-    role = operators.build_into_scene(scene)
+    role = scene_build.build_into_scene(scene)
     assert _kinds(role) == [("chine", "role")] * 6
     ((name, lo, hi),) = role["crease_angles_deg"]
     creases = [k["crease_deg"] for k in role["knuckle_edges"]]
@@ -197,7 +197,7 @@ def test_hard_chine_knuckle_edges_by_role_and_found(examples_dir):
     assert not any(t.startswith("Knuckles found") for t in _panel_labels(scene.batten.last_report))
 
     coll.objects["chine"].batten.role = "free"
-    free = operators.build_into_scene(scene)
+    free = scene_build.build_into_scene(scene)
     assert _kinds(free) == [("chine", "auto")] * 6
     assert np.allclose([k["crease_deg"] for k in free["knuckle_edges"]], creases, atol=1e-9)
     assert free["crease_angles_deg"][0][1:] == pytest.approx((lo, hi), abs=1e-9)
@@ -232,7 +232,7 @@ def test_markers_tell_t_joints_and_dangling_ends_apart():
         new_curve(name, "POLY", np.array([[a[0], 1.0, a[1]], [b[0], 1.0, b[1]]]), collection=coll)
     scene = bpy.context.scene
     scene.batten.source = coll
-    report = operators.build_into_scene(scene)
+    report = scene_build.build_into_scene(scene)
     assert report["faces_by_sides"] == {4: 3}
     marks = overlay.markers(bpy.context)
     # Nodes: the 4 panel corners, st5 on keel and deck, wl on aft, the spur's root on st5 (its
@@ -247,7 +247,7 @@ def test_markers_tell_t_joints_and_dangling_ends_apart():
     # free at both ends.
     spur = coll.objects["spur"].data.splines[0].points[0]
     spur.co = (5.0005, 1.0, 2.5, 1.0)
-    operators.build_into_scene(scene)
+    scene_build.build_into_scene(scene)
     marks = overlay.markers(bpy.context)
     assert len(marks["near_misses"]) == 1
     assert np.allclose(marks["near_misses"][0], [5.00025, 1.0, 2.5], atol=1e-4)
