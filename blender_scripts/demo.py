@@ -226,6 +226,7 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
     _log(f"{name}: built {faces} in {t_build * 1e3:.1f} ms")
     _log(
         f"{name}: max gap {b['max_gap']:.2e} m, max normal jump {b['max_normal_angle_deg']:.4f} deg, "
+        f"{b['holes']} hole(s), {b['folds']} fold(s), "
         f"displacement volume {b['displacement_volume']:.2f} m3, {len(b['warnings'])} warning(s)"
     )
     for w in b["warnings"]:

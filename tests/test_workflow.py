@@ -46,6 +46,8 @@ def test_build_operator_matches_api_and_keeps_the_report(frigate):
         "t_joints": 3,
         "dangling_ends": 0,
         "near_misses": 0,
+        "holes": 0,
+        "folds": 0,
         "problems": 0,
     }
     curves = {c.name: c for c in api.read_curves(frigate)}
@@ -230,6 +232,9 @@ def test_markers_tell_t_joints_and_dangling_ends_apart():
         ("spur", (5, 2.5), (7, 2.5)),
     ):
         new_curve(name, "POLY", np.array([[a[0], 1.0, a[1]], [b[0], 1.0, b[1]]]), collection=coll)
+    # The panel's rim is the hull's boundary (else every free edge of it would be a hole).
+    for name, role in (("keel", "keel"), ("deck", "deck"), ("aft", "transom"), ("stem", "stem")):
+        api.set_role([coll.objects[name]], role)
     scene = bpy.context.scene
     scene.batten.source = coll
     report = scene_build.build_into_scene(scene)

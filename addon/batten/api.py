@@ -420,13 +420,18 @@ def build(
     mesh untouched.
 
     ``report`` holds: nodes, edges, node_positions, node_kinds (as in :func:`topology`),
-    faces, faces_by_sides, open_edges, max_gap, max_normal_angle_deg, crease_angles_deg (per
+    faces, faces_by_sides, open_edges, max_gap, max_normal_angle_deg with where it is
+    (max_normal_angle_at, max_normal_angle_curve), max_neighbour_angle_deg and
+    max_neighbour_angle_at (the largest angle between neighbouring mesh faces off the knuckles),
+    holes and folds (counts of the ``hole`` and ``fold`` warnings), crease_angles_deg (per
     knuckle curve: name, min, max), knuckle_edges (each ``curve``, ``objects`` — the object
     it came from —, ``source`` — ``"role"`` or ``"auto"``, found at corners of crossing curves
     —, ``corner_curves``, ``crease_deg`` (min, max) or None, ``points`` along the edge),
     volume (between the drawn half surface and the centreplane), displacement_volume (both
     halves when mirrored), mesh_vertices, mesh_faces, and warnings: each a dict with ``kind``
-    (``dangling_end``, ``near_miss``, ``unclosed_region``, ``face_not_patched``, …),
+    (``dangling_end``, ``near_miss``, ``unclosed_region``, ``face_not_patched``, ``hole`` — free
+    edges off the profile, deck and transom —, ``fold`` — neighbouring mesh faces more than 30°
+    apart off the knuckles, or a patch out of its boundary's box —, …),
     ``message``, ``curves`` (curve names),
     ``objects`` (the names of the curve objects they came from, for selecting them),
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the

@@ -1,28 +1,33 @@
 """What the viewport overlay draws from a build report: marker positions by kind (nodes,
-T-joints, dangling ends, near misses, other problems) and the knuckle edges as line segments
-(no Blender needed)."""
+T-joints, dangling ends, near misses, holes and folds of the surface, other problems) and the
+knuckle edges as line segments (no Blender needed)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 #: Marker kinds, in drawing order.
-MARKER_KINDS = ("nodes", "t_joints", "dangling_ends", "near_misses", "problems")
+MARKER_KINDS = ("nodes", "t_joints", "dangling_ends", "near_misses", "holes", "folds", "problems")
 #: Knuckle edge sources: the curve's role, or found at corners of the crossing curves.
 KNUCKLE_SOURCES = ("role", "auto")
 
 # Marker kind of each node kind and finding kind; a free end is marked by its dangling-end
 # finding, not as a node, and a finding of any other kind is a problem.
 _NODE_MARKERS = {"crossing": "nodes", "end_to_end": "nodes", "end_on_curve": "nodes", "t_joint": "t_joints"}
-_FINDING_MARKERS = {"dangling_end": "dangling_ends", "near_miss": "near_misses"}
+_FINDING_MARKERS = {
+    "dangling_end": "dangling_ends",
+    "near_miss": "near_misses",
+    "hole": "holes",
+    "fold": "folds",
+}
 
 
 def network_markers(node_positions: list, node_kinds: list[str], findings: list[dict]) -> dict[str, list]:
     """Marker positions ([x, y, z] lists) by kind (:data:`MARKER_KINDS`) from a build report's
     ``node_positions``, ``node_kinds`` and ``warnings`` (or a topology's ``diagnostics``):
     ``nodes`` (crossings, ends on ends, ends on a curve where the faces have corners),
-    ``t_joints``, ``dangling_ends``, ``near_misses`` and ``problems`` (every other finding
-    with a location)."""
+    ``t_joints``, ``dangling_ends``, ``near_misses``, ``holes`` and ``folds`` of the surface,
+    and ``problems`` (every other finding with a location)."""
     marks = {k: [] for k in MARKER_KINDS}
     for position, kind in zip(node_positions, node_kinds, strict=True):
         if kind in _NODE_MARKERS:

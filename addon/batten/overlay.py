@@ -45,6 +45,8 @@ MARKER_STYLES = {
     "t_joints": ((0.2, 0.85, 0.3, 1.0), 10.0),
     "dangling_ends": ((1.0, 0.85, 0.1, 1.0), 12.0),
     "near_misses": ((1.0, 0.2, 0.85, 1.0), 14.0),
+    "holes": ((0.6, 0.2, 1.0, 1.0), 16.0),
+    "folds": ((1.0, 0.5, 0.0, 1.0), 16.0),
     "problems": ((1.0, 0.15, 0.1, 1.0), 12.0),
 }
 # Knuckle edges by source (network_markers.KNUCKLE_SOURCES; "role": the curve's role, "auto":
@@ -68,7 +70,7 @@ def _last_report(context) -> dict:
 
 def markers(context) -> dict[str, np.ndarray]:
     """Marker positions from the last build, each (n, 3) float32, by kind: ``nodes``,
-    ``t_joints``, ``dangling_ends``, ``near_misses``, ``problems``."""
+    ``t_joints``, ``dangling_ends``, ``near_misses``, ``holes``, ``folds``, ``problems``."""
     return marker_arrays(_last_report(context).get("markers", {}))
 
 

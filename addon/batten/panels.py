@@ -64,7 +64,13 @@ def _draw_report(layout, text: str) -> None:
     col.label(text=f"Patches: {report['faces']} ({sides}-sided)")
     col.label(text=f"Open edges: {report['open_edges']}")
     col.label(text=f"Max gap: {report['max_gap'] * 1e3:.3f} mm")
-    col.label(text=f"Max normal jump: {report['max_normal_angle_deg']:.4f}°")
+    where = report.get("max_normal_angle_curve")
+    on = f" (on {where})" if where else ""
+    col.label(text=f"Max normal jump: {report['max_normal_angle_deg']:.4f}°{on}")
+    defects = col.row()
+    holes, folds = report.get("holes", 0), report.get("folds", 0)
+    defects.alert = bool(holes or folds)
+    defects.label(text=f"Holes: {holes}, folds: {folds}")
     for name, lo, hi in report["crease_angles_deg"]:
         col.label(text=f"Crease {name}: {lo:.1f}°–{hi:.1f}°")
     found, corners = knuckles_found(report)

@@ -16,6 +16,9 @@ def test_markers_by_kind():
         _finding("near_miss", (5, 0, 0)),
         _finding("unused_edges", [6, 0, 0]),
         _finding("face_not_patched", [7, 0, 0]),
+        _finding("hole", [8, 0, 0]),
+        _finding("fold", [9, 0, 0]),
+        _finding("fold", [10, 0, 0]),
         _finding("unclosed_region", None),
     ]
     marks = network_markers(positions, kinds, findings)
@@ -24,6 +27,8 @@ def test_markers_by_kind():
         "t_joints": [[1, 0, 0]],
         "dangling_ends": [[3, 0, 0]],
         "near_misses": [[5, 0, 0]],
+        "holes": [[8, 0, 0]],
+        "folds": [[9, 0, 0], [10, 0, 0]],
         "problems": [[6, 0, 0], [7, 0, 0]],
     }, "a free end is marked by its dangling-end finding only; a finding without a place is not drawn"
 

@@ -35,7 +35,8 @@ pub use fair::{
 };
 pub use hull::{
     build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
-    Warning, WarningKind, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES,
+    Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES, KNUCKLE_EDGE_SAMPLES,
+    KNUCKLE_POINT_ANGLE_DEGREES,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

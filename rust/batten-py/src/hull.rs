@@ -59,7 +59,9 @@ fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
 /// Build the hull surface of `curves` (H-rep pipeline): returns `(arrays, report)` where arrays
 /// are `(positions (n,3), corner_vertices (m,), face_sizes (k,), face_patch (k,))` and report
 /// is a dict (node/edge/face counts, faces_by_sides, open_edges, max_gap,
-/// max_normal_angle_deg, crease_angles_deg, knuckle_edges, volume, node_positions, node_kinds,
+/// max_normal_angle_deg with its place and curve (max_normal_angle_at, max_normal_angle_curve),
+/// max_neighbour_angle_deg and max_neighbour_angle_at (mesh faces off the knuckles), holes,
+/// folds, crease_angles_deg, knuckle_edges, volume, node_positions, node_kinds,
 /// warnings — each a dict, see [`warning_dict`]). Each knuckle edge
 /// is a dict: `curve`, `source` (`"role"` or `"auto"`), `corner_curves` (the curves whose
 /// corners made an automatic knuckle), `crease_deg` (`(min, max)` or None) and `points` (list
@@ -103,6 +105,18 @@ pub(crate) fn build_surface<'py>(
     d.set_item("open_edges", r.open_edges)?;
     d.set_item("max_gap", r.max_gap)?;
     d.set_item("max_normal_angle_deg", r.max_normal_angle_deg)?;
+    d.set_item(
+        "max_normal_angle_at",
+        r.max_normal_angle_at.map(|p| p.to_array()),
+    )?;
+    d.set_item("max_normal_angle_curve", &r.max_normal_angle_curve)?;
+    d.set_item("max_neighbour_angle_deg", r.max_neighbour_angle_deg)?;
+    d.set_item(
+        "max_neighbour_angle_at",
+        r.max_neighbour_angle_at.map(|p| p.to_array()),
+    )?;
+    d.set_item("holes", r.holes)?;
+    d.set_item("folds", r.folds)?;
     let creases: Vec<(String, f64, f64)> = r.crease_angles_deg.clone();
     d.set_item("crease_angles_deg", creases)?;
     let knuckles = r

@@ -288,6 +288,7 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
         knuckle: &knuckle,
         skipped_faces: skipped,
         warnings,
+        tolerance: options.tolerance,
     };
     let report = report::report(network, &topology, &patched, &mesh, findings);
     let figures = [report.volume, report.max_gap, report.max_normal_angle_deg];

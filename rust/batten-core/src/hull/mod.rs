@@ -11,13 +11,19 @@
 //! - [`patched`]: a face built as a patch, with where its edges went.
 //! - [`build`]: the face boundaries, the patches, the tessellation and its orientation.
 //! - [`report`]: gaps, normal jumps, crease angles, volume, nodes and warnings.
+//! - [`holes`]: free edges off the hull's boundary (profile, deck, transom), as warnings.
+//! - [`folds`]: neighbouring mesh faces at a steep angle off the knuckles, and patches
+//!   standing out of their boundary's box, as warnings.
 //! - [`warning`]: warnings as data (kind, message, curves, place, underlying error).
 //!
 //! The modules depend on each other one way: `build` → `report` → `knuckles` → `edges`,
+//! `report` → `holes`, `report` → `folds` → `knuckles`,
 //! `build` → `ribbons` → `edges`, and `warning`, `patched` at the bottom.
 
 mod build;
 mod edges;
+mod folds;
+mod holes;
 mod knuckles;
 mod patched;
 mod report;
@@ -30,6 +36,7 @@ use crate::network::Network;
 use crate::patch::SurfaceMesh;
 use crate::tolerance::Tolerance;
 
+pub use folds::{BOX_SLACK, FOLD_ANGLE_DEGREES};
 pub use knuckles::{KnuckleEdge, KnuckleSource, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES};
 pub use report::HullReport;
 pub use warning::{FaceError, Warning, WarningKind};

@@ -1,5 +1,6 @@
 //! The hull report (H-rep paper §3–§5): counts, fit of the patches to the designer's curves,
-//! continuity across the edges, crease angles along knuckles, and the volume of the half hull.
+//! continuity across the edges (with where it is worst), crease angles along knuckles, holes and
+//! folds of the surface, and the volume of the half hull.
 
 use std::collections::BTreeMap;
 
@@ -8,11 +9,14 @@ use rayon::prelude::*;
 
 use serde::Serialize;
 
+use super::folds::{boundary_boxes, fold_findings};
+use super::holes::hole_warnings;
 use super::knuckles::{knuckle_report, Knuckle, KnuckleEdge};
 use super::patched::{LayoutSegment, PatchedFace};
 use super::warning::Warning;
 use crate::network::Network;
 use crate::patch::{Patch, SurfaceMesh};
+use crate::tolerance::Tolerance;
 use crate::topo::{NodeKind, Topology};
 
 /// What [`build_hull`] built and how good it is (H-rep paper §3–§5: counts of the topology,
@@ -39,6 +43,21 @@ pub struct HullReport {
     /// Largest angle (degrees) between the two patches' normals across a smooth edge, sampled
     /// along every edge shared by two patches (GC¹ of §3.2.2: ideally 0).
     pub max_normal_angle_deg: f64,
+    /// Where that largest normal angle is (on the edge), `None` when no edge is shared.
+    pub max_normal_angle_at: Option<DVec3>,
+    /// The curve of the edge with that largest normal angle.
+    pub max_normal_angle_curve: Option<String>,
+    /// Largest angle (degrees) between the normals of two neighbouring mesh faces, inside or
+    /// across patches, not across a knuckle: the mesh's own check for folds (above
+    /// [`FOLD_ANGLE_DEGREES`](super::FOLD_ANGLE_DEGREES) each is a `fold` warning).
+    pub max_neighbour_angle_deg: f64,
+    /// Where that largest neighbour angle is (the middle of the mesh edge between them).
+    pub max_neighbour_angle_at: Option<DVec3>,
+    /// Chains of free edges off the hull's boundary (each a `hole` warning).
+    pub holes: usize,
+    /// Folded patches, folded pairs of patches and patches out of their box (each a `fold`
+    /// warning).
+    pub folds: usize,
     /// Per knuckle curve: its name and the smallest and largest angle (degrees) between the two
     /// patches' normals along it (the crease the designer drew, §1 "knuckles").
     pub crease_angles_deg: Vec<(String, f64, f64)>,
@@ -77,12 +96,14 @@ struct Use {
     forward: bool,
 }
 
-/// The smallest and largest normal angle (degrees) sampled across one shared edge.
+/// The smallest and largest normal angle (degrees) sampled across one shared edge, and where
+/// the largest is.
 #[derive(Clone, Copy, Debug)]
 struct EdgeAngles {
     edge: usize,
     lo: f64,
     hi: f64,
+    hi_at: DVec3,
 }
 
 /// Σ over the mesh polygons of their area vectors: the surface's mean normal times its area.
@@ -145,6 +166,9 @@ pub(crate) struct Findings<'a> {
     pub(crate) skipped_faces: usize,
     /// The warnings gathered on the way.
     pub(crate) warnings: Vec<Warning>,
+    /// The model tolerance of the build (the near-miss distance decides what lies in the
+    /// centreplane and how far a patch may stand out of its box).
+    pub(crate) tolerance: Tolerance,
 }
 
 /// Build the report from the built patches and the mesh.
@@ -175,7 +199,15 @@ pub(crate) fn report(
             }
         }
     }
-    let open_edges = uses.iter().filter(|u| u.len() == 1).count();
+    let free: Vec<usize> = (0..uses.len()).filter(|&k| uses[k].len() == 1).collect();
+    let open_edges = free.len();
+    let mut warnings = findings.warnings;
+    let holes = hole_warnings(network, topology, &free, findings.tolerance);
+    let boxes = boundary_boxes(network, topology, patched);
+    let folds = fold_findings(topology, patched, mesh, knuckle, &boxes, findings.tolerance);
+    let (hole_count, fold_count) = (holes.len(), folds.warnings.len());
+    warnings.extend(holes);
+    warnings.extend(folds.warnings);
 
     // Gap between every patch side and its designer curve.
     let max_gap = patched
@@ -209,7 +241,7 @@ pub(crate) fn report(
             let normal = |u: &Use, lam| {
                 edge_normal_at(&patched[u.patch].patch, u.side, u.segment, u.forward, lam)
             };
-            let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+            let (mut lo, mut hi, mut hi_lam) = (f64::INFINITY, 0.0f64, 0.5);
             for j in 0..NORMAL_SAMPLES {
                 let lam = (j as f64 + 0.5) / NORMAL_SAMPLES as f64;
                 let na = normal(&u[0], lam);
@@ -219,15 +251,32 @@ pub(crate) fn report(
                 }
                 let ang = na.angle_between(nb).to_degrees();
                 lo = lo.min(ang);
-                hi = hi.max(ang);
+                if ang >= hi {
+                    hi = ang;
+                    hi_lam = lam;
+                }
             }
-            (lo <= hi).then_some(EdgeAngles { edge, lo, hi })
+            let e = &brep.edges[edge];
+            let hi_at = curves[e.curve].curve.point(e.t0 + hi_lam * (e.t1 - e.t0));
+            (lo <= hi).then_some(EdgeAngles {
+                edge,
+                lo,
+                hi,
+                hi_at,
+            })
         })
         .collect();
     let mut max_normal_angle_deg: f64 = 0.0;
+    let mut max_normal_angle_edge: Option<(usize, DVec3)> = None;
     let mut creases: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
     let mut edge_creases: BTreeMap<usize, (f64, f64)> = BTreeMap::new();
-    for &EdgeAngles { edge, lo, hi } in &angles {
+    for &EdgeAngles {
+        edge,
+        lo,
+        hi,
+        hi_at,
+    } in &angles
+    {
         if knuckle[edge].is_some() {
             edge_creases.insert(edge, (lo, hi));
             let c = creases
@@ -235,8 +284,9 @@ pub(crate) fn report(
                 .or_insert((f64::INFINITY, 0.0));
             c.0 = c.0.min(lo);
             c.1 = c.1.max(hi);
-        } else {
-            max_normal_angle_deg = max_normal_angle_deg.max(hi);
+        } else if hi >= max_normal_angle_deg {
+            max_normal_angle_deg = hi;
+            max_normal_angle_edge = Some((edge, hi_at));
         }
     }
     let crease_angles_deg = creases
@@ -253,11 +303,18 @@ pub(crate) fn report(
         open_edges,
         max_gap,
         max_normal_angle_deg,
+        max_normal_angle_at: max_normal_angle_edge.map(|(_, at)| at),
+        max_normal_angle_curve: max_normal_angle_edge
+            .map(|(edge, _)| curves[brep.edges[edge].curve].name.clone()),
+        max_neighbour_angle_deg: folds.max_angle_deg,
+        max_neighbour_angle_at: folds.max_angle_at,
+        holes: hole_count,
+        folds: fold_count,
         crease_angles_deg,
         knuckle_edges: knuckle_report(network, topology, knuckle, &edge_creases),
         volume: signed_volume(mesh).abs(),
         node_positions: brep.vertices.iter().map(|v| v.position).collect(),
         node_kinds: topology.node_kinds(),
-        warnings: findings.warnings,
+        warnings,
     }
 }

@@ -26,6 +26,12 @@ pub enum WarningKind {
     DegenerateCorner,
     /// A patch produced non-finite points and was left out of the mesh.
     NonFiniteSurface,
+    /// Free edges off the hull's boundary (not profile, deck or transom): the surface has a
+    /// hole or an unintended open rim there.
+    Hole,
+    /// The surface folds: neighbouring mesh faces at a steep angle off the knuckles, or a
+    /// patch standing out of its boundary's box.
+    Fold,
 }
 
 impl WarningKind {
@@ -37,6 +43,8 @@ impl WarningKind {
             WarningKind::FaceNotPatched => "face_not_patched",
             WarningKind::DegenerateCorner => "degenerate_corner",
             WarningKind::NonFiniteSurface => "non_finite_surface",
+            WarningKind::Hole => "hole",
+            WarningKind::Fold => "fold",
         }
     }
 }

@@ -1,0 +1,281 @@
+//! Folds in the surface, found on the mesh (the real-ships issue: "the report tells the truth
+//! about the surface"): two neighbouring mesh polygons whose normals differ by more than
+//! [`FOLD_ANGLE_DEGREES`] — inside one patch, or across two patches that do not meet along a
+//! knuckle — and patches that leave the box of their own boundary by more than their size
+//! allows (a fin, a ridge, a lid bulging past the transom).
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::knuckles::Knuckle;
+use super::patched::PatchedFace;
+use super::warning::{Warning, WarningKind};
+use crate::patch::SurfaceMesh;
+use crate::tolerance::Tolerance;
+use crate::topo::Topology;
+
+/// Neighbouring mesh polygons whose normals differ by more than this (degrees) are a fold,
+/// except across a knuckle: at the default resolution a smooth hull turns by a few degrees
+/// between neighbours, a fold by tens (a sheet doubling back turns by up to 180°).
+pub const FOLD_ANGLE_DEGREES: f64 = 30.0;
+
+/// How far (as a fraction of the diagonal of its boundary's box) a patch may stand out of that
+/// box before it is a fold: a smooth patch bulges by a fraction of its size over its boundary
+/// (a quarter of a circle's chord for a semicircular bulge of the chord's span), never by more.
+pub const BOX_SLACK: f64 = 0.25;
+
+/// Samples per boundary edge for the box of a patch's boundary (ends included).
+const BOX_SAMPLES: usize = 8;
+
+/// The unit normal of a polygon (Newell's method), zero for a degenerate one.
+fn polygon_normal(mesh: &SurfaceMesh, face: &[u32]) -> DVec3 {
+    let p = |v: u32| DVec3::from(mesh.positions[v as usize]);
+    let mut n = DVec3::ZERO;
+    for (i, &v) in face.iter().enumerate() {
+        let (a, b) = (p(v), p(face[(i + 1) % face.len()]));
+        n += a.cross(b);
+    }
+    n.normalize_or_zero()
+}
+
+/// The worst fold found for one patch (inside) or one pair of patches (across).
+#[derive(Clone, Copy, Debug)]
+struct Worst {
+    angle: f64,
+    at: DVec3,
+    count: usize,
+}
+
+impl Worst {
+    fn add(entry: &mut Option<Worst>, angle: f64, at: DVec3) {
+        match entry {
+            Some(w) => {
+                w.count += 1;
+                if angle > w.angle {
+                    w.angle = angle;
+                    w.at = at;
+                }
+            }
+            None => {
+                *entry = Some(Worst {
+                    angle,
+                    at,
+                    count: 1,
+                })
+            }
+        }
+    }
+}
+
+/// What the fold search found: the warnings, and the largest angle between neighbouring mesh
+/// polygons anywhere off the knuckles (degrees) with where it is.
+pub(crate) struct FoldFindings {
+    /// One warning per folded patch, per folded pair of patches, per patch out of its box.
+    pub(crate) warnings: Vec<Warning>,
+    /// The largest angle between neighbouring polygons, not across a knuckle.
+    pub(crate) max_angle_deg: f64,
+    /// Where that angle is (midpoint of the mesh edge between them).
+    pub(crate) max_angle_at: Option<DVec3>,
+}
+
+/// Search the mesh for folds. `mesh.face_patch` indexes `patched` (before the build renumbers
+/// it to topology faces); `knuckle` says which topology edges are knuckles.
+pub(crate) fn fold_findings(
+    topology: &Topology,
+    patched: &[PatchedFace],
+    mesh: &SurfaceMesh,
+    knuckle: &[Option<Knuckle>],
+    boxes: &[(DVec3, DVec3)],
+    tolerance: Tolerance,
+) -> FoldFindings {
+    let faces: Vec<&[u32]> = mesh.faces().collect();
+    let normals: Vec<DVec3> = faces.par_iter().map(|f| polygon_normal(mesh, f)).collect();
+    // Every polygon side as (lower vertex, upper vertex, polygon), sorted: the two polygons of
+    // an interior mesh edge are then neighbours in the list.
+    let mut sides: Vec<(u32, u32, usize)> = Vec::with_capacity(mesh.face_vertices.len());
+    for (fi, f) in faces.iter().enumerate() {
+        for (i, &a) in f.iter().enumerate() {
+            let b = f[(i + 1) % f.len()];
+            sides.push((a.min(b), a.max(b), fi));
+        }
+    }
+    sides.par_sort_unstable();
+    let pairs = sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1));
+    let edge_sets: Vec<Vec<usize>> = patched
+        .iter()
+        .map(|p| p.layout.iter().flatten().map(|s| s.edge).collect())
+        .collect();
+    let knuckle_between = |a: usize, b: usize| {
+        edge_sets[a]
+            .iter()
+            .any(|e| knuckle[*e].is_some() && edge_sets[b].contains(e))
+    };
+    let mut inside: BTreeMap<usize, Option<Worst>> = BTreeMap::new();
+    let mut across: BTreeMap<(usize, usize), Option<Worst>> = BTreeMap::new();
+    let (mut max_angle_deg, mut max_angle_at) = (0.0f64, None);
+    for run in pairs {
+        let [(a, b, f), (_, _, g)] = run[..] else {
+            continue;
+        };
+        let (nf, ng) = (normals[f], normals[g]);
+        if nf == DVec3::ZERO || ng == DVec3::ZERO {
+            continue;
+        }
+        let (pf, pg) = (mesh.face_patch[f] as usize, mesh.face_patch[g] as usize);
+        if pf != pg && knuckle_between(pf, pg) {
+            continue;
+        }
+        let angle = nf.angle_between(ng).to_degrees();
+        let at = 0.5
+            * (DVec3::from(mesh.positions[a as usize]) + DVec3::from(mesh.positions[b as usize]));
+        if angle > max_angle_deg {
+            max_angle_deg = angle;
+            max_angle_at = Some(at);
+        }
+        if angle > FOLD_ANGLE_DEGREES {
+            if pf == pg {
+                Worst::add(inside.entry(pf).or_default(), angle, at);
+            } else {
+                Worst::add(
+                    across.entry((pf.min(pg), pf.max(pg))).or_default(),
+                    angle,
+                    at,
+                );
+            }
+        }
+    }
+    let label = |p: usize| {
+        let fi = patched[p].face;
+        (fi, topology.names(&topology.faces[fi].curves).join("', '"))
+    };
+    let mut warnings = Vec::new();
+    for (p, w) in inside {
+        let Some(w) = w else { continue };
+        let (fi, names) = label(p);
+        warnings.push(fold_warning(
+            topology,
+            &[p],
+            patched,
+            format!(
+                "face {fi} (curves '{names}') folds: {} pair(s) of neighbouring mesh faces inside its patch meet at up to {:.1}° (more than {FOLD_ANGLE_DEGREES}°) near ({:.3}, {:.3}, {:.3})",
+                w.count, w.angle, w.at.x, w.at.y, w.at.z
+            ),
+            w.at,
+        ));
+    }
+    for ((p, q), w) in across {
+        let Some(w) = w else { continue };
+        let ((fa, _), (fb, _)) = (label(p), label(q));
+        warnings.push(fold_warning(
+            topology,
+            &[p, q],
+            patched,
+            format!(
+                "faces {fa} and {fb} fold where they meet: their mesh faces meet at up to {:.1}° (more than {FOLD_ANGLE_DEGREES}°, and the edge is no knuckle) near ({:.3}, {:.3}, {:.3})",
+                w.angle, w.at.x, w.at.y, w.at.z
+            ),
+            w.at,
+        ));
+    }
+    warnings.extend(box_warnings(topology, patched, mesh, boxes, tolerance));
+    FoldFindings {
+        warnings,
+        max_angle_deg,
+        max_angle_at,
+    }
+}
+
+/// A fold warning about the faces of `patches`, naming their curves.
+fn fold_warning(
+    topology: &Topology,
+    patches: &[usize],
+    patched: &[PatchedFace],
+    message: String,
+    at: DVec3,
+) -> Warning {
+    let mut curves: Vec<String> = patches
+        .iter()
+        .flat_map(|&p| topology.names(&topology.faces[patched[p].face].curves))
+        .map(str::to_owned)
+        .collect();
+    curves.sort();
+    curves.dedup();
+    Warning {
+        kind: WarningKind::Fold,
+        message,
+        curves,
+        location: Some(at),
+        error: None,
+    }
+}
+
+/// The box of every patch's boundary, sampled along its network edges.
+pub(crate) fn boundary_boxes(
+    network: &crate::network::Network,
+    topology: &Topology,
+    patched: &[PatchedFace],
+) -> Vec<(DVec3, DVec3)> {
+    let curves = network.curves();
+    patched
+        .iter()
+        .map(|p| {
+            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for seg in p.layout.iter().flatten() {
+                let e = &topology.brep.edges[seg.edge];
+                for j in 0..=BOX_SAMPLES {
+                    let t = e.t0 + (e.t1 - e.t0) * j as f64 / BOX_SAMPLES as f64;
+                    let x = curves[e.curve].curve.point(t);
+                    lo = lo.min(x);
+                    hi = hi.max(x);
+                }
+            }
+            (lo, hi)
+        })
+        .collect()
+}
+
+/// One warning per patch whose mesh stands out of its boundary's box by more than
+/// [`BOX_SLACK`] of the box's diagonal (plus the near-miss distance).
+fn box_warnings(
+    topology: &Topology,
+    patched: &[PatchedFace],
+    mesh: &SurfaceMesh,
+    boxes: &[(DVec3, DVec3)],
+    tolerance: Tolerance,
+) -> Vec<Warning> {
+    let mut worst: Vec<(f64, DVec3)> = vec![(0.0, DVec3::ZERO); patched.len()];
+    for (f, face) in mesh.faces().enumerate() {
+        let p = mesh.face_patch[f] as usize;
+        let (lo, hi) = boxes[p];
+        for &v in face {
+            let x = DVec3::from(mesh.positions[v as usize]);
+            let out = (lo - x).max(x - hi).max(DVec3::ZERO).length();
+            if out > worst[p].0 {
+                worst[p] = (out, x);
+            }
+        }
+    }
+    let mut warnings = Vec::new();
+    for (p, &(out, at)) in worst.iter().enumerate() {
+        let (lo, hi) = boxes[p];
+        let allowed = BOX_SLACK * (hi - lo).length() + tolerance.near_miss();
+        if out <= allowed {
+            continue;
+        }
+        let fi = patched[p].face;
+        let names = topology.names(&topology.faces[fi].curves).join("', '");
+        warnings.push(fold_warning(
+            topology,
+            &[p],
+            patched,
+            format!(
+                "face {fi} (curves '{names}') stands {out:.3} m out of the box of its boundary curves (more than the {allowed:.3} m its size allows) at ({:.3}, {:.3}, {:.3}): the patch bulges or folds away from its curves",
+                at.x, at.y, at.z
+            ),
+            at,
+        ));
+    }
+    warnings
+}
