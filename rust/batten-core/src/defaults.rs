@@ -16,6 +16,10 @@ pub const DEFAULT_FAIR_TOLERANCE: f64 = 1e-3;
 pub const DEFAULT_SECTION_TOLERANCE: f64 = 5e-3;
 /// Model tolerance (m) of imported sections: points of a section closer than 1 mm are one point.
 pub const DEFAULT_SECTION_MODEL_TOLERANCE: f64 = 1e-3;
+/// Imported curves meet where they come within this many times the import tolerance of each
+/// other, and are snapped together there: each curve is within the tolerance of the data, so
+/// two curves through one data point are within twice it.
+pub const SECTION_CAPTURE_FACTOR: f64 = 2.0;
 /// Turns sharper than this (degrees) in a polyline are kept as corners when it is faired.
 pub const DEFAULT_CORNER_ANGLE_DEGREES: f64 = 45.0;
 /// Degree of a faired curve (cubic).

@@ -17,6 +17,7 @@ mod network;
 mod patch;
 mod tolerance;
 mod topo;
+mod wireframe;
 
 pub use curve::{
     Aabb, BezierDecomposition, CurveDerivs, CurveError, KnotLayout, Nearest, NurbsCurve, MAX_DEGREE,
@@ -24,7 +25,7 @@ pub use curve::{
 pub use defaults::{
     DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE, DEFAULT_FAIR_TOLERANCE,
     DEFAULT_PARAMETER_ITERATIONS, DEFAULT_RESOLUTION, DEFAULT_SECTION_MODEL_TOLERANCE,
-    DEFAULT_SECTION_TOLERANCE, DEFAULT_TOLERANCE, MAX_RESOLUTION,
+    DEFAULT_SECTION_TOLERANCE, DEFAULT_TOLERANCE, MAX_RESOLUTION, SECTION_CAPTURE_FACTOR,
 };
 pub use diagnostic::Diagnostic;
 pub use error::Error;
@@ -53,3 +54,4 @@ pub use topo::{
     Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
 };
+pub use wireframe::{snap_to_nodes, CurveSnap, SnappedNetwork};

@@ -42,11 +42,16 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         batten_core::DEFAULT_CORNER_ANGLE_DEGREES,
     )?;
     m.add("DEFAULT_FAIR_DEGREE", batten_core::DEFAULT_FAIR_DEGREE)?;
+    m.add(
+        "SECTION_CAPTURE_FACTOR",
+        batten_core::SECTION_CAPTURE_FACTOR,
+    )?;
     m.add("ROLES", batten_core::Role::ALL.map(|r| r.name()).to_vec())?;
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(network::network_to_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
+    m.add_function(wrap_pyfunction!(network::snap_to_nodes, m)?)?;
     #[cfg(feature = "test-hooks")]
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;

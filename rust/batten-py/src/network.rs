@@ -2,6 +2,7 @@
 
 use batten_core::{Network, NetworkCurve, Tolerance};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::curve::Curve;
 use crate::errors::{core_err, guard};
@@ -57,4 +58,43 @@ pub(crate) fn check_lengths(
             network.check_lengths(tol).map_err(core_err)
         })
     })
+}
+
+/// Move every curve through the nodes the topology finds at the `capture` distance (m), each as
+/// little as possible (`batten_core::snap_to_nodes`): returns `([Curve, ...], [report, ...])`,
+/// curve for curve in order, each report a dict `curve`, `nodes` (nodes it passes through),
+/// `max_move` (m, the largest distance to one of them before the move). The GIL is released.
+#[pyfunction]
+#[pyo3(signature = (curves, capture))]
+pub(crate) fn snap_to_nodes<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    capture: f64,
+) -> PyResult<(Vec<Curve>, Vec<Bound<'py, PyDict>>)> {
+    let capture = Tolerance::try_new(capture).map_err(core_err)?;
+    let network = to_network("", &curves)?;
+    let snapped = py.detach(|| {
+        guard("snapping curves to their nodes", || {
+            batten_core::snap_to_nodes(&network, capture).map_err(core_err)
+        })
+    })?;
+    let reports = snapped
+        .snaps
+        .iter()
+        .map(|s| {
+            let d = PyDict::new(py);
+            d.set_item("curve", &s.curve)?;
+            d.set_item("nodes", s.nodes)?;
+            d.set_item("max_move", s.max_move)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let curves = snapped
+        .network
+        .curves()
+        .iter()
+        .cloned()
+        .map(|inner| Curve { inner })
+        .collect();
+    Ok((curves, reports))
 }

@@ -175,4 +175,15 @@ pub enum CurveError {
     /// A query point is not finite.
     #[error("query point has a non-finite coordinate")]
     NonFiniteQuery,
+    /// Two targets of [`NurbsCurve::through`] at one parameter ask for different points.
+    #[error("two targets at parameter {t} ask for different points")]
+    TargetsConflict {
+        /// The parameter.
+        t: f64,
+    },
+    /// The control points cannot meet all targets of [`NurbsCurve::through`] at once.
+    #[error(
+        "the targets cannot all be met by moving the control points (they are not independent)"
+    )]
+    TargetsDependent,
 }

@@ -16,6 +16,7 @@ mod layout;
 mod nearest;
 mod nurbs;
 mod piece;
+mod through;
 
 pub(crate) use arclen::GL8;
 pub use basis::MAX_DEGREE;

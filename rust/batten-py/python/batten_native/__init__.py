@@ -25,6 +25,7 @@ from ._native import (
     DEFAULT_TOLERANCE,
     MAX_RESOLUTION,
     ROLES,
+    SECTION_CAPTURE_FACTOR,
     Curve,
     __version__,
     build_surface,
@@ -33,6 +34,7 @@ from ._native import (
     fairness,
     network_from_json,
     network_to_json,
+    snap_to_nodes,
     topology,
 )
 
@@ -46,6 +48,7 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "MAX_RESOLUTION",
     "ROLES",
+    "SECTION_CAPTURE_FACTOR",
     "BattenError",
     "CurveError",
     "FairError",
@@ -61,5 +64,6 @@ __all__ = [
     "fairness",
     "network_from_json",
     "network_to_json",
+    "snap_to_nodes",
     "topology",
 ]

@@ -16,6 +16,7 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "MAX_RESOLUTION",
     "ROLES",
+    "SECTION_CAPTURE_FACTOR",
     "__version__",
     "_panic_for_tests",
     "build_surface",
@@ -24,6 +25,7 @@ __all__ = [
     "fairness",
     "network_from_json",
     "network_to_json",
+    "snap_to_nodes",
     "topology",
 ]
 __version__: Final[str]
@@ -36,6 +38,7 @@ DEFAULT_SECTION_MODEL_TOLERANCE: Final[float]
 DEFAULT_CORNER_ANGLE_DEG: Final[float]
 DEFAULT_FAIR_DEGREE: Final[int]
 ROLES: Final[list[str]]
+SECTION_CAPTURE_FACTOR: Final[float]
 
 _F64 = npt.NDArray[np.float64]
 _ArrayLike = npt.ArrayLike
@@ -107,6 +110,7 @@ class Curve:
 def network_to_json(name: str, curves: list[Curve]) -> str: ...
 def network_from_json(text: str) -> tuple[str, list[Curve]]: ...
 def check_lengths(curves: list[Curve], tolerance: float) -> None: ...
+def snap_to_nodes(curves: list[Curve], capture: float) -> tuple[list[Curve], list[dict]]: ...
 def _panic_for_tests(message: str) -> None: ...  # dev builds only (cargo feature test-hooks)
 def fair_points(
     name: str,

@@ -1,0 +1,153 @@
+//! Wireframe import: curves fitted one by one meet exactly after `snap_to_nodes`, so the
+//! network builds at the model tolerance without near misses (real-ships issue, H-rep §3.2.3).
+
+use batten_core::{
+    build_hull, snap_to_nodes, HullOptions, Network, NetworkCurve, NurbsCurve, Role, Tolerance,
+    Topology, WarningKind,
+};
+use glam::DVec3;
+
+fn cubic(name: &str, pts: [[f64; 3]; 4]) -> NetworkCurve {
+    NetworkCurve {
+        name: name.to_owned(),
+        role: Role::Free,
+        curve: NurbsCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            pts.iter().copied().map(DVec3::from).collect(),
+            None,
+        )
+        .expect("cubic"),
+    }
+}
+
+fn near_misses(t: &Topology) -> usize {
+    t.diagnostics
+        .iter()
+        .filter(|d| d.kind() == "near_miss")
+        .count()
+}
+
+#[test]
+fn two_curves_that_miss_by_half_a_millimetre_meet_exactly_after_snapping() {
+    // A station and a waterline crossing at (0, 0.925, 1.075) (both at parameter 0.5); the
+    // waterline is then moved 0.5 mm along their common normal there: a near miss at the
+    // default 0.1 mm.
+    let station = cubic(
+        "st",
+        [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.5, 0.7],
+            [0.0, 1.3, 1.5],
+            [0.0, 2.0, 2.0],
+        ],
+    );
+    let mut wl = cubic(
+        "wl",
+        [
+            [-2.0, 0.775, 1.075],
+            [-1.0, 0.975, 1.075],
+            [1.0, 0.975, 1.075],
+            [2.0, 0.775, 1.075],
+        ],
+    );
+    assert!(station.curve.point(0.5).distance(wl.curve.point(0.5)) < 1e-12);
+    let normal = station
+        .curve
+        .derivs(0.5)
+        .d1
+        .cross(wl.curve.derivs(0.5).d1)
+        .normalize();
+    let pts: Vec<DVec3> = wl
+        .curve
+        .control_points()
+        .iter()
+        .map(|p| *p + normal * 5e-4)
+        .collect();
+    wl.curve = NurbsCurve::try_new(3, wl.curve.knots().to_vec(), pts, None).expect("moved");
+    let net = Network::try_new("cross", vec![station, wl]).expect("network");
+    let fine = Tolerance::DEFAULT;
+    assert_eq!(
+        near_misses(&Topology::build(&net, fine).expect("topology")),
+        1
+    );
+    let snapped = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture")).expect("snap");
+    let t = Topology::build(&snapped.network, fine).expect("topology");
+    assert_eq!(near_misses(&t), 0, "{:?}", t.diagnostics);
+    // The crossing is one node both curves pass through, to rounding.
+    let crossing = t
+        .brep
+        .vertices
+        .iter()
+        .find(|v| v.curves.len() == 2)
+        .expect("a crossing node");
+    for c in snapped.network.curves() {
+        let d = c
+            .curve
+            .nearest(crossing.position, 1e-12)
+            .expect("nearest")
+            .distance;
+        assert!(d < 1e-9, "'{}' is {d} m off the node", c.name);
+    }
+    // Each curve moved by about half the miss at the node, and by no more anywhere.
+    for (s, c) in snapped.snaps.iter().zip(net.curves()) {
+        assert!(
+            (s.max_move - 2.5e-4).abs() < 5e-5,
+            "{}: moved {}",
+            s.curve,
+            s.max_move
+        );
+        let new = &snapped
+            .network
+            .curves()
+            .iter()
+            .find(|n| n.name == c.name)
+            .expect("kept")
+            .curve;
+        let most = (0..=50)
+            .map(|i| {
+                let t = i as f64 / 50.0;
+                new.point(t).distance(c.curve.point(t))
+            })
+            .fold(0.0, f64::max);
+        assert!(most <= 1.01 * s.max_move, "{}: changed by {most} m", c.name);
+    }
+}
+
+/// KCS faired section by section (`tests/data/kcs_faired_apart.json`): 144 near misses at the
+/// default tolerance; snapped at 1 cm it builds there with none, and each curve stays smooth
+/// where it was (its Bézier joints keep their tangents).
+#[test]
+fn faired_apart_kcs_builds_at_the_default_tolerance_once_snapped() {
+    let path = format!(
+        "{}/tests/data/kcs_faired_apart.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let net = Network::from_json(&std::fs::read_to_string(path).expect("fixture")).expect("reads");
+    let before = Topology::build(&net, Tolerance::DEFAULT).expect("topology");
+    assert!(near_misses(&before) > 100, "{}", near_misses(&before));
+    let snapped = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture")).expect("snap");
+    let most = snapped.snaps.iter().map(|s| s.max_move).fold(0.0, f64::max);
+    assert!(most < 0.01, "largest move {most} m");
+    let hull = build_hull(&snapped.network, &HullOptions::default()).expect("builds");
+    let r = &hull.report;
+    let misses = r
+        .warnings
+        .iter()
+        .filter(|w| w.kind == WarningKind::Network("near_miss"))
+        .count();
+    assert_eq!(misses, 0, "{:?}", r.warnings);
+    assert!(r.faces >= 270, "{} faces", r.faces);
+    for (old, new) in net.curves().iter().zip(snapped.network.curves()) {
+        let (a, b) = (
+            old.curve.corner_parameters(1f64.to_radians()),
+            new.curve.corner_parameters(1f64.to_radians()),
+        );
+        assert_eq!(
+            a.len(),
+            b.len(),
+            "'{}' keeps its corners and no more",
+            old.name
+        );
+    }
+}
