@@ -8,6 +8,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
+from batten_native import DEFAULT_SECTION_TOLERANCE, SECTION_CAPTURE_FACTOR
 from helpers import new_curve, noisy_arc
 
 HULLS = Path(__file__).resolve().parents[2] / "shared" / "hulls"
@@ -157,3 +158,18 @@ def test_fair_operator_reports_through_bpy_ops():
     bpy.context.scene.batten.fair_tolerance = 0.03
     assert bpy.ops.batten.fair_curves() == {"FINISHED"}
     assert obj.data.splines[0].type == "NURBS"
+
+
+# At the defaults, before curves were moved through their nodes, KCS built 4 faces with 144
+# near misses: each section faired on its own no longer met its neighbours.
+@pytest.mark.parametrize(("ship", "faces", "near_misses"), [("kcs", 240, 15), ("kvlcc2", 280, 0)])
+def test_real_ship_curves_meet_at_their_nodes_and_build_at_the_defaults(ship, faces, near_misses):
+    coll, reports = api.import_sections(HULLS / ship / "network.json")
+    moved = [r for r in reports if r["nodes"] > 0]
+    assert len(moved) >= 0.9 * len(reports), f"{len(moved)} of {len(reports)} curves meet their nodes"
+    assert max(r["snap_move"] for r in reports) <= SECTION_CAPTURE_FACTOR * DEFAULT_SECTION_TOLERANCE
+    assert max(r["max_deviation"] for r in reports) <= DEFAULT_SECTION_TOLERANCE
+    report = api.build(coll).report
+    misses = [w for w in report["warnings"] if w["kind"] == "near_miss"]
+    assert report["faces"] >= faces, report["faces"]
+    assert len(misses) <= near_misses, [w["message"] for w in misses]
