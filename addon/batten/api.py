@@ -324,7 +324,7 @@ def fair_curve(
 #: the tolerance.
 SNAP_ROUNDS = 4
 SNAP_TIGHTEN = 0.7
-#: The moved curves are kept within this share of the tolerance, so that Blender's
+#: The moved curves keep their points within this share of the tolerance, so that Blender's
 #: single-precision control points (rounding by up to 8 µm at 250 m) stay within it.
 SNAP_KEEP_WITHIN = 0.99
 
@@ -350,11 +350,12 @@ def import_sections(
 
     Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`), with
     ``points`` (how many the data had), ``nodes`` (nodes the curve was moved through),
-    ``snap_move`` (m, the largest distance to one of them before the move) and
-    ``max_deviation``, ``max_deviation_index`` and ``rms_deviation`` measured after the move,
-    and ``fit_tolerance``: a curve that the move took past ``tolerance`` is fitted again closer
-    (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS`` times) and the nodes found again; one that no
-    closer fit keeps within ``tolerance`` keeps its own fit, unmoved (``nodes`` 0).
+    ``skipped_nodes`` (nodes it leaves out because meeting them would take one of its points
+    past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
+    distance to a node before the move), ``max_deviation`` and ``max_deviation_index``
+    measured after the move (``rms_deviation`` is the fit's), and ``fit_tolerance``: a curve
+    that leaves nodes out is fitted again closer (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS``
+    times) and the nodes found again.
     """
     name, sections = sections_in.read_sections(path)
     if not sections:
@@ -374,39 +375,28 @@ def import_sections(
         report["points"] = len(sec.points)
         return curve, report
 
-    own = [fit(sec, tolerance) for sec in sections]
-    fits = list(own)
+    fits = [fit(sec, tolerance) for sec in sections]
     within = [tolerance] * len(sections)
-
-    def deviations(curve, sec) -> np.ndarray:
-        return np.array([curve.nearest(p)[1] for p in sec.points])
-
+    points = [sec.points for sec in sections]
     for round_ in range(SNAP_ROUNDS + 1):
-        snapped, snaps = snap_to_nodes([c for c, _ in fits], SECTION_CAPTURE_FACTOR * tolerance)
-        distances = [deviations(c, sec) for sec, c in zip(sections, snapped, strict=True)]
-        over = [i for i, d in enumerate(distances) if d.max() > SNAP_KEEP_WITHIN * tolerance]
-        if not over or round_ == SNAP_ROUNDS:
+        snapped, snaps = snap_to_nodes(
+            [c for c, _ in fits], SECTION_CAPTURE_FACTOR * tolerance, points, SNAP_KEEP_WITHIN * tolerance
+        )
+        short = [i for i, s in enumerate(snaps) if s["skipped"]]
+        if not short or round_ == SNAP_ROUNDS:
             break
-        # The move through the nodes took these curves past the tolerance: fit them closer.
-        for i in over:
+        # These curves would leave their data to meet some nodes: fit them closer and try again.
+        for i in short:
             within[i] *= SNAP_TIGHTEN
             fits[i] = fit(sections[i], within[i])
-    # A curve that no closer fit kept within the tolerance keeps its own fit, not moved (the
-    # data come first; the build will name where it misses its neighbours).
-    for i in over:
-        fits[i], within[i] = own[i], tolerance
-        snapped[i] = own[i][0]
-        snaps[i] = {"nodes": 0, "max_move": 0.0}
-        distances[i] = deviations(snapped[i], sections[i])
     reports = []
-    for (_, report), snap, d, w in zip(fits, snaps, distances, within, strict=True):
-        worst = int(np.argmax(d))
+    for (_, report), snap, w in zip(fits, snaps, within, strict=True):
         report["nodes"] = snap["nodes"]
+        report["skipped_nodes"] = snap["skipped"]
         report["snap_move"] = snap["max_move"]
         report["fit_tolerance"] = w
-        report["max_deviation"] = float(d[worst])
-        report["max_deviation_index"] = worst
-        report["rms_deviation"] = float(np.sqrt(np.mean(np.square(d))))
+        report["max_deviation"] = snap["max_deviation"]
+        report["max_deviation_index"] = snap["max_deviation_index"]
         reports.append(report)
     return _draw_collection(collection or name, snapped), reports
 

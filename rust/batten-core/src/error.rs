@@ -46,6 +46,9 @@ pub enum Error {
     /// A curve has no name.
     #[error("curve {0} has an empty name")]
     EmptyName(usize),
+    /// An argument that does not fit what it goes with (the message says which and why).
+    #[error("{0}")]
+    InvalidInput(String),
     /// A network file could not be read.
     #[error("network file: {0}")]
     Format(String),

@@ -2,8 +2,8 @@
 //! network builds at the model tolerance without near misses (real-ships issue, H-rep §3.2.3).
 
 use batten_core::{
-    build_hull, snap_to_nodes, HullOptions, Network, NetworkCurve, NurbsCurve, Role, Tolerance,
-    Topology, WarningKind,
+    build_hull, snap_to_nodes, Error, HullOptions, Network, NetworkCurve, NurbsCurve, Role,
+    SnapData, Tolerance, Topology, WarningKind,
 };
 use glam::DVec3;
 
@@ -71,7 +71,8 @@ fn two_curves_that_miss_by_half_a_millimetre_meet_exactly_after_snapping() {
         near_misses(&Topology::build(&net, fine).expect("topology")),
         1
     );
-    let snapped = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture")).expect("snap");
+    let snapped =
+        snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
     let t = Topology::build(&snapped.network, fine).expect("topology");
     assert_eq!(near_misses(&t), 0, "{:?}", t.diagnostics);
     // The crossing is one node both curves pass through, to rounding.
@@ -126,7 +127,8 @@ fn faired_apart_kcs_builds_at_the_default_tolerance_once_snapped() {
     let net = Network::from_json(&std::fs::read_to_string(path).expect("fixture")).expect("reads");
     let before = Topology::build(&net, Tolerance::DEFAULT).expect("topology");
     assert!(near_misses(&before) > 100, "{}", near_misses(&before));
-    let snapped = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture")).expect("snap");
+    let snapped =
+        snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
     let most = snapped.snaps.iter().map(|s| s.max_move).fold(0.0, f64::max);
     assert!(most < 0.01, "largest move {most} m");
     let hull = build_hull(&snapped.network, &HullOptions::default()).expect("builds");
@@ -150,4 +152,81 @@ fn faired_apart_kcs_builds_at_the_default_tolerance_once_snapped() {
             old.name
         );
     }
+}
+
+#[test]
+fn a_curve_leaves_out_the_node_its_data_forbid() {
+    let station = cubic(
+        "st",
+        [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.5, 0.7],
+            [0.0, 1.3, 1.5],
+            [0.0, 2.0, 2.0],
+        ],
+    );
+    let wl = cubic(
+        "wl",
+        [
+            [-2.0, 0.775, 1.075],
+            [-1.0, 0.975, 1.076],
+            [1.0, 0.975, 1.076],
+            [2.0, 0.775, 1.075],
+        ],
+    );
+    // The waterline passes about 0.5 mm above the station; each curve's data are its own
+    // points. Their nodes: the two ends of each and the crossing.
+    let net = Network::try_new("cross", vec![station, wl]).expect("network");
+    let samples = |c: &NetworkCurve| -> Vec<DVec3> {
+        (0..=40).map(|i| c.curve.point(i as f64 / 40.0)).collect()
+    };
+    let data: Vec<Vec<DVec3>> = net.curves().iter().map(samples).collect();
+    let capture = Tolerance::try_new(0.01).expect("capture");
+    // Within 1 mm both move (by about half the miss each) and meet.
+    let loose = SnapData {
+        points: &data,
+        tolerance: 1e-3,
+    };
+    let s = snap_to_nodes(&net, capture, Some(loose)).expect("snap");
+    assert!(
+        s.snaps.iter().all(|c| c.skipped == 0 && c.nodes == 3),
+        "{:?}",
+        s.snaps
+    );
+    // Within 0.2 mm neither may move 0.27 mm: both leave the crossing out and keep their data.
+    let tight = SnapData {
+        points: &data,
+        tolerance: 2e-4,
+    };
+    let s = snap_to_nodes(&net, capture, Some(tight)).expect("snap");
+    for c in &s.snaps {
+        assert_eq!((c.nodes, c.skipped), (2, 1), "{c:?}");
+        let (dev, _) = c.max_deviation.expect("measured");
+        assert!(dev < 1e-9, "{}: {dev}", c.curve);
+    }
+    // Bad data are errors, not guesses.
+    let short = SnapData {
+        points: &data[..1],
+        tolerance: 1e-3,
+    };
+    assert!(matches!(
+        snap_to_nodes(&net, capture, Some(short)),
+        Err(Error::InvalidInput(_))
+    ));
+    let mut nan = data.clone();
+    nan[1][3].x = f64::NAN;
+    let bad = SnapData {
+        points: &nan,
+        tolerance: 1e-3,
+    };
+    let err = snap_to_nodes(&net, capture, Some(bad)).expect_err("NaN");
+    assert!(err.to_string().contains("'wl'"), "{err}");
+    let zero = SnapData {
+        points: &data,
+        tolerance: 0.0,
+    };
+    assert!(matches!(
+        snap_to_nodes(&net, capture, Some(zero)),
+        Err(Error::Tolerance(_))
+    ));
 }

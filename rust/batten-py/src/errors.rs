@@ -9,7 +9,7 @@
 //! | [`Error::Fair`] | `FairError` (a `CurveError`) |
 //! | [`Error::Format`] | `NetworkFileError` |
 //! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
-//! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], argument checks | `InvalidArgumentError` |
+//! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -37,9 +37,10 @@ pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
         Error::Fair { curve, .. } => FairError::new_err((message, curve)),
         Error::Format(_) => NetworkFileError::new_err(message),
         Error::NoSurface(_) | Error::Mesh(_) => NoSurfaceError::new_err(message),
-        Error::Tolerance(_) | Error::Resolution { .. } | Error::EmptyName(_) => {
-            InvalidArgumentError::new_err(message)
-        }
+        Error::Tolerance(_)
+        | Error::Resolution { .. }
+        | Error::EmptyName(_)
+        | Error::InvalidInput(_) => InvalidArgumentError::new_err(message),
     }
 }
 

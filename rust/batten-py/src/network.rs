@@ -1,11 +1,13 @@
 //! Network files: JSON text to and from lists of `Curve`.
 
-use batten_core::{Network, NetworkCurve, Tolerance};
+use batten_core::{Network, NetworkCurve, SnapData, Tolerance};
+use glam::DVec3;
+use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::Curve;
-use crate::errors::{core_err, guard};
+use crate::errors::{arg_err, core_err, guard};
 
 fn to_network(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
     let curves = curves.iter().map(|c| c.inner.clone()).collect();
@@ -61,21 +63,44 @@ pub(crate) fn check_lengths(
 }
 
 /// Move every curve through the nodes the topology finds at the `capture` distance (m), each as
-/// little as possible (`batten_core::snap_to_nodes`): returns `([Curve, ...], [report, ...])`,
-/// curve for curve in order, each report a dict `curve`, `nodes` (nodes it passes through),
-/// `max_move` (m, the largest distance to one of them before the move). The GIL is released.
+/// little as possible (`batten_core::snap_to_nodes`). With `points` (per curve, the (n, 3) points
+/// it was fitted to) and `tolerance`, a curve leaves out the nodes that would take one of its
+/// points farther than `tolerance`. Returns `([Curve, ...], [report, ...])`, curve for curve in
+/// order, each report a dict `curve`, `nodes` (nodes it passes through), `skipped` (nodes left
+/// out), `max_move` (m, the largest distance to a node before the move) and, with points,
+/// `max_deviation` (m) and `max_deviation_index`. The GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, capture))]
+#[pyo3(signature = (curves, capture, points=None, tolerance=None))]
 pub(crate) fn snap_to_nodes<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     capture: f64,
+    points: Option<Vec<PyArrayLike2<'py, f64, AllowTypeChange>>>,
+    tolerance: Option<f64>,
 ) -> PyResult<(Vec<Curve>, Vec<Bound<'py, PyDict>>)> {
     let capture = Tolerance::try_new(capture).map_err(core_err)?;
     let network = to_network("", &curves)?;
+    let data: Option<Vec<Vec<DVec3>>> = points
+        .map(|all| {
+            all.iter()
+                .zip(&curves)
+                .map(|(p, c)| rows3(p, &c.inner.name))
+                .collect::<PyResult<Vec<_>>>()
+        })
+        .transpose()?;
+    let tol = match (&data, tolerance) {
+        (Some(_), Some(t)) => t,
+        (Some(_), None) => return Err(arg_err("snap_to_nodes: points need a tolerance")),
+        (None, Some(_)) => return Err(arg_err("snap_to_nodes: a tolerance needs points")),
+        (None, None) => 0.0,
+    };
     let snapped = py.detach(|| {
         guard("snapping curves to their nodes", || {
-            batten_core::snap_to_nodes(&network, capture).map_err(core_err)
+            let data = data.as_deref().map(|points| SnapData {
+                points,
+                tolerance: tol,
+            });
+            batten_core::snap_to_nodes(&network, capture, data).map_err(core_err)
         })
     })?;
     let reports = snapped
@@ -85,7 +110,12 @@ pub(crate) fn snap_to_nodes<'py>(
             let d = PyDict::new(py);
             d.set_item("curve", &s.curve)?;
             d.set_item("nodes", s.nodes)?;
+            d.set_item("skipped", s.skipped)?;
             d.set_item("max_move", s.max_move)?;
+            if let Some((dev, i)) = s.max_deviation {
+                d.set_item("max_deviation", dev)?;
+                d.set_item("max_deviation_index", i)?;
+            }
             Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;
@@ -97,4 +127,19 @@ pub(crate) fn snap_to_nodes<'py>(
         .map(|inner| Curve { inner })
         .collect();
     Ok((curves, reports))
+}
+
+/// The rows of an (n, 3) array as points; any other shape is an error naming the curve.
+fn rows3(points: &PyArrayLike2<'_, f64, AllowTypeChange>, name: &str) -> PyResult<Vec<DVec3>> {
+    if points.shape()[1] != 3 {
+        return Err(arg_err(format!(
+            "curve '{name}': points must have shape (n, 3)"
+        )));
+    }
+    Ok(points
+        .as_array()
+        .rows()
+        .into_iter()
+        .map(|r| DVec3::new(r[0], r[1], r[2]))
+        .collect())
 }

@@ -3,8 +3,8 @@
 //! exactly where they cross (Ye & Nowacki 1995: curve compatibility at the nodes).
 //!
 //! - [`snap`]: find the nodes of the network at the data's capture distance and move every
-//!   curve, as little as possible, through its nodes.
+//!   curve, as little as possible, through the nodes its data allow.
 
 mod snap;
 
-pub use snap::{snap_to_nodes, CurveSnap, SnappedNetwork};
+pub use snap::{snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};

@@ -3,9 +3,15 @@
 //! each curve is changed as little as possible to pass exactly through the node positions
 //! ([`NurbsCurve::through`](crate::NurbsCurve::through)), so the network builds at the model
 //! tolerance with no near misses where the data meet.
+//!
+//! Given the points each curve was fitted to, a curve moves only through the nodes its data
+//! allow: while some point is farther than the tolerance from the moved curve, the node
+//! nearest that point (along the curve) is left out, and the curve is moved again.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
+use crate::curve::{CurveError, NurbsCurve};
 use crate::error::Error;
 use crate::network::{Network, NetworkCurve};
 use crate::tolerance::Tolerance;
@@ -18,9 +24,14 @@ pub struct CurveSnap {
     pub curve: String,
     /// Nodes the curve now passes through.
     pub nodes: usize,
+    /// Nodes left out because moving through them took a data point past the tolerance.
+    pub skipped: usize,
     /// The largest distance (m) between the curve and a node it was moved through, before the
     /// move.
     pub max_move: f64,
+    /// With data: the largest distance (m) of a data point from the moved curve, and the
+    /// point's index; `None` without data.
+    pub max_deviation: Option<(f64, usize)>,
 }
 
 /// A network whose curves pass through their nodes, and what it took.
@@ -32,12 +43,32 @@ pub struct SnappedNetwork {
     pub snaps: Vec<CurveSnap>,
 }
 
+/// The points each curve was fitted to and how close the moved curve must stay to them.
+#[derive(Clone, Copy, Debug)]
+pub struct SnapData<'a> {
+    /// Per curve of the network, in its order: the points it was fitted to.
+    pub points: &'a [Vec<DVec3>],
+    /// Largest distance (m) a point may have from its moved curve.
+    pub tolerance: f64,
+}
+
 /// Move every curve of `network` through the nodes the topology finds at the `capture`
-/// distance (ends and crossings closer than it are one node, at the cluster's position).
+/// distance (ends and crossings closer than it are one node, at the cluster's position). With
+/// `data`, a curve leaves out the nodes that would take one of its points farther than the
+/// tolerance (module doc).
 ///
-/// Errors: the topology's own errors, and a curve that cannot be moved through its nodes
-/// (named, with the curve kernel's reason).
-pub fn snap_to_nodes(network: &Network, capture: Tolerance) -> Result<SnappedNetwork, Error> {
+/// Errors: the topology's own errors, data for a different number of curves or with a
+/// non-finite point ([`Error::InvalidInput`]), a data tolerance that is not positive and finite
+/// ([`Error::Tolerance`]), and a curve that cannot be moved
+/// through its nodes (named, with the curve kernel's reason).
+pub fn snap_to_nodes(
+    network: &Network,
+    capture: Tolerance,
+    data: Option<SnapData<'_>>,
+) -> Result<SnappedNetwork, Error> {
+    if let Some(d) = data {
+        check_data(network, d)?;
+    }
     let topology = Topology::build(network, capture)?;
     let brep = &topology.brep;
     let mut targets: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); network.curves().len()];
@@ -46,29 +77,119 @@ pub fn snap_to_nodes(network: &Network, capture: Tolerance) -> Result<SnappedNet
             targets[e.curve].push((t, brep.vertices[v.index()].position));
         }
     }
-    let mut curves = Vec::with_capacity(network.curves().len());
-    let mut snaps = Vec::with_capacity(network.curves().len());
-    for (c, mut at) in network.curves().iter().zip(targets) {
-        at.sort_by(|a, b| a.0.total_cmp(&b.0));
-        at.dedup_by(|a, b| a.0 == b.0);
-        let max_move = at
-            .iter()
-            .map(|&(t, q)| c.curve.point(t).distance(q))
-            .fold(0.0, f64::max);
-        let curve = c.curve.through(&at).map_err(|e| e.named(&c.name))?;
-        snaps.push(CurveSnap {
-            curve: c.name.clone(),
-            nodes: at.len(),
-            max_move,
-        });
-        curves.push(NetworkCurve {
-            name: c.name.clone(),
-            role: c.role,
-            curve,
-        });
-    }
+    let moved: Vec<(NetworkCurve, CurveSnap)> = network
+        .curves()
+        .par_iter()
+        .zip(targets)
+        .enumerate()
+        .map(|(i, (c, mut at))| {
+            at.sort_by(|a, b| a.0.total_cmp(&b.0));
+            at.dedup_by(|a, b| a.0 == b.0);
+            let points = data.map(|d| (d.points[i].as_slice(), d.tolerance));
+            let (curve, snap) = snap_curve(&c.curve, at, points).map_err(|e| e.named(&c.name))?;
+            let snap = CurveSnap {
+                curve: c.name.clone(),
+                ..snap
+            };
+            let curve = NetworkCurve {
+                name: c.name.clone(),
+                role: c.role,
+                curve,
+            };
+            Ok((curve, snap))
+        })
+        .collect::<Result<_, Error>>()?;
+    let (curves, snaps): (Vec<_>, Vec<_>) = moved.into_iter().unzip();
     Ok(SnappedNetwork {
         network: Network::try_new(network.name.clone(), curves)?,
         snaps,
     })
+}
+
+/// Data for every curve, finite, with a positive finite tolerance.
+fn check_data(network: &Network, d: SnapData<'_>) -> Result<(), Error> {
+    if d.points.len() != network.curves().len() {
+        return Err(Error::InvalidInput(format!(
+            "snapping: data for {} curves, the network has {}",
+            d.points.len(),
+            network.curves().len()
+        )));
+    }
+    Tolerance::try_new(d.tolerance)?;
+    for (c, pts) in network.curves().iter().zip(d.points) {
+        if let Some(i) = pts.iter().position(|p| !p.is_finite()) {
+            return Err(Error::InvalidInput(format!(
+                "snapping: data point {i} of curve '{}' is not finite",
+                c.name
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Accuracy (fraction of the tolerance) of the closest points that measure the data's
+/// distance from a moved curve.
+const DEVIATION_ACCURACY: f64 = 1e-3;
+
+/// Move `curve` through `targets` (sorted by parameter); with `data`, leave out one target at a
+/// time, the nearest along the curve to the worst point, until every point is within the
+/// tolerance (or no target is left).
+fn snap_curve(
+    curve: &NurbsCurve,
+    mut targets: Vec<(f64, DVec3)>,
+    data: Option<(&[DVec3], f64)>,
+) -> Result<(NurbsCurve, CurveSnap), CurveError> {
+    let move_of = |at: &[(f64, DVec3)]| {
+        at.iter()
+            .map(|&(t, q)| curve.point(t).distance(q))
+            .fold(0.0, f64::max)
+    };
+    let all = targets.len();
+    loop {
+        let moved = curve.through(&targets)?;
+        let worst = match data {
+            Some((points, tol)) => Some(worst_point(&moved, points, tol)?),
+            None => None,
+        };
+        let snap = |moved: NurbsCurve, targets: &[(f64, DVec3)]| {
+            let snap = CurveSnap {
+                curve: String::new(),
+                nodes: targets.len(),
+                skipped: all - targets.len(),
+                max_move: move_of(targets),
+                max_deviation: worst.map(|(d, i, _)| (d, i)),
+            };
+            (moved, snap)
+        };
+        match (worst, data) {
+            (Some((d, _, t)), Some((_, tol))) if d > tol && !targets.is_empty() => {
+                let k = (0..targets.len())
+                    .min_by(|&a, &b| {
+                        (targets[a].0 - t)
+                            .abs()
+                            .total_cmp(&(targets[b].0 - t).abs())
+                    })
+                    .unwrap_or(0);
+                targets.remove(k);
+            }
+            _ => return Ok(snap(moved, &targets)),
+        }
+    }
+}
+
+/// The point of `points` farthest from `curve`: its distance, index and the parameter of its
+/// closest point.
+fn worst_point(
+    curve: &NurbsCurve,
+    points: &[DVec3],
+    tol: f64,
+) -> Result<(f64, usize, f64), CurveError> {
+    let mut worst = (0.0, 0, curve.domain().0);
+    for (i, p) in points.iter().enumerate() {
+        let n = curve.nearest(*p, DEVIATION_ACCURACY * tol)?;
+        if n.distance > worst.0 {
+            worst = (n.distance, i, n.t);
+        }
+    }
+    Ok(worst)
 }
