@@ -1,14 +1,16 @@
 """batten demo, headless: draw each example network as Blender curves, then write
-``<out>/<name>.blend``, a report ``<out>/<name>.json`` and a render ``<out>/<name>.png``.
+``<out>/<name>.blend``, a report ``<out>/<name>.json`` and a render ``<out>/<name>.png``; then
+import the real ships' sections (``shared/hulls`` beside the checkout) with every setting at its
+default, build them the same way and render them from the bow, the stern and the side.
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
     blender -b -P blender_scripts/demo.py -- --out out           # desktop Blender, batten installed
 
 Options after ``--``: ``--out DIR`` (default ``out``), ``--examples DIR`` (default the repo's
-``examples/``), ``--engine WORKBENCH|CYCLES``, ``--size WxH``, ``--resolution N`` (segments per
-patch side), ``--zebra`` (also render reflection lines, ``<name>_zebra.png``, on a mesh of at
-least 32 segments per patch side).
+``examples/``), ``--ships DIR`` (default ``../shared/hulls``), ``--engine WORKBENCH|CYCLES``,
+``--size WxH``, ``--resolution N`` (segments per patch side), ``--zebra`` (also render
+reflection lines, ``<name>_zebra.png``, on a mesh of at least 32 segments per patch side).
 """
 
 from __future__ import annotations
@@ -49,6 +51,7 @@ def _args():
     ap = argparse.ArgumentParser(prog="demo.py")
     ap.add_argument("--out", type=Path, default=Path("out"))
     ap.add_argument("--examples", type=Path, default=ROOT / "examples")
+    ap.add_argument("--ships", type=Path, default=ROOT.parent / "shared" / "hulls")
     ap.add_argument("--engine", choices=["WORKBENCH", "CYCLES"], default="WORKBENCH")
     ap.add_argument("--size", default="1280x720")
     ap.add_argument("--resolution", type=int, default=12)
@@ -67,18 +70,51 @@ def _bounds(objects):
     return lo, hi
 
 
-def _stage(collection, engine: str, size: str, surface=None):
-    """Tubes on the curves, the smooth surface, a three-quarter bow camera, light and world."""
+#: Tube radius on the curves, as a share of the model's largest extent: a ship is long and
+#: slender, and its close-up views of the ends need finer tubes.
+EXAMPLE_TUBE = 0.0025
+SHIP_TUBE = 0.0008
+
+#: Views: the camera's direction from the model (three-quarter bow: forward, to port, above;
+#: three-quarter stern; the side from port, nearly level) and the share of the model's length
+#: (aft, forward) it frames: a ship's ends are framed on their own, where its shape is.
+VIEWS = {
+    "model": ((0.7, 1.0, 0.45), (0.0, 1.0)),
+    "bow": ((0.7, 1.0, 0.35), (0.68, 1.0)),
+    "stern": ((-0.7, 1.0, 0.35), (0.0, 0.3)),
+    "side": ((0.0, 1.0, 0.08), (0.0, 1.0)),
+}
+
+
+def aim_camera(scene, view: str, lo, hi) -> None:
+    """Put the scene's camera for ``view`` (:data:`VIEWS`) on the box ``lo``–``hi``: on the
+    view's direction from the centre of the framed part of the box, far enough that that part's
+    bounding sphere fills the view."""
     from mathutils import Vector
 
+    direction, (aft, fwd) = VIEWS[view]
+    lo, hi = lo.copy(), hi.copy()
+    length = hi[0] - lo[0]
+    lo[0], hi[0] = lo[0] + aft * length, lo[0] + fwd * length
+    cam = scene.camera
+    centre = Vector(((lo + hi) / 2).tolist())
+    d = Vector(direction).normalized()
+    radius = 0.5 * float(((hi - lo) ** 2).sum() ** 0.5)
+    half_fov = math.atan(0.5 * cam.data.sensor_width / cam.data.lens)
+    cam.location = centre + d * (1.05 * radius / math.sin(half_fov))
+    cam.rotation_euler = (-d).to_track_quat("-Z", "Y").to_euler()
+
+
+def _stage(collection, engine: str, size: str, surface=None, tube: float = 0.0025):
+    """Tubes on the curves (radius ``tube`` × the model's largest extent), the smooth surface,
+    a three-quarter bow camera, light and world."""
     scene = bpy.context.scene
     lo, hi = _bounds(list(collection.objects) + ([surface] if surface is not None else []))
-    centre = Vector(((lo + hi) / 2).tolist())
     extent = float(max(hi - lo))
     mat = bpy.data.materials.new("batten curve")
     mat.diffuse_color = (0.05, 0.2, 0.55, 1.0)
     for obj in collection.objects:
-        obj.data.bevel_depth = 0.0025 * extent
+        obj.data.bevel_depth = tube * extent
         obj.data.bevel_resolution = 2
         obj.data.materials.append(mat)
         if obj.batten.role in {"keel", "stem", "transom", "deck", "knuckle"}:
@@ -92,12 +128,8 @@ def _stage(collection, engine: str, size: str, surface=None):
     cam_data.lens = 50
     cam = bpy.data.objects.new("camera", cam_data)
     scene.collection.objects.link(cam)
-    direction = Vector((0.7, 1.0, 0.45)).normalized()  # three-quarter bow: forward, to port, above
-    radius = 0.5 * float(((hi - lo) ** 2).sum() ** 0.5)
-    half_fov = math.atan(0.5 * cam_data.sensor_width / cam_data.lens)
-    cam.location = centre + direction * (1.05 * radius / math.sin(half_fov))
-    cam.rotation_euler = (-direction).to_track_quat("-Z", "Y").to_euler()
     scene.camera = cam
+    aim_camera(scene, "model", lo, hi)
     sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
     sun.rotation_euler = (math.radians(40), math.radians(10), math.radians(30))
     scene.collection.objects.link(sun)
@@ -193,14 +225,65 @@ def render_zebra(scene, collection, filepath: Path) -> None:
 
 
 def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
+    """An example network file: drawn as curves, built, reported, rendered, saved."""
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     t0 = time.perf_counter()
     coll = api.load_network(path)
+    t_load = time.perf_counter() - t0
+    _log(f"{coll.name}: drew {len(coll.objects)} curves from {path.name} in {t_load * 1e3:.1f} ms")
+    return deliver(api, coll, path, {"load_ms": round(t_load * 1e3, 3)}, out, engine, size, resolution, zebra)
+
+
+def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
+    """A real ship's sections (``shared/hulls/<ship>/network.json``), imported and built with
+    every setting at its default, as a new user would; rendered from the bow, the stern and
+    the side."""
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    t0 = time.perf_counter()
+    coll, fits = api.import_sections(path, collection=path.parent.name)
+    t_load = time.perf_counter() - t0
+    worst = max(fits, key=lambda r: r["max_deviation"])
+    _log(
+        f"{coll.name}: imported {len(fits)} sections from {path} in {t_load:.2f} s; worst point "
+        f"{worst['max_deviation'] * 1e3:.2f} mm from curve {worst['curve']}; "
+        f"{sum(r['nodes'] > 0 for r in fits)} curves moved through their nodes "
+        f"(largest move {max(r['snap_move'] for r in fits) * 1e3:.2f} mm)"
+    )
+    extra = {"import_s": round(t_load, 3), "fits": fits}
+    return deliver(
+        api,
+        coll,
+        path,
+        extra,
+        out,
+        engine,
+        size,
+        resolution,
+        zebra,
+        views=("bow", "stern", "side"),
+        tube=SHIP_TUBE,
+    )
+
+
+def deliver(
+    api,
+    coll,
+    path,
+    extra: dict,
+    out: Path,
+    engine,
+    size,
+    resolution,
+    zebra,
+    views=("model",),
+    tube: float = EXAMPLE_TUBE,
+) -> dict:
+    """Build the surface of ``coll``, log and write its report, render it (curve tubes of
+    radius ``tube`` × its extent) from each of ``views`` (``<name>.png`` for the first,
+    ``<name>_<view>.png`` for the others) with its reflection lines, and save the .blend."""
     bpy.context.scene.batten.source = coll
     curves = api.read_curves(coll)
-    t_load = time.perf_counter() - t0
     name = coll.name
-    _log(f"{name}: drew {len(curves)} curves from {path.name} in {t_load * 1e3:.1f} ms")
     report = {
         "example": name,
         "source": str(path),
@@ -215,7 +298,7 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
             }
             for c in curves
         ],
-        "load_ms": round(t_load * 1e3, 3),
+        **extra,
     }
     t0 = time.perf_counter()
     result = api.build(coll, resolution=resolution)
@@ -236,13 +319,17 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
     report["build_ms"] = round(t_build * 1e3, 3)
     lo, hi = _bounds(coll.objects)
     report["bounds_m"] = {"min": lo.round(6).tolist(), "max": hi.round(6).tolist()}
-    _stage(coll, engine, size, result.object)
+    _stage(coll, engine, size, result.object, tube=tube)
     out.mkdir(parents=True, exist_ok=True)
-    png = out / f"{name}.png"
-    bpy.context.scene.render.filepath = str(png.resolve())
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=True)
-    _log(f"{name}: rendered {png} ({engine}) in {time.perf_counter() - t0:.1f} s")
+    scene = bpy.context.scene
+    view_lo, view_hi = _bounds(list(coll.objects) + [result.object])
+    for i, view in enumerate(views):
+        aim_camera(scene, view, view_lo, view_hi)
+        png = out / (f"{name}.png" if i == 0 else f"{name}_{view}.png")
+        scene.render.filepath = str(png.resolve())
+        t0 = time.perf_counter()
+        bpy.ops.render.render(write_still=True)
+        _log(f"{name}: rendered {png} ({engine}, {view}) in {time.perf_counter() - t0:.1f} s")
     if zebra:
         # Workbench interpolates the mesh's vertex normals linearly across each triangle, so a
         # coarse mesh shows its facets in the stripes where the hull turns quickly (the ends):
@@ -250,11 +337,13 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
         zebra_resolution = max(resolution, ZEBRA_RESOLUTION)
         if zebra_resolution != resolution:
             api.build(coll, resolution=zebra_resolution)
-        zpng = out / f"{name}_zebra.png"
-        render_zebra(bpy.context.scene, coll, zpng)
+        for i, view in enumerate(views):
+            aim_camera(scene, view, view_lo, view_hi)
+            zpng = out / (f"{name}_zebra.png" if i == 0 else f"{name}_{view}_zebra.png")
+            render_zebra(scene, coll, zpng)
+            _log(f"{name}: rendered reflection lines {zpng} (resolution {zebra_resolution}, {view})")
         if zebra_resolution != resolution:
             api.build(coll, resolution=resolution)
-        _log(f"{name}: rendered reflection lines {zpng} (resolution {zebra_resolution})")
     blend = out / f"{name}.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(blend.resolve()))
     _log(f"{name}: saved {blend}")
@@ -276,7 +365,12 @@ def main() -> None:
         sys.exit(f"demo: no example networks in {args.examples}")
     for path in examples:
         run_example(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
-    _log(f"done: {len(examples)} example(s) in {args.out}/")
+    ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
+    if not ships:
+        _log(f"no real ships in {args.ships} (the shared/hulls folder beside the checkout)")
+    for path in ships:
+        run_ship(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
+    _log(f"done: {len(examples)} example(s) and {len(ships)} ship(s) in {args.out}/")
 
 
 if __name__ == "__main__":
