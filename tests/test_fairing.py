@@ -121,7 +121,9 @@ def test_real_ship_sections_import_within_5_mm(ship):
     # Measured, not reported: every point of the file (read here, not by the add-on) lies
     # within 5 mm of the curve drawn in Blender (float32 control points), by closest point.
     data = json.loads(path.read_text())["curves"]
-    assert len(data) == len(curves)
+    chines = [r["curve"] for r in reports if r.get("kind") == "chine"]
+    assert len(data) + len(chines) == len(curves)
+    assert all(curves[name].role == "knuckle" for name in chines)
     for c in data:
         drawn = curves[c["name"]]
         far = max(drawn.nearest(p, 1e-9)[1] for p in c["points"])
@@ -162,9 +164,16 @@ def test_fair_operator_reports_through_bpy_ops():
 
 # At the defaults, before curves were moved through their nodes, KCS built 4 faces with 144
 # near misses: each section faired on its own no longer met its neighbours.
-@pytest.mark.parametrize(("ship", "faces", "near_misses"), [("kcs", 270, 0), ("kvlcc2", 280, 0)])
-def test_real_ship_curves_meet_at_their_nodes_and_build_at_the_defaults(ship, faces, near_misses):
+# The transom's side edge is a knuckle in the upper waterlines and the deck: joined, it is a chine
+# (one per ship).
+@pytest.mark.parametrize(
+    ("ship", "faces", "near_misses", "chines"), [("kcs", 270, 0, 1), ("kvlcc2", 280, 0, 1)]
+)
+def test_real_ship_curves_meet_at_their_nodes_and_build_at_the_defaults(ship, faces, near_misses, chines):
     coll, reports = api.import_sections(HULLS / ship / "network.json")
+    joined = [r for r in reports if r.get("kind") == "chine"]
+    assert len(joined) == chines, [r["curve"] for r in joined]
+    assert all(r["points"] >= 2 and r["max_deviation"] < 1e-6 for r in joined), joined
     moved = [r for r in reports if r["nodes"] > 0]
     assert len(moved) >= 0.9 * len(reports), f"{len(moved)} of {len(reports)} curves meet their nodes"
     assert max(r["snap_move"] for r in reports) <= SECTION_CAPTURE_FACTOR * DEFAULT_SECTION_TOLERANCE

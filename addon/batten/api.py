@@ -42,6 +42,7 @@ from batten_native import (
     NoSurfaceError,
     build_surface,
     check_lengths,
+    chines_from_knuckles,
     fair_points,
     fairness,
     network_from_json,
@@ -377,28 +378,47 @@ def import_sections(
 
     fits = [fit(sec, tolerance) for sec in sections]
     within = [tolerance] * len(sections)
-    points = [sec.points for sec in sections]
     for round_ in range(SNAP_ROUNDS + 1):
+        curves = [c for c, _ in fits]
+        knuckles = [_corner_points(c, r) for c, r in fits]
+        chines = chines_from_knuckles(curves, knuckles, tolerance)
+        # A chine's own data are the knuckles it joins.
+        points = [sec.points for sec in sections] + [_chain_points(ch, knuckles) for ch in chines]
         snapped, snaps = snap_to_nodes(
-            [c for c, _ in fits], SECTION_CAPTURE_FACTOR * tolerance, points, SNAP_KEEP_WITHIN * tolerance
+            curves + chines, SECTION_CAPTURE_FACTOR * tolerance, points, SNAP_KEEP_WITHIN * tolerance
         )
-        short = [i for i, s in enumerate(snaps) if s["skipped"]]
+        short = [i for i, s in enumerate(snaps[: len(sections)]) if s["skipped"]]
         if not short or round_ == SNAP_ROUNDS:
             break
         # These curves would leave their data to meet some nodes: fit them closer and try again.
         for i in short:
             within[i] *= SNAP_TIGHTEN
             fits[i] = fit(sections[i], within[i])
-    reports = []
-    for (_, report), snap, w in zip(fits, snaps, within, strict=True):
+    reports = [report for _, report in fits]
+    reports += [
+        {"curve": ch.name, "kind": "chine", "points": len(p), "corners": [], "fit_tolerance": None}
+        for ch, p in zip(chines, points[len(sections) :], strict=True)
+    ]
+    for report, snap, w in zip(reports, snaps, within + [None] * len(chines), strict=True):
         report["nodes"] = snap["nodes"]
         report["skipped_nodes"] = snap["skipped"]
         report["snap_move"] = snap["max_move"]
         report["fit_tolerance"] = w
         report["max_deviation"] = snap["max_deviation"]
         report["max_deviation_index"] = snap["max_deviation_index"]
-        reports.append(report)
     return _draw_collection(collection or name, snapped), reports
+
+
+def _corner_points(curve: Curve, report: dict) -> np.ndarray:
+    """The knuckle points of a faired curve, (k, 3): where its fit kept corners."""
+    t = report["corner_parameters"]
+    return np.asarray(curve.evaluate(t), dtype=float).reshape(-1, 3) if t else np.zeros((0, 3))
+
+
+def _chain_points(chine: Curve, knuckles: list[np.ndarray]) -> np.ndarray:
+    """The knuckle points a chine joins: those it passes through (to the capture distance)."""
+    found = [k for ks in knuckles for k in ks if chine.nearest(k)[1] <= DEFAULT_SECTION_MODEL_TOLERANCE]
+    return np.asarray(found, dtype=float).reshape(-1, 3)
 
 
 def curvature_comb(obj, *, samples: int = 200, scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:

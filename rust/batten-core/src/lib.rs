@@ -54,4 +54,4 @@ pub use topo::{
     Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
 };
-pub use wireframe::{snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};
+pub use wireframe::{chines_from_knuckles, snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};

@@ -52,6 +52,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
     m.add_function(wrap_pyfunction!(network::snap_to_nodes, m)?)?;
+    m.add_function(wrap_pyfunction!(network::chines_from_knuckles, m)?)?;
     #[cfg(feature = "test-hooks")]
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;

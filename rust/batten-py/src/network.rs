@@ -143,3 +143,30 @@ fn rows3(points: &PyArrayLike2<'_, f64, AllowTypeChange>, name: &str) -> PyResul
         .map(|r| DVec3::new(r[0], r[1], r[2]))
         .collect())
 }
+
+/// The knuckle curves (chines) joining the knuckles of consecutive sections
+/// (`batten_core::chines_from_knuckles`): `knuckles[i]` are the knuckle points ((k, 3), k ≥ 0)
+/// of curve `i`, sections are the curves lying in an axis plane within `tolerance` (m).
+/// Returns the new curves, role `knuckle`. The GIL is released.
+#[pyfunction]
+#[pyo3(signature = (curves, knuckles, tolerance))]
+pub(crate) fn chines_from_knuckles<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    knuckles: Vec<PyArrayLike2<'py, f64, AllowTypeChange>>,
+    tolerance: f64,
+) -> PyResult<Vec<Curve>> {
+    let tol = Tolerance::try_new(tolerance).map_err(core_err)?;
+    let network = to_network("", &curves)?;
+    let knuckles = knuckles
+        .iter()
+        .zip(&curves)
+        .map(|(k, c)| rows3(k, &c.inner.name))
+        .collect::<PyResult<Vec<_>>>()?;
+    let chines = py.detach(|| {
+        guard("joining knuckles into chines", || {
+            batten_core::chines_from_knuckles(&network, &knuckles, tol).map_err(core_err)
+        })
+    })?;
+    Ok(chines.into_iter().map(|inner| Curve { inner }).collect())
+}

@@ -21,6 +21,7 @@ __all__ = [
     "_panic_for_tests",
     "build_surface",
     "check_lengths",
+    "chines_from_knuckles",
     "fair_points",
     "fairness",
     "network_from_json",
@@ -110,6 +111,9 @@ class Curve:
 def network_to_json(name: str, curves: list[Curve]) -> str: ...
 def network_from_json(text: str) -> tuple[str, list[Curve]]: ...
 def check_lengths(curves: list[Curve], tolerance: float) -> None: ...
+def chines_from_knuckles(
+    curves: list[Curve], knuckles: list[_ArrayLike], tolerance: float
+) -> list[Curve]: ...
 def snap_to_nodes(
     curves: list[Curve],
     capture: float,

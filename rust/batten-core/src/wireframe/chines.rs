@@ -1,0 +1,235 @@
+//! Chines from the knuckles of the sections (H-rep paper §5: "the chines, connecting the
+//! knuckles in each cross section"): sections of one family (plane cuts square to one axis)
+//! are ordered along that axis, each knuckle point is joined to the nearest knuckle of the next
+//! section when they are each other's nearest, and every chain of two or more knuckles becomes
+//! a knuckle curve through them.
+
+use glam::DVec3;
+
+use crate::curve::NurbsCurve;
+use crate::error::Error;
+use crate::network::{Network, NetworkCurve, Role};
+use crate::tolerance::Tolerance;
+
+/// Knuckles of consecutive sections are joined only when closer than this many times the gap
+/// between the sections' planes (a chine sloping at up to about 70° to the axis).
+const MAX_RISE: f64 = 3.0;
+
+/// The axis-aligned plane a curve lies in (within the tolerance), as `(axis, value)`.
+fn plane_of(curve: &NurbsCurve, tolerance: f64) -> Option<(usize, f64)> {
+    let pts = curve.control_points();
+    (0..3).find_map(|axis| {
+        let (lo, hi) = pts
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p[axis]), hi.max(p[axis]))
+            });
+        (hi - lo <= tolerance).then_some((axis, 0.5 * (lo + hi)))
+    })
+}
+
+/// A chain of knuckle points: the curve index and the point, in order along the axis.
+type Chain = Vec<(usize, DVec3)>;
+
+/// The knuckle curves joining the knuckles of consecutive sections of `network` (module doc).
+/// `knuckles[i]` are the knuckle points of curve `i` (its interior corners); a curve lies in an
+/// axis plane when its control points do within `tolerance` (curves in one plane are one
+/// section); curves in no axis plane take part in no chine. Each
+/// chine is named `chine <first>–<last>` after the curves it starts and ends on, and passes
+/// through its knuckle points.
+///
+/// Errors: knuckles given for a different number of curves ([`Error::InvalidInput`]), and a
+/// chine the curve kernel refuses (named).
+pub fn chines_from_knuckles(
+    network: &Network,
+    knuckles: &[Vec<DVec3>],
+    tolerance: Tolerance,
+) -> Result<Vec<NetworkCurve>, Error> {
+    let curves = network.curves();
+    if knuckles.len() != curves.len() {
+        return Err(Error::InvalidInput(format!(
+            "chines: knuckles for {} curves, the network has {}",
+            knuckles.len(),
+            curves.len()
+        )));
+    }
+    let planes: Vec<Option<(usize, f64)>> = curves
+        .iter()
+        .map(|c| plane_of(&c.curve, tolerance.get()))
+        .collect();
+    let mut chines = Vec::new();
+    for axis in 0..3 {
+        let mut family: Vec<(f64, usize)> = planes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.filter(|p| p.0 == axis).map(|p| (p.1, i)))
+            .collect();
+        family.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // Curves in one plane (a section cut in parts) are one section.
+        let mut sections: Vec<Section> = Vec::new();
+        for (z, i) in family {
+            let points = knuckles[i].iter().map(|&p| (i, p));
+            match sections.last_mut() {
+                Some(s) if z - s.at <= tolerance.get() => s.knuckles.extend(points),
+                _ => sections.push(Section {
+                    at: z,
+                    knuckles: points.collect(),
+                }),
+            }
+        }
+        for chain in chains(&sections) {
+            chines.push(chine_curve(network, &chain)?);
+        }
+    }
+    Ok(chines)
+}
+
+/// One section of a family: its plane's value along the axis, and its knuckles (curve index,
+/// point) from every curve in that plane.
+struct Section {
+    at: f64,
+    knuckles: Vec<(usize, DVec3)>,
+}
+
+/// The chains of mutually nearest knuckles of consecutive sections of one family (sorted by
+/// plane value), each of two or more points.
+fn chains(sections: &[Section]) -> Vec<Chain> {
+    let mut open: Vec<Chain> = Vec::new();
+    let mut done: Vec<Chain> = Vec::new();
+    for pair in sections.windows(2) {
+        let (a, b) = (&pair[0].knuckles, &pair[1].knuckles);
+        let reach = MAX_RISE * (pair[1].at - pair[0].at);
+        let nearest = |p: DVec3, among: &[(usize, DVec3)]| {
+            among
+                .iter()
+                .enumerate()
+                .min_by(|x, y| x.1 .1.distance(p).total_cmp(&y.1 .1.distance(p)))
+                .map(|(i, q)| (i, q.1.distance(p)))
+        };
+        let mut next_open = Vec::new();
+        for (j, &q) in b.iter().enumerate() {
+            let link = nearest(q.1, a)
+                .filter(|&(i, d)| d <= reach && nearest(a[i].1, b).map(|n| n.0) == Some(j));
+            let mut chain = match link {
+                Some((i, _)) => match open.iter().position(|c| c.last() == Some(&a[i])) {
+                    Some(k) => open.swap_remove(k),
+                    None => vec![a[i]],
+                },
+                None => Vec::new(),
+            };
+            chain.push(q);
+            next_open.push(chain);
+        }
+        done.extend(open.drain(..).filter(|c| c.len() >= 2));
+        open = next_open;
+    }
+    done.extend(open.into_iter().filter(|c| c.len() >= 2));
+    done
+}
+
+/// The knuckle curve through a chain's points: a line through two, else the clamped uniform
+/// B-spline of degree up to 3 on the points as control polygon, moved through them at their
+/// chord-length parameters ([`NurbsCurve::through`]).
+fn chine_curve(network: &Network, chain: &Chain) -> Result<NetworkCurve, Error> {
+    let curves = network.curves();
+    let name = format!(
+        "chine {}–{}",
+        curves[chain[0].0].name,
+        curves[chain[chain.len() - 1].0].name
+    );
+    let pts: Vec<DVec3> = chain.iter().map(|c| c.1).collect();
+    let n = pts.len();
+    let degree = (n - 1).min(3);
+    let mut s = vec![0.0];
+    for w in pts.windows(2) {
+        s.push(s[s.len() - 1] + w[0].distance(w[1]));
+    }
+    let total = s[n - 1];
+    let params: Vec<f64> = s.iter().map(|d| d / total).collect();
+    let mut knots = vec![0.0; degree + 1];
+    // Averaged knots (Piegl & Tiller eq. 9.8) on the chord-length parameters.
+    for j in 1..n - degree {
+        knots.push(params[j..j + degree].iter().sum::<f64>() / degree as f64);
+    }
+    knots.extend(std::iter::repeat_n(1.0, degree + 1));
+    let named = |e: crate::curve::CurveError| e.named(&name);
+    let polygon = NurbsCurve::try_new(degree, knots, pts.clone(), None).map_err(named)?;
+    let targets: Vec<(f64, DVec3)> = params.iter().copied().zip(pts).collect();
+    let curve = polygon.through(&targets).map_err(named)?;
+    Ok(NetworkCurve {
+        name,
+        role: Role::Knuckle,
+        curve,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly(name: &str, pts: &[[f64; 3]]) -> NetworkCurve {
+        let n = pts.len();
+        let mut knots = vec![0.0, 0.0];
+        knots.extend((1..n - 1).map(|i| i as f64));
+        knots.extend([(n - 1) as f64; 2]);
+        NetworkCurve {
+            name: name.to_owned(),
+            role: Role::Free,
+            curve: NurbsCurve::try_new(
+                1,
+                knots,
+                pts.iter().copied().map(DVec3::from).collect(),
+                None,
+            )
+            .expect("polyline"),
+        }
+    }
+
+    /// Three stations of a hard-chine hull (x = 0, 2, 4), the chine rising from z 0.5 to 0.7.
+    fn stations() -> (Network, Vec<Vec<DVec3>>) {
+        let mut curves = Vec::new();
+        let mut knuckles = Vec::new();
+        for (i, x) in [0.0, 2.0, 4.0].into_iter().enumerate() {
+            let z = 0.5 + 0.1 * i as f64;
+            curves.push(poly(
+                &format!("st{i}"),
+                &[[x, 0.0, 0.0], [x, 1.0, z], [x, 1.2, 1.5]],
+            ));
+            knuckles.push(vec![DVec3::new(x, 1.0, z)]);
+        }
+        (
+            Network::try_new("chine", curves).expect("network"),
+            knuckles,
+        )
+    }
+
+    #[test]
+    fn consecutive_stations_give_one_chine_through_their_knuckles() {
+        let (net, knuckles) = stations();
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        assert_eq!(chines.len(), 1);
+        let c = &chines[0];
+        assert_eq!((c.name.as_str(), c.role), ("chine st0–st2", Role::Knuckle));
+        for k in knuckles.iter().flatten() {
+            let d = c.curve.nearest(*k, 1e-12).expect("nearest").distance;
+            assert!(d < 1e-9, "through {k}: {d}");
+        }
+    }
+
+    #[test]
+    fn far_or_lone_knuckles_make_no_chine() {
+        let (net, mut knuckles) = stations();
+        // The middle station's knuckle 7 m away: beyond three plane gaps (6 m) of both.
+        knuckles[1] = vec![DVec3::new(2.0, 7.0, 0.6)];
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        assert!(
+            chines.is_empty(),
+            "{:?}",
+            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
+        );
+        assert!(matches!(
+            chines_from_knuckles(&net, &knuckles[..2], Tolerance::DEFAULT),
+            Err(Error::InvalidInput(_))
+        ));
+    }
+}
