@@ -35,8 +35,8 @@ type Chain = Vec<(usize, DVec3)>;
 /// `knuckles[i]` are the knuckle points of curve `i` (its interior corners); a curve lies in an
 /// axis plane when its control points do within `tolerance` (curves in one plane are one
 /// section); curves in no axis plane take part in no chine. Each
-/// chine is named `chine <first>–<last>` after the curves it starts and ends on, and passes
-/// through its knuckle points.
+/// chine is named `chine<k> <first>–<last>` (k from 1) after the curves it starts and ends on,
+/// and passes through its knuckle points.
 ///
 /// Errors: knuckles given for a different number of curves ([`Error::InvalidInput`]), and a
 /// chine the curve kernel refuses (named).
@@ -78,7 +78,7 @@ pub fn chines_from_knuckles(
             }
         }
         for chain in chains(&sections) {
-            chines.push(chine_curve(network, &chain)?);
+            chines.push(chine_curve(network, &chain, chines.len() + 1)?);
         }
     }
     Ok(chines)
@@ -127,13 +127,13 @@ fn chains(sections: &[Section]) -> Vec<Chain> {
     done
 }
 
-/// The knuckle curve through a chain's points: a line through two, else the clamped uniform
-/// B-spline of degree up to 3 on the points as control polygon, moved through them at their
-/// chord-length parameters ([`NurbsCurve::through`]).
-fn chine_curve(network: &Network, chain: &Chain) -> Result<NetworkCurve, Error> {
+/// The `number`-th knuckle curve, through a chain's points: a line through two, else the
+/// clamped B-spline of degree up to 3 on the points as control polygon, moved through them at
+/// their chord-length parameters ([`NurbsCurve::through`]).
+fn chine_curve(network: &Network, chain: &Chain, number: usize) -> Result<NetworkCurve, Error> {
     let curves = network.curves();
     let name = format!(
-        "chine {}–{}",
+        "chine{number} {}–{}",
         curves[chain[0].0].name,
         curves[chain[chain.len() - 1].0].name
     );
@@ -209,7 +209,7 @@ mod tests {
         let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
         assert_eq!(chines.len(), 1);
         let c = &chines[0];
-        assert_eq!((c.name.as_str(), c.role), ("chine st0–st2", Role::Knuckle));
+        assert_eq!((c.name.as_str(), c.role), ("chine1 st0–st2", Role::Knuckle));
         for k in knuckles.iter().flatten() {
             let d = c.curve.nearest(*k, 1e-12).expect("nearest").distance;
             assert!(d < 1e-9, "through {k}: {d}");
