@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use super::{Hit, Incidence, Junction, Junctions, Prepared};
+use crate::curve::NurbsCurve;
 use crate::diagnostic::Diagnostic;
 use crate::network::Network;
 
@@ -26,6 +27,30 @@ impl UnionFind {
     }
 }
 
+/// A tangent jump (radians) above which a curve's knot is a corner that a node within the
+/// tolerance of it sits at (about 0.06°, where two tangents stop being parallel for the
+/// rotation system).
+const NODE_CORNER_ANGLE: f64 = 1e-3;
+
+/// Put an incidence within the tolerance of one of its curve's corners at the corner: the
+/// node is at the knuckle, and the edges on either side leave it along the one-sided tangents
+/// of their own sides. (Found a little off the corner, the parameter would give both edges the
+/// tangent of one side, and the faces around the node would be traced wrong.)
+fn at_corner(c: &mut CurvePoint, curve: &NurbsCurve, corners: &[f64], tol: f64) {
+    let here = curve.point(c.incidence.t);
+    if let Some(&t) = corners
+        .iter()
+        .filter(|&&t| curve.point(t).distance(here) <= tol)
+        .min_by(|a, b| {
+            let (pa, pb) = (curve.point(**a), curve.point(**b));
+            pa.distance(here).total_cmp(&pb.distance(here))
+        })
+    {
+        c.incidence.t = t;
+        c.point = curve.point(t);
+    }
+}
+
 /// A curve through a place (a curve end or one side of a join) and its point there.
 #[derive(Clone, Copy, Debug)]
 struct CurvePoint {
@@ -44,6 +69,10 @@ pub(super) fn cluster(
     diagnostics: Vec<Diagnostic>,
 ) -> Junctions {
     let curves = network.curves();
+    let corners: Vec<Vec<f64>> = prepared
+        .iter()
+        .map(|p| p.curve.corner_parameters(NODE_CORNER_ANGLE))
+        .collect();
     let mut incs: Vec<CurvePoint> = Vec::new();
     for (ci, p) in prepared.iter().enumerate() {
         if excluded[ci] {
@@ -161,7 +190,13 @@ pub(super) fn cluster(
                 }),
             }
         }
-        for c in &merged {
+        for c in &mut merged {
+            at_corner(
+                c,
+                prepared[c.incidence.curve].curve,
+                &corners[c.incidence.curve],
+                tol,
+            );
             splits[c.incidence.curve].push((c.incidence.t, node));
         }
         nodes.push(Junction {
@@ -178,5 +213,35 @@ pub(super) fn cluster(
         excluded: excluded.to_vec(),
         suppressed: Vec::new(),
         diagnostics,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_incidence_a_hair_off_a_corner_goes_to_the_corner() {
+        // An L-shaped polyline, corner at t = 1 (the point (1, 0, 0)).
+        let l = NurbsCurve::try_new(
+            1,
+            vec![0.0, 0.0, 1.0, 2.0, 2.0],
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0)],
+            None,
+        )
+        .expect("polyline");
+        let corners = l.corner_parameters(NODE_CORNER_ANGLE);
+        assert_eq!(corners, [1.0]);
+        let near = |t: f64| CurvePoint {
+            incidence: Incidence { curve: 0, t },
+            point: l.point(t),
+        };
+        let mut c = near(1.0 - 1e-9);
+        at_corner(&mut c, &l, &corners, 1e-4);
+        assert_eq!((c.incidence.t, c.point), (1.0, DVec3::X));
+        // Farther than the tolerance from the corner: left where it is.
+        let mut c = near(0.5);
+        at_corner(&mut c, &l, &corners, 1e-4);
+        assert_eq!(c.incidence.t, 0.5);
     }
 }
