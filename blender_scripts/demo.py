@@ -235,12 +235,13 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
 
 
 def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
-    """A real ship's sections (``shared/hulls/<ship>/network.json``), imported and built with
-    every setting at its default, as a new user would; rendered from the bow, the stern and
-    the side."""
+    """A real ship's sections (``shared/hulls/<ship>/network.json``, or an example's in
+    ``examples/sections/``), imported and built with every setting at its default, as a new
+    user would; rendered from the bow, the stern and the side."""
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     t0 = time.perf_counter()
-    coll, fits = api.import_sections(path, collection=path.parent.name)
+    name = path.parent.name if path.stem == "network" else path.stem
+    coll, fits = api.import_sections(path, collection=name)
     t_load = time.perf_counter() - t0
     worst = max(fits, key=lambda r: r["max_deviation"])
     _log(
@@ -368,9 +369,10 @@ def main() -> None:
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:
         _log(f"no real ships in {args.ships} (the shared/hulls folder beside the checkout)")
+    ships += sorted((args.examples / "sections").glob("*.json"))
     for path in ships:
         run_ship(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
-    _log(f"done: {len(examples)} example(s) and {len(ships)} ship(s) in {args.out}/")
+    _log(f"done: {len(examples)} example network(s) and {len(ships)} section file(s) in {args.out}/")
 
 
 if __name__ == "__main__":

@@ -26,3 +26,54 @@ def test_wigley_sections_are_exact(examples_dir):
         x, y, z = p[:, 0], p[:, 1], p[:, 2]
         exact = B / 2 * (1 - (2 * x / L) ** 2) * (1 - ((T - z) / T) ** 2)
         np.testing.assert_allclose(y, exact, atol=1e-12)
+
+
+def _multi_chine(examples_dir):
+    spec = importlib.util.spec_from_file_location("multi_chine", examples_dir / "multi_chine.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_multi_chine_sections_match_their_generator_and_exact_volume(examples_dir):
+    import math
+
+    import numpy as np
+
+    mc = _multi_chine(examples_dir)
+    assert (examples_dir / "sections" / "multi_chine.json").read_text() == mc.text()
+    # The panels turn by more than the fit's 45° corner angle at both chines, at both ends.
+    for ends in (mc.STERN, mc.BOW):
+        angles = [
+            math.degrees(math.atan2(b[1] - a[1], b[0] - a[0]))
+            for a, b in zip(ends[:-1], ends[1:], strict=True)
+        ]
+        np.testing.assert_allclose(angles, [12.0, 70.0, 125.0], atol=0.01)
+    # Simpson on the quadratic A(x) is the integral: a fine trapezoid sum agrees.
+    x = np.linspace(0.0, mc.L, 20001)
+    a = np.array([mc.section_area(v) for v in x])
+    trapezoid = float(np.sum(0.5 * (a[1:] + a[:-1]) * np.diff(x)))
+    assert abs(trapezoid / mc.exact_volume() - 1) < 1e-8
+
+
+def test_multi_chine_from_sections_only_builds_its_exact_hull(examples_dir):
+    """Sections with two knuckles each and nothing else: the import finds the knuckles, joins
+    them into two chines, and the hull built at the defaults has every panel, creases at the
+    chines and the exact volume."""
+    import json
+
+    path = examples_dir / "sections" / "multi_chine.json"
+    coll, reports = api.import_sections(path)
+    chines = [r for r in reports if r.get("kind") == "chine"]
+    assert len(chines) == 2 and all(r["points"] == 9 for r in chines), chines
+    assert all(len(r["corners"]) == 2 for r in reports if r["curve"].startswith("st"))
+    report = api.build(coll).report
+    assert report["faces_by_sides"] == {4: 24}, report["faces_by_sides"]
+    assert report["warnings"] == [], [w["message"] for w in report["warnings"]]
+    assert report["max_normal_angle_deg"] < 1e-3
+    creases = {name: (lo, hi) for name, lo, hi in report["crease_angles_deg"]}
+    assert len(creases) == 2
+    for lo, hi in creases.values():
+        assert 50.0 < lo <= hi < 60.0 and hi - lo < 0.1, creases
+    exact = json.loads(path.read_text())["exact_volume"]
+    assert abs(report["volume"] / exact - 1) < 1e-6, (report["volume"], exact)
