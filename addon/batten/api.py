@@ -506,7 +506,7 @@ def build(
     curves, object_of = _read_source(source)
     name = _source_name(source)
     with errors_named_by_object(object_of):
-        (positions, corners, sizes, patch), report = build_surface(curves, tolerance, resolution)
+        (positions, corners, sizes, patch), report = build_surface(curves, tolerance, resolution, name)
     obj = mesh_out.write_surface(
         f"{name} surface", positions, corners, sizes, patch, obj=_surface_object(name), mirror=mirror
     )

@@ -230,3 +230,49 @@ fn a_curve_leaves_out_the_node_its_data_forbid() {
         Err(Error::Tolerance(_))
     ));
 }
+
+#[test]
+fn a_duplicate_follows_the_curve_it_duplicates() {
+    let station = cubic(
+        "st",
+        [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.5, 0.7],
+            [0.0, 1.3, 1.5],
+            [0.0, 2.0, 2.0],
+        ],
+    );
+    let mut copy = station.clone();
+    copy.name = "st copy".to_owned();
+    copy.curve = copy.curve.try_reversed().expect("reversed");
+    let wl = cubic(
+        "wl",
+        [
+            [-2.0, 0.775, 1.0755],
+            [-1.0, 0.975, 1.0755],
+            [1.0, 0.975, 1.0755],
+            [2.0, 0.775, 1.0755],
+        ],
+    );
+    let net = Network::try_new("dup", vec![station, copy, wl]).expect("network");
+    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
+    let (a, b) = (&s.network.curves()[0].curve, &s.network.curves()[1].curve);
+    assert!(
+        s.snaps[0].max_move > 1e-4,
+        "the station moved: {:?}",
+        s.snaps[0]
+    );
+    for i in 0..=20 {
+        let p = a.point(i as f64 / 20.0);
+        let d = b.nearest(p, 1e-12).expect("nearest").distance;
+        assert!(d < 1e-9, "the copy follows: {d}");
+    }
+    // Run its own way still (it was reversed).
+    assert!(b.point(b.domain().0).distance(a.point(a.domain().1)) < 1e-12);
+    let t = Topology::build(&s.network, Tolerance::DEFAULT).expect("topology");
+    let kinds: Vec<&str> = t.diagnostics.iter().map(|d| d.kind()).collect();
+    assert!(
+        kinds.contains(&"duplicate_curve") && !kinds.contains(&"near_miss"),
+        "{kinds:?}"
+    );
+}

@@ -65,22 +65,24 @@ fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
 /// warnings — each a dict, see [`warning_dict`]). Each knuckle edge
 /// is a dict: `curve`, `source` (`"role"` or `"auto"`), `corner_curves` (the curves whose
 /// corners made an automatic knuckle), `crease_deg` (`(min, max)` or None) and `points` (list
-/// of [x, y, z] along the edge). The GIL is released.
+/// of [x, y, z] along the edge). `name` (the collection's) names the network in errors. The
+/// GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=""))]
 pub(crate) fn build_surface<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,
     resolution: Option<i64>,
+    name: &str,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
     let resolution = match resolution {
         Some(r) => count(r, || "resolution".to_owned())?,
         None => DEFAULT_RESOLUTION,
     };
     let options = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
-    let network =
-        Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)?;
+    let network = Network::try_new(name, curves.iter().map(|c| c.inner.clone()).collect())
+        .map_err(core_err)?;
     let hull = py.detach(|| {
         guard("building the hull surface", || {
             build_hull(&network, &options).map_err(core_err)

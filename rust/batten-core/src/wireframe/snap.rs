@@ -6,12 +6,14 @@
 //!
 //! Given the points each curve was fitted to, a curve moves only through the nodes its data
 //! allow: while some point is farther than the tolerance from the moved curve, the node
-//! nearest that point (along the curve) is left out, and the curve is moved again.
+//! nearest that point (along the curve) is left out, and the curve is moved again. A curve
+//! that duplicates another follows it.
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::curve::{CurveError, NurbsCurve};
+use crate::diagnostic::Diagnostic;
 use crate::error::Error;
 use crate::network::{Network, NetworkCurve};
 use crate::tolerance::Tolerance;
@@ -99,11 +101,48 @@ pub fn snap_to_nodes(
             Ok((curve, snap))
         })
         .collect::<Result<_, Error>>()?;
-    let (curves, snaps): (Vec<_>, Vec<_>) = moved.into_iter().unzip();
+    let (mut curves, snaps): (Vec<NetworkCurve>, Vec<_>) = moved.into_iter().unzip();
+    follow_duplicates(&topology, network, &mut curves)?;
     Ok(SnappedNetwork {
         network: Network::try_new(network.name.clone(), curves)?,
         snaps,
     })
+}
+
+/// A curve the topology left out as a duplicate of another (it has no nodes of its own) takes
+/// the moved geometry of the curve it duplicates, run its own way, so the two stay duplicates
+/// (and are named so by the build) instead of drifting apart into near misses.
+fn follow_duplicates(
+    topology: &Topology,
+    network: &Network,
+    curves: &mut [NetworkCurve],
+) -> Result<(), Error> {
+    let index = |name: &str| network.curves().iter().position(|c| c.name == name);
+    for d in &topology.diagnostics {
+        let Diagnostic::DuplicateCurve {
+            curves: [kept, out],
+            ..
+        } = d
+        else {
+            continue;
+        };
+        let (Some(k), Some(o)) = (index(kept), index(out)) else {
+            continue;
+        };
+        let original = &network.curves()[o].curve;
+        let moved = &curves[k].curve;
+        let (a, _) = original.domain();
+        let (ka, kb) = moved.domain();
+        let start = original.point(a);
+        let same_way = moved.point(ka).distance(start) <= moved.point(kb).distance(start);
+        let geometry = if same_way {
+            moved.clone()
+        } else {
+            moved.try_reversed().map_err(|e| e.named(out))?
+        };
+        curves[o].curve = geometry;
+    }
+    Ok(())
 }
 
 /// Data for every curve, finite, with a positive finite tolerance.
