@@ -1,0 +1,136 @@
+"""Measure the real ships as a new user gets them (real-ships issue acceptance figures):
+import ``shared/hulls/<ship>/network.json`` and build with every setting at its default, then
+compare with ``reference.json``: displaced volume, LCB and wetted surface below the design
+draught T (from the mesh, until the hydrostatics issue lands), the surface's holes, folds and
+normal jumps, how far the input points are from the surface, and the time taken.
+
+    PYTHONPATH=build/native/release:addon .venv/bin/python blender_scripts/measure_ships.py
+
+Mesh figures: the triangles of the welded mesh (built at ``--resolution``, default 16) are
+clipped at z = T; with the field (0, y, 0) and (0, x·y, 0) the divergence theorem gives the
+half hull's volume and x-moment from the surface alone (the centreplane has y = 0, the
+waterplane n_y = 0), exact for the triangles; both are doubled for the two halves.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def clipped_triangles(positions: np.ndarray, corners: np.ndarray, sizes: np.ndarray, z_max: float):
+    """The mesh's polygons fanned into triangles and clipped to z ≤ ``z_max`` (each clipped
+    piece fanned again): an (m, 3, 3) array."""
+    tris = []
+    start = 0
+    for k in sizes:
+        face = corners[start : start + k]
+        start += k
+        for i in range(1, k - 1):
+            tris.append(positions[[face[0], face[i], face[i + 1]]])
+    out = []
+    for tri in tris:
+        poly = []
+        for a, b in zip(tri, np.roll(tri, -1, axis=0), strict=True):
+            if a[2] <= z_max:
+                poly.append(a)
+            if (a[2] - z_max) * (b[2] - z_max) < 0:
+                w = (z_max - a[2]) / (b[2] - a[2])
+                poly.append(a + w * (b - a))
+        for i in range(1, len(poly) - 1):
+            out.append([poly[0], poly[i], poly[i + 1]])
+    return np.array(out).reshape(-1, 3, 3)
+
+
+def mesh_figures(tris: np.ndarray) -> dict:
+    """Volume, LCB (x of the centre of buoyancy) and wetted area of the clipped half-hull
+    triangles, both halves."""
+    a, b, c = tris[:, 0], tris[:, 1], tris[:, 2]
+    area_vec = 0.5 * np.cross(b - a, c - a)
+    ay = area_vec[:, 1]
+    ybar = (a[:, 1] + b[:, 1] + c[:, 1]) / 3.0
+    volume = abs(np.sum(ybar * ay))
+    # ∫ x·y dA over a triangle of linear x, y: A/12 (Σ x_i y_i + Σx Σy).
+    xs, ys = tris[:, :, 0], tris[:, :, 1]
+    xy = (np.sum(xs * ys, axis=1) + xs.sum(axis=1) * ys.sum(axis=1)) / 12.0
+    moment = abs(np.sum(xy * ay))
+    wetted = np.sum(np.linalg.norm(area_vec, axis=1))
+    return {"volume": 2 * volume, "lcb": moment / volume, "wetted_surface": 2 * wetted}
+
+
+def surface_distance(points: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """Distance of each point from the nearest mesh vertex (an upper bound of the distance to
+    the surface, tight for a dense mesh)."""
+    from scipy.spatial import cKDTree
+
+    return cKDTree(positions).query(points)[0]
+
+
+def measure(api, ship: Path, resolution: int) -> dict:
+    import bpy
+
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    ref = json.loads((ship / "reference.json").read_text())
+    data = json.loads((ship / "network.json").read_text())
+    t0 = time.perf_counter()
+    coll, fits = api.import_sections(ship / "network.json", collection=ship.name)
+    t1 = time.perf_counter()
+    result = api.build(coll)
+    t2 = time.perf_counter()
+    r = result.report
+    from batten_native import build_surface
+
+    (positions, corners, sizes, _), _ = build_surface(api.read_curves(coll), resolution=resolution)
+    T, lpp = ref["T"], ref["Lpp"]
+    fig = mesh_figures(clipped_triangles(positions, corners, sizes, T))
+    c = ref["computed"]
+    points = np.array([p for curve in data["curves"] for p in curve["points"]])
+    dist = surface_distance(points, positions)
+    warnings = {}
+    for w in r["warnings"]:
+        warnings[w["kind"]] = warnings.get(w["kind"], 0) + 1
+    return {
+        "ship": ship.name,
+        "import_s": round(t1 - t0, 3),
+        "build_s": round(t2 - t1, 3),
+        "faces": r["faces"],
+        "holes": r["holes"],
+        "folds": r["folds"],
+        "near_misses": warnings.get("near_miss", 0),
+        "warnings": warnings,
+        "max_normal_angle_deg": r["max_normal_angle_deg"],
+        "max_normal_angle_at": r["max_normal_angle_at"],
+        "max_point_deviation_from_curve_mm": 1e3 * max(f["max_deviation"] for f in fits),
+        "max_point_distance_from_mesh_vertices_mm": 1e3 * float(dist.max()),
+        "volume": fig["volume"],
+        "volume_diff_pct": 100 * (fig["volume"] / c["displaced_volume"] - 1),
+        "lcb_diff_pct_lpp": 100 * (fig["lcb"] - c["LCB_from_AP"]) / lpp,
+        "wetted_surface_diff_pct": 100 * (fig["wetted_surface"] / c["wetted_surface_below_T"] - 1),
+    }
+
+
+def main() -> None:
+    argv = sys.argv[sys.argv.index("--") + 1 :] if "--" in sys.argv else sys.argv[1:]
+    ap = argparse.ArgumentParser(prog="measure_ships.py")
+    ap.add_argument("--ships", type=Path, default=ROOT.parent / "shared" / "hulls")
+    ap.add_argument("--resolution", type=int, default=16)
+    args = ap.parse_args(argv)
+    sys.path.insert(0, str(ROOT / "addon"))
+    import batten
+
+    batten.register()
+    from batten import api
+
+    for ship in sorted(p.parent for p in args.ships.glob("*/network.json")):
+        print(json.dumps(measure(api, ship, args.resolution), indent=1))
+
+
+if __name__ == "__main__":
+    main()
