@@ -66,6 +66,23 @@ pub enum Smoothing {
     Factor(f64),
 }
 
+/// How many standard deviations Gaussian noise reaches, for the scale of the data's detail: it
+/// lies farther from the mean at about 1 point in 16,000.
+pub(crate) const NOISE_REACH: f64 = 4.0;
+
+impl Smoothing {
+    /// How far `points` points may stray from the curve (m): the tolerance, or the noise's reach
+    /// (σ given, or `√(S/M)` from the smoothing factor). Detail below it is not resolved by the
+    /// fit, so corners and order are decided at this scale.
+    fn reach(self, points: usize) -> f64 {
+        match self {
+            Smoothing::MaxDeviation(t) => t,
+            Smoothing::Noise(sigma) => NOISE_REACH * sigma,
+            Smoothing::Factor(s) => NOISE_REACH * (s / points.max(1) as f64).sqrt(),
+        }
+    }
+}
+
 /// Options of [`fair_points`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct FairOptions {
@@ -76,8 +93,8 @@ pub struct FairOptions {
     /// Indices (into the input points) of knuckle points the curve must keep sharp.
     pub corners: Vec<usize>,
     /// Also treat as corners the points where the polyline turns by more than this angle
-    /// (radians); `None` to detect none (default 45°; use `None` for noisy data, where the
-    /// turning angle between neighbours is meaningless).
+    /// (radians) over a length the fit resolves ([`corner_indices`] at the scale of the
+    /// tolerance or noise); `None` to detect none (default 45°).
     pub corner_angle: Option<f64>,
     /// Fixed tangent direction at the first point (pointing along the curve); the end
     /// derivative is this unit vector times the fit's mean speed, as Dierckx's concur fixes end
@@ -222,7 +239,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
             dropped: cleaned.dropped,
         });
     }
-    clean::check_order(pts)?;
+    clean::check_order(pts, options.smoothing.reach(m))?;
 
     // Corners in cleaned indexing: a given corner that was dropped as a duplicate moves to the
     // kept point it duplicated.
@@ -232,7 +249,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
         .map(|&c| cleaned.index.partition_point(|&i| i <= c) - 1)
         .collect();
     if let Some(angle) = options.corner_angle {
-        corners.extend(corner_indices(pts, angle));
+        corners.extend(corner_indices(pts, angle, options.smoothing.reach(m)));
     }
     corners.retain(|&c| c > 0 && c + 1 < m);
     corners.sort_unstable();
