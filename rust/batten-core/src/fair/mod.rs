@@ -286,11 +286,11 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                     s: mp * sigma * sigma,
                     accept: (mp + (2.0 * mp).sqrt()) * sigma * sigma,
                 };
-                fit_smooth(piece, k, s, dirs, iters)?
+                fit_smooth(piece, k, s, dirs, iters, None)?
             }
             Smoothing::Factor(s) => {
                 let share = (piece.len() - 1) as f64 / (m - 1) as f64;
-                fit_smooth(piece, k, Target::exact(s * share), dirs, iters)?
+                fit_smooth(piece, k, Target::exact(s * share), dirs, iters, None)?
             }
         };
         pieces.push(fit);
