@@ -21,6 +21,7 @@
 mod clean;
 mod error;
 mod fit;
+mod frame;
 mod knots;
 mod lobes;
 mod lsq;
@@ -41,6 +42,7 @@ use crate::defaults::{
 };
 use crate::tolerance::Tolerance;
 use fit::Target;
+use frame::Frame;
 use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
 
 /// Highest degree the fairing accepts (Dierckx's curfit: 1 ≤ k ≤ 5).
@@ -255,25 +257,30 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     corners.sort_unstable();
     corners.dedup();
 
+    // The fit works in the data's own frame (see `frame`); its results are moved back.
+    let frame = Frame::of(pts);
+    let local: Vec<DVec3> = pts.iter().map(|&p| frame.to_local(p)).collect();
+    let smoothing = frame.smoothing(options.smoothing);
+
     let mut bounds = vec![0];
     bounds.extend_from_slice(&corners);
     bounds.push(m - 1);
     let count = bounds.len() - 1;
     let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
     for (i, w) in bounds.windows(2).enumerate() {
-        let piece = &pts[w[0]..=w[1]];
+        let piece = &local[w[0]..=w[1]];
         let dirs = Directions {
             start: if i == 0 { start_dir } else { None },
             end: if i + 1 == count { end_dir } else { None },
         };
         let iters = options.max_parameter_iterations;
-        let fit = match options.smoothing {
+        let fit = match smoothing {
             Smoothing::MaxDeviation(t) => match fit_within(piece, k, t, dirs, iters)? {
                 Ok(fit) => fit,
                 Err((achieved, index)) => {
                     return Err(FairError::ToleranceNotReached {
-                        tolerance: t,
-                        achieved,
+                        tolerance: frame.length(t),
+                        achieved: frame.length(achieved),
                         index: cleaned.index[w[0] + index],
                     })
                 }
@@ -293,7 +300,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                 fit_smooth(piece, k, Target::exact(s * share), dirs, iters, None)?
             }
         };
-        pieces.push(fit);
+        pieces.push(frame.piece_to_world(fit, (pts[w[0]], pts[w[1]]))?);
     }
 
     let (knots, coefs, corner_parameters) = join(&pieces, k);
@@ -310,7 +317,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     };
     let dev = match single.and_then(|p| p.deviation) {
         Some(dev) => dev,
-        None => metrics::deviation(&curve, pts)?,
+        None => frame.deviation(&curve, &local)?,
     };
     let fairness = single
         .and_then(|p| p.metrics)
