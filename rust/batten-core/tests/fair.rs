@@ -566,6 +566,68 @@ fn the_reported_deviation_is_the_largest_true_distance() {
 }
 
 #[test]
+fn a_fixed_tangent_on_noisy_data_gives_no_nan() {
+    // Issue 21: noisy points with a start tangent the data turn away from (here +x on a sine
+    // that leaves at 63°) and corners detected ended in "control point 2 has a non-finite
+    // coordinate": nearly interpolating least-squares systems overflowed in back substitution
+    // and were taken as solved; and the end derivative's speed, taken from the fit's own length,
+    // fed a loop at the fixed tangent until the length was beyond f64 (seed 590). (Found with
+    // a 64-bit LCG; these are its failing cases.)
+    struct Lcg(u64);
+    impl Lcg {
+        fn u(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn g(&mut self) -> f64 {
+            let (a, b) = (self.u().max(f64::MIN_POSITIVE), self.u());
+            (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
+        }
+    }
+    for seed in [590u64, 925, 1250, 1585, 1789, 1850] {
+        let mut r = Lcg(seed * 7 + 3);
+        let m = 5 + (r.u() * 300.0) as usize;
+        let sigma = [1e-4, 1e-3, 1e-2, 0.1][(seed % 4) as usize];
+        let pts: Vec<DVec3> = (0..m)
+            .map(|i| {
+                let a = 2.0 * i as f64 / (m - 1) as f64;
+                let e = DVec3::new(r.g(), r.g(), r.g() * 0.1) * sigma;
+                DVec3::new(a, (a * 2.0).sin(), 0.0) + e
+            })
+            .collect();
+        let tol = sigma * (1.0 + 3.0 * r.u());
+        let o = FairOptions {
+            degree: 1 + (seed / 12 % 5) as usize,
+            smoothing: Smoothing::MaxDeviation(tol),
+            corner_angle: Some(0.05 + 3.0 * r.u()),
+            start_tangent: Some(DVec3::X),
+            ..FairOptions::default()
+        };
+        match fair_points(&pts, &o) {
+            Ok(fit) => {
+                assert!(
+                    fit.curve.control_points().iter().all(|p| p.is_finite()),
+                    "seed {seed}: finite"
+                );
+                assert!(
+                    fit.report.max_deviation <= tol,
+                    "seed {seed}: within tolerance"
+                );
+            }
+            Err(e) => {
+                assert!(
+                    matches!(e, FairError::ToleranceNotReached { achieved, .. } if achieved.is_finite()),
+                    "seed {seed}: {e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn fixed_end_tangents_are_met() {
     let truth = arc(5.0);
     let pts = sample(&truth, 40, 0.0, DVec3::Z, 0);

@@ -65,7 +65,28 @@ pub(crate) fn clean(points: &[DVec3], tolerance: f64) -> Result<Cleaned, FairErr
 /// The order check looks at the points this many times the data's reach apart: a step of
 /// length `h` between points each within `scale` of the curve is at most `√(1 + (2/4)²)`
 /// ≈ 1.12 times as long as the curve between them, far below [`ORDER_RATIO`].
-const ORDER_STEP: f64 = 4.0;
+pub(crate) const ORDER_STEP: f64 = 4.0;
+
+/// The points at the resolution `step`: the first, each next one at least `step` from the one
+/// kept before, and the last.
+pub(crate) fn resolved(points: &[DVec3], step: f64) -> Vec<DVec3> {
+    let m = points.len();
+    let mut kept = vec![points[0]];
+    for &p in &points[1..m.saturating_sub(1)] {
+        if (p - kept[kept.len() - 1]).length() >= step {
+            kept.push(p);
+        }
+    }
+    if m > 1 {
+        kept.push(points[m - 1]);
+    }
+    kept
+}
+
+/// Length of the polyline through `points`.
+pub(crate) fn polyline_length(points: &[DVec3]) -> f64 {
+    points.windows(2).map(|w| (w[1] - w[0]).length()).sum()
+}
 
 /// Reject points that do not follow a curve in order: the polyline through them is more than
 /// [`ORDER_RATIO`] times as long as a greedy nearest-neighbour tour from the first point, both
@@ -86,16 +107,8 @@ pub(crate) fn check_order(points: &[DVec3], scale: f64) -> Result<(), FairError>
             jump_index = i;
         }
     }
-    // Each kept point is the first at least h from the one kept before; the last is kept.
-    let h = ORDER_STEP * scale;
-    let mut coarse = vec![points[0]];
-    for &p in &points[1..m - 1] {
-        if (p - coarse[coarse.len() - 1]).length() >= h {
-            coarse.push(p);
-        }
-    }
-    coarse.push(points[m - 1]);
-    let path_length: f64 = coarse.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    let coarse = resolved(points, ORDER_STEP * scale);
+    let path_length = polyline_length(&coarse);
     // Any tour from the first point reaches the point farthest from it, so it is at least that
     // far: when the polyline is within the ratio of that, it is within the ratio of the tour
     // too (the usual case, a curve that does not turn back on itself, decided in O(m)).
@@ -129,7 +142,7 @@ pub(crate) fn check_order(points: &[DVec3], scale: f64) -> Result<(), FairError>
 fn nearest_neighbour_tour(points: &[DVec3]) -> f64 {
     use rustc_hash::FxHashMap as HashMap;
     let m = points.len();
-    let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    let length = polyline_length(points);
     let h = length / (m - 1) as f64;
     if m < GRID_POINTS || !(h.is_finite() && h > 0.0) {
         return nearest_neighbour_tour_scan(points);

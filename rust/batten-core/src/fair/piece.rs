@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::clean::{polyline_length, resolved, ORDER_STEP};
 use super::error::FairError;
 use super::fit::{fit_with_system, smoothing_spline, Ends, Spline, System, Target};
 use super::lobes::flatten;
@@ -98,8 +99,11 @@ pub(crate) fn fit_smooth(
     };
     let domain = u[m - 1];
     let spacing = domain / (m - 1) as f64;
-    // |C′| of the fit; chord length makes it close to 1 to start with.
-    let mut speed = 1.0;
+    // The mean |C′| of the fixed end derivatives: the length of the data at the fit's
+    // resolution over the parameter domain (the fit's own length would feed back: a fixed
+    // tangent the data turn away from makes a loop, the loop a longer curve and a faster end
+    // derivative, and so on until the coefficients overflow).
+    let speed = polyline_length(&resolved(points, ORDER_STEP * (s.s / m as f64).sqrt())) / domain;
     let mut last: Option<(Spline, NurbsCurve)> = None;
     let mut iterations = 0;
     let mut settled = false;
@@ -152,10 +156,6 @@ pub(crate) fn fit_smooth(
         if exact && (change <= SETTLE * spacing || fp - e_proj <= SETTLE_E * s.s) {
             settled = true;
             break;
-        }
-        if dirs.start.is_some() || dirs.end.is_some() {
-            let length = curve.arc_length(domain * 1e-9)?;
-            speed = length / domain;
         }
     }
     // Curvature lobes the data do not demand are flattened (see `lobes`), on the knots and
