@@ -5,6 +5,12 @@ Truth: the KCS midship-region station st10 (from ../shared/hulls), fitted noise-
 S = M*sigma^2 and degree 3. Reported per size: time ratio, interior knots, max distance of
 the fit from the TRUE curve, inflections of the fit (batten's counter on both).
 
+Then dense noisy data (a laser scan of a section: 10^4-10^5 points): a 2 m quarter arc
+(radius 4/pi) at 10,000, 30,000 and 100,000 points with 1 mm Gaussian noise in the radius
+(0.2, 0.07 and 0.02 mm apart: the noise is larger than the spacing). batten fits at the
+default corner angle (45 degrees) within 5 mm, and with the noise given (S = M*sigma^2);
+splprep gets the same S. Reported: best-of-3 time, corners, control points, max deviation.
+
     PYTHONPATH=build/native/release:addon .venv/bin/python blender_scripts/bench_fairing.py
 """
 
@@ -26,6 +32,8 @@ from scipy.interpolate import splprep
 ROOT = Path(__file__).resolve().parent.parent
 HULL = ROOT.parent / "shared" / "hulls" / "kcs" / "network.json"
 SIGMA = 0.005
+DENSE_SIGMA = 1e-3
+DENSE_TOLERANCE = 5e-3
 
 
 def best(fn, repeat=20):
@@ -51,6 +59,35 @@ def distance_from_truth(truth, pts):
 
 def row(name, seconds, knots, dev, infl):
     print(f"  {name:<28} {seconds * 1e3:9.2f} ms {knots:6d} knots {dev * 1e3:8.2f} mm {infl:4d} infl")
+
+
+def noisy_arc(m, rng):
+    radius = 2.0 / (np.pi / 2)
+    a = np.linspace(0.0, np.pi / 2, m)
+    r = radius + np.concatenate([[0.0], rng.normal(0.0, DENSE_SIGMA, m - 2), [0.0]])
+    return np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(m)])
+
+
+def dense():
+    rng = np.random.default_rng(21)
+    for m in (10_000, 30_000, 100_000):
+        pts = noisy_arc(m, rng)
+        print(f"\n{m} points, 1 mm noise, spacing {2.0 / (m - 1) * 1e3:.3f} mm")
+        for label, kwargs in (
+            (f"batten tolerance {DENSE_TOLERANCE * 1e3:g} mm", {"tolerance": DENSE_TOLERANCE}),
+            ("batten noise 1 mm", {"noise": DENSE_SIGMA}),
+        ):
+            (curve, rep), sec = best(
+                lambda kwargs=kwargs, pts=pts: bn.fair_points("scan", pts, **kwargs), repeat=3
+            )
+            print(
+                f"  {label:<24} {sec * 1e3:8.1f} ms  corners {len(rep['corners']):3d}  "
+                f"control points {len(curve.control_points):4d}  max dev {rep['max_deviation'] * 1e3:.2f} mm"
+            )
+        (tck, _u), sec = best(
+            lambda pts=pts, m=m: splprep(pts.T, s=m * DENSE_SIGMA**2, k=3, quiet=2), repeat=3
+        )
+        print(f"  {'scipy splprep (same S)':<24} {sec * 1e3:8.1f} ms  control points {len(tck[0]) - 4:4d}")
 
 
 def main():
@@ -102,6 +139,7 @@ def main():
         )
         for label, s in results.items():
             print(f"  time ratio {label} / FITPACK: {s / sec:.1f}x")
+    dense()
 
 
 if __name__ == "__main__":

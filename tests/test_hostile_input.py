@@ -188,3 +188,20 @@ def test_negative_counts_are_invalid_arguments_not_overflow_errors(call, says):
     """A negative int for a count raised OverflowError from Python's conversion."""
     with pytest.raises(bn.InvalidArgumentError, match=says):
         call()
+
+
+def test_dense_noise_is_neither_corners_nor_disorder():
+    """30,000 points along a 2 m arc with 1 mm noise (0.07 mm apart): no corner at the default
+    45 degrees and 5 mm tolerance (there were thousands), not refused as out of order (it
+    was); the same points shuffled are refused, naming the curve."""
+    rng = np.random.default_rng(30)
+    m = 30_000
+    a = np.linspace(0.0, np.pi / 2, m)
+    r = 4.0 / np.pi + np.concatenate([[0.0], rng.normal(0.0, 1e-3, m - 2), [0.0]])
+    pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(m)])
+    curve, report = bn.fair_points("scan", pts, tolerance=5e-3)
+    assert report["corners"] == []
+    assert len(curve.control_points) < 20, "far fewer control points than points"
+    assert report["max_deviation"] <= 5e-3 and np.isfinite(curve.control_points).all()
+    with pytest.raises(bn.FairError, match="curve 'scan': the points are not in order"):
+        bn.fair_points("scan", pts[rng.permutation(2000)], tolerance=5e-3)

@@ -1,9 +1,10 @@
 //! Input checks and clean-up before fitting: non-finite coordinates, duplicate points, points
-//! out of order, and corner (knuckle) detection by turning angle.
+//! out of order, and corner (knuckle) detection by turning angle at the fit's resolution.
 
 use glam::DVec3;
 
 use super::error::FairError;
+use super::NOISE_REACH;
 
 /// How much longer than a nearest-neighbour ordering the given polyline may be before the points
 /// count as out of order. An ordered sampling of a curve is about as short as the greedy
@@ -61,34 +62,64 @@ pub(crate) fn clean(points: &[DVec3], tolerance: f64) -> Result<Cleaned, FairErr
     })
 }
 
+/// The order check looks at the points this many times the data's reach apart: a step of
+/// length `h` between points each within `scale` of the curve is at most `√(1 + (2/4)²)`
+/// ≈ 1.12 times as long as the curve between them, far below [`ORDER_RATIO`].
+pub(crate) const ORDER_STEP: f64 = 4.0;
+
+/// The points at the resolution `step`: the first, each next one at least `step` from the one
+/// kept before, and the last.
+pub(crate) fn resolved(points: &[DVec3], step: f64) -> Vec<DVec3> {
+    let m = points.len();
+    let mut kept = vec![points[0]];
+    for &p in &points[1..m.saturating_sub(1)] {
+        if (p - kept[kept.len() - 1]).length() >= step {
+            kept.push(p);
+        }
+    }
+    if m > 1 {
+        kept.push(points[m - 1]);
+    }
+    kept
+}
+
+/// Length of the polyline through `points`.
+pub(crate) fn polyline_length(points: &[DVec3]) -> f64 {
+    points.windows(2).map(|w| (w[1] - w[0]).length()).sum()
+}
+
 /// Reject points that do not follow a curve in order: the polyline through them is more than
-/// [`ORDER_RATIO`] times as long as a greedy nearest-neighbour tour from the first point.
-pub(crate) fn check_order(points: &[DVec3]) -> Result<(), FairError> {
+/// [`ORDER_RATIO`] times as long as a greedy nearest-neighbour tour from the first point, both
+/// measured at the data's resolution: on the points [`ORDER_STEP`]` · scale` apart along the
+/// polyline (`scale` is how far the data may stray from the curve), so noise larger than the
+/// point spacing does not count as disorder.
+pub(crate) fn check_order(points: &[DVec3], scale: f64) -> Result<(), FairError> {
     let m = points.len();
     if m < 4 {
         return Ok(());
     }
-    let mut path_length = 0.0;
-    let (mut jump, mut jump_index) = (0.0, 0);
+    let mut jump_index = 0;
+    let mut jump = 0.0;
     for (i, w) in points.windows(2).enumerate() {
         let d = (w[1] - w[0]).length();
-        path_length += d;
         if d > jump {
             jump = d;
             jump_index = i;
         }
     }
+    let coarse = resolved(points, ORDER_STEP * scale);
+    let path_length = polyline_length(&coarse);
     // Any tour from the first point reaches the point farthest from it, so it is at least that
     // far: when the polyline is within the ratio of that, it is within the ratio of the tour
     // too (the usual case, a curve that does not turn back on itself, decided in O(m)).
-    let reach = points
+    let reach = coarse
         .iter()
-        .map(|p| (*p - points[0]).length())
+        .map(|p| (*p - coarse[0]).length())
         .fold(0.0, f64::max);
-    if path_length <= ORDER_RATIO * reach {
+    if path_length <= ORDER_RATIO * reach || coarse.len() < 4 {
         return Ok(());
     }
-    let ordered_length = nearest_neighbour_tour(points);
+    let ordered_length = nearest_neighbour_tour(&coarse);
     if path_length > ORDER_RATIO * ordered_length {
         return Err(FairError::OutOfOrder {
             path_length,
@@ -111,7 +142,7 @@ pub(crate) fn check_order(points: &[DVec3]) -> Result<(), FairError> {
 fn nearest_neighbour_tour(points: &[DVec3]) -> f64 {
     use rustc_hash::FxHashMap as HashMap;
     let m = points.len();
-    let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    let length = polyline_length(points);
     let h = length / (m - 1) as f64;
     if m < GRID_POINTS || !(h.is_finite() && h > 0.0) {
         return nearest_neighbour_tour_scan(points);
@@ -215,18 +246,162 @@ fn nearest_neighbour_tour_scan(points: &[DVec3]) -> f64 {
     total
 }
 
-/// Indices of the interior points where the polyline turns by more than `min_angle` radians:
-/// the angle between `q[i] − q[i−1]` and `q[i+1] − q[i]` (a knuckle point of a section).
+/// The turn that noise can fake stays below the corner angle on chords of length
+/// `w = CORNER_WINDOW · reach / angle`: points off the curve by at most `reach` turn the two
+/// chords of length `w` at a point by at most `4·reach / w`, i.e. by half the corner angle (by
+/// three quarters when one chord is the half-length chord to an end point, see
+/// [`corner_indices`]). The same window keeps smooth bends apart from corners at that
+/// resolution: a bend turns its chords by more than the angle only where its radius `R` is
+/// below `w / angle`, and such an arc lies within `R·angle²/8 ≤ reach` of the corner of its
+/// tangents.
+const CORNER_WINDOW: f64 = 8.0;
+
+/// The points of a corner's window that turn (over the window) within this fraction of the
+/// corner angle of its sharpest are all candidates for its apex.
+const APEX_MARGIN: f64 = 0.125;
+
+/// The median of `|a − (b + c)/2|` for independent Gaussian `a, b, c` of deviation σ, in units
+/// of σ: `Φ⁻¹(3/4) · √(3/2)`.
+const MEDIAN_CHORD_OFFSET: f64 = 0.6745 * 1.224_744_871;
+
+/// The noise is estimated on chords this many times the data's reach long: long against the
+/// noise (at most about a quarter of the reach), so that the offset of a point from a chord is
+/// its noise and not the scatter of a cloud of points closer together than the noise.
+const NOISE_CHORD: f64 = 2.0;
+
+/// For each point `i`, the nearest points before and after it at least `w` away (`l`, `r`),
+/// or the end point where that is at least `end · w` away; `None` where neither exists.
+/// Each search starts from the previous point's result, so both are found in one pass.
+fn chord_ends(points: &[DVec3], w: f64, end: f64) -> Vec<Option<(usize, usize)>> {
+    let m = points.len();
+    let dist = |i: usize, j: usize| (points[j] - points[i]).length();
+    let mut right: Vec<Option<usize>> = vec![None; m];
+    let mut j = 1;
+    for (i, r) in right.iter_mut().enumerate().take(m - 1) {
+        j = j.max(i + 1);
+        while j < m - 1 && dist(i, j) < w {
+            j += 1;
+        }
+        if j == m - 1 && dist(i, j) < end * w {
+            break;
+        }
+        *r = Some(j);
+    }
+    let mut left: Vec<Option<usize>> = vec![None; m];
+    let mut j = m - 2;
+    for i in (1..m).rev() {
+        j = j.min(i - 1);
+        while j > 0 && dist(i, j) < w {
+            j -= 1;
+        }
+        if j == 0 && dist(i, j) < end * w {
+            break;
+        }
+        left[i] = Some(j);
+    }
+    left.into_iter()
+        .zip(right)
+        .map(|(l, r)| Some((l?, r?)))
+        .collect()
+}
+
+/// The noise level σ of points along a curve, `reach` being the most it can be: the median
+/// distance of a point from the chord between the points [`NOISE_CHORD`]` · reach` before and
+/// after it, over [`MEDIAN_CHORD_OFFSET`] (a robust estimate: corners and the curvature of a
+/// few bends do not move a median). For clean points it is what curvature and rounding put
+/// there, a small fraction of the spacing.
+pub(crate) fn noise_estimate(points: &[DVec3], reach: f64) -> f64 {
+    if points.len() < 3 {
+        return 0.0;
+    }
+    let mut offsets: Vec<f64> = chord_ends(points, NOISE_CHORD * reach, 1.0)
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, ends)| {
+            let (l, r) = ends?;
+            let chord = points[r] - points[l];
+            let len = chord.length();
+            Some(if len > 0.0 {
+                (points[i] - points[l]).cross(chord).length() / len
+            } else {
+                (points[i] - points[l]).length()
+            })
+        })
+        .collect();
+    if offsets.is_empty() {
+        return 0.0;
+    }
+    let mid = offsets.len() / 2;
+    let (_, median, _) = offsets.select_nth_unstable_by(mid, f64::total_cmp);
+    *median / MEDIAN_CHORD_OFFSET
+}
+
+/// Indices of the interior points where the polyline turns by more than `min_angle` radians
+/// over a length that noise cannot bend by that much (a knuckle point of a section). `reach`
+/// is the most the data may stray from the curve (the fit's tolerance or noise reach); the
+/// noise is taken as the smaller of it and the noise level the points show
+/// ([`noise_estimate`], times [`NOISE_REACH`]).
 ///
-/// Implementation note: the turning angle is taken between neighbouring points, so noise that
-/// is not small against the point spacing shows up as false corners; pass explicit corners or
-/// no angle for noisy data.
-pub fn corner_indices(points: &[DVec3], min_angle: f64) -> Vec<usize> {
-    (1..points.len().saturating_sub(1))
-        .filter(|&i| {
-            let a = points[i] - points[i - 1];
-            let b = points[i + 1] - points[i];
-            a.length_squared() > 0.0 && b.length_squared() > 0.0 && a.angle_between(b) > min_angle
+/// The turn at point `i` is the angle between the chords `q[i] − q[l]` and `q[r] − q[i]`, with
+/// `l` and `r` the nearest points (before and after `i`) at least `w = 8·noise/min_angle` from
+/// it (see [`CORNER_WINDOW`]), or the end point where that is at least `w/2` away: where the
+/// points are sparser than `w`, the neighbours, so clean data keep their exact knuckle points;
+/// where they are dense against the noise, chords long enough that the noise cannot turn them
+/// by the corner angle. Points without such chords on both sides are not corners. Of the
+/// points that turn by more than `min_angle`, the sharpest marks a corner and no other inside
+/// its window does (the others see the same knuckle from beside it); the corner is the point
+/// of the window farthest from the chord `q[r] − q[l]`, the apex.
+///
+/// Implementation note: a chord can be longer than `w` where the curve turns back on itself
+/// within a window (the searches run one way, see `chord_ends`).
+pub fn corner_indices(points: &[DVec3], min_angle: f64, reach: f64) -> Vec<usize> {
+    if points.len() < 3 {
+        return Vec::new();
+    }
+    let noise = reach.min(NOISE_REACH * noise_estimate(points, reach));
+    let w = CORNER_WINDOW * noise / min_angle;
+    let mut turns: Vec<(f64, usize, usize, usize)> = chord_ends(points, w, 0.5)
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, ends)| {
+            let (l, r) = ends?;
+            let a = points[i] - points[l];
+            let b = points[r] - points[i];
+            if a.length_squared() == 0.0 || b.length_squared() == 0.0 {
+                return None;
+            }
+            let turn = a.angle_between(b);
+            (turn > min_angle).then_some((turn, i, l, r))
+        })
+        .collect();
+    // Sharpest first; the lower index among equals.
+    turns.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut kept: std::collections::BTreeMap<usize, (usize, usize)> = Default::default();
+    for &(_, i, l, r) in &turns {
+        // Neither of two corners lies strictly inside the other's window.
+        let before = kept.range(..i).next_back();
+        let after = kept.range(i + 1..).next();
+        let clear = before.is_none_or(|(&a, &(_, ar))| a <= l && ar <= i)
+            && after.is_none_or(|(&a, &(al, _))| a >= r && al >= i);
+        if clear {
+            kept.insert(i, (l, r));
+        }
+    }
+    // The knuckle point: of the window's points that turn by nearly as much (within
+    // [`APEX_MARGIN`] of the corner angle), the one whose neighbours turn most, i.e. the apex
+    // of clean data; noise moves it no farther than those points reach.
+    let turn_of: std::collections::HashMap<usize, f64> =
+        turns.iter().map(|&(t, i, _, _)| (i, t)).collect();
+    let margin = APEX_MARGIN * min_angle;
+    kept.into_iter()
+        .map(|(i, (l, r))| {
+            let best = turn_of[&i];
+            let near = |j: &usize| turn_of.get(j).is_some_and(|&t| t >= best - margin);
+            let bend =
+                |j: usize| (points[j] - points[j - 1]).angle_between(points[j + 1] - points[j]);
+            (l + 1..r)
+                .filter(near)
+                .fold(i, |at, j| if bend(j) > bend(at) { j } else { at })
         })
         .collect()
 }
@@ -247,13 +422,16 @@ mod tests {
                     DVec3::new(a.cos(), a.sin(), 0.0) * 10.0
                 })
                 .collect();
-            assert!(check_order(&pts).is_ok(), "{sweep}° in order");
+            assert!(check_order(&pts, 1e-4).is_ok(), "{sweep}° in order");
             let mut shuffled = pts.clone();
             for i in 1..shuffled.len() {
                 shuffled.swap(i, (i * 7919) % pts.len());
             }
             assert!(
-                matches!(check_order(&shuffled), Err(FairError::OutOfOrder { .. })),
+                matches!(
+                    check_order(&shuffled, 1e-4),
+                    Err(FairError::OutOfOrder { .. })
+                ),
                 "{sweep}° shuffled"
             );
         }

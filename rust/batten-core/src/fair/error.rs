@@ -96,7 +96,8 @@ pub enum FairError {
          (largest jump after point {jump_index})"
     )]
     OutOfOrder {
-        /// Length of the polyline through the points as given.
+        /// Length of the polyline through the points as given, at the data's resolution (its
+        /// points the order check's step apart).
         path_length: f64,
         /// Length of a greedy nearest-neighbour ordering from the first point.
         ordered_length: f64,

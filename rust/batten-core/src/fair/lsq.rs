@@ -142,7 +142,11 @@ impl BandedQr {
     }
 
     /// Back substitution (Dierckx `fpback`); `None` when a diagonal entry is negligible, i.e.
-    /// the observations do not determine every unknown (Schoenberg–Whitney violated).
+    /// the observations do not determine every unknown (Schoenberg–Whitney violated), or when
+    /// the solution overflows: pivots above the threshold can still be small enough, one after
+    /// another, for back substitution to multiply rounding up to infinity (a nearly
+    /// interpolating spline with a fixed end tangent on noisy data did), and such a system is
+    /// numerically singular just the same.
     pub(super) fn solve(&self) -> Option<Vec<DVec3>> {
         let n = self.n;
         let b = self.band;
@@ -161,14 +165,17 @@ impl BandedQr {
                 acc -= c[i + l] * row[l];
             }
             c[i] = acc / row[0];
+            if !c[i].is_finite() {
+                return None;
+            }
         }
         Some(c)
     }
 
     /// `(RᵀR)⁻¹ g`, i.e. `(AᵀA)⁻¹ g` for the rows `A` rotated in so far: a forward
     /// substitution with `Rᵀ` and a back substitution with `R` (for the Lagrange correction of
-    /// a linearly constrained fit, Lawson & Hanson 1974 ch. 20). `None` on a negligible pivot,
-    /// as [`BandedQr::solve`].
+    /// a linearly constrained fit, Lawson & Hanson 1974 ch. 20). `None` on a negligible pivot
+    /// or an overflowing solution, as [`BandedQr::solve`].
     pub(super) fn solve_normal(&self, g: &[f64]) -> Option<Vec<f64>> {
         let n = self.n;
         let b = self.band;
@@ -198,6 +205,9 @@ impl BandedQr {
                 acc -= y[i + l] * row[l];
             }
             y[i] = acc / row[0];
+            if !y[i].is_finite() {
+                return None;
+            }
         }
         Some(y)
     }

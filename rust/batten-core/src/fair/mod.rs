@@ -21,6 +21,7 @@
 mod clean;
 mod error;
 mod fit;
+mod frame;
 mod knots;
 mod lobes;
 mod lsq;
@@ -41,6 +42,7 @@ use crate::defaults::{
 };
 use crate::tolerance::Tolerance;
 use fit::Target;
+use frame::Frame;
 use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
 
 /// Highest degree the fairing accepts (Dierckx's curfit: 1 ≤ k ≤ 5).
@@ -66,6 +68,23 @@ pub enum Smoothing {
     Factor(f64),
 }
 
+/// How many standard deviations Gaussian noise reaches, for the scale of the data's detail: it
+/// lies farther from the mean at about 1 point in 16,000.
+pub(crate) const NOISE_REACH: f64 = 4.0;
+
+impl Smoothing {
+    /// How far `points` points may stray from the curve (m): the tolerance, or the noise's reach
+    /// (σ given, or `√(S/M)` from the smoothing factor). Detail below it is not resolved by the
+    /// fit, so corners and order are decided at this scale.
+    fn reach(self, points: usize) -> f64 {
+        match self {
+            Smoothing::MaxDeviation(t) => t,
+            Smoothing::Noise(sigma) => NOISE_REACH * sigma,
+            Smoothing::Factor(s) => NOISE_REACH * (s / points.max(1) as f64).sqrt(),
+        }
+    }
+}
+
 /// Options of [`fair_points`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct FairOptions {
@@ -76,8 +95,8 @@ pub struct FairOptions {
     /// Indices (into the input points) of knuckle points the curve must keep sharp.
     pub corners: Vec<usize>,
     /// Also treat as corners the points where the polyline turns by more than this angle
-    /// (radians); `None` to detect none (default 45°; use `None` for noisy data, where the
-    /// turning angle between neighbours is meaningless).
+    /// (radians) over a length the fit resolves ([`corner_indices`] at the scale of the
+    /// tolerance or noise); `None` to detect none (default 45°).
     pub corner_angle: Option<f64>,
     /// Fixed tangent direction at the first point (pointing along the curve); the end
     /// derivative is this unit vector times the fit's mean speed, as Dierckx's concur fixes end
@@ -222,7 +241,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
             dropped: cleaned.dropped,
         });
     }
-    clean::check_order(pts)?;
+    clean::check_order(pts, options.smoothing.reach(m))?;
 
     // Corners in cleaned indexing: a given corner that was dropped as a duplicate moves to the
     // kept point it duplicated.
@@ -232,11 +251,16 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
         .map(|&c| cleaned.index.partition_point(|&i| i <= c) - 1)
         .collect();
     if let Some(angle) = options.corner_angle {
-        corners.extend(corner_indices(pts, angle));
+        corners.extend(corner_indices(pts, angle, options.smoothing.reach(m)));
     }
     corners.retain(|&c| c > 0 && c + 1 < m);
     corners.sort_unstable();
     corners.dedup();
+
+    // The fit works in the data's own frame (see `frame`); its results are moved back.
+    let frame = Frame::of(pts);
+    let local: Vec<DVec3> = pts.iter().map(|&p| frame.to_local(p)).collect();
+    let smoothing = frame.smoothing(options.smoothing);
 
     let mut bounds = vec![0];
     bounds.extend_from_slice(&corners);
@@ -244,19 +268,19 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     let count = bounds.len() - 1;
     let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
     for (i, w) in bounds.windows(2).enumerate() {
-        let piece = &pts[w[0]..=w[1]];
+        let piece = &local[w[0]..=w[1]];
         let dirs = Directions {
             start: if i == 0 { start_dir } else { None },
             end: if i + 1 == count { end_dir } else { None },
         };
         let iters = options.max_parameter_iterations;
-        let fit = match options.smoothing {
+        let fit = match smoothing {
             Smoothing::MaxDeviation(t) => match fit_within(piece, k, t, dirs, iters)? {
                 Ok(fit) => fit,
                 Err((achieved, index)) => {
                     return Err(FairError::ToleranceNotReached {
-                        tolerance: t,
-                        achieved,
+                        tolerance: frame.length(t),
+                        achieved: frame.length(achieved),
                         index: cleaned.index[w[0] + index],
                     })
                 }
@@ -269,14 +293,14 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                     s: mp * sigma * sigma,
                     accept: (mp + (2.0 * mp).sqrt()) * sigma * sigma,
                 };
-                fit_smooth(piece, k, s, dirs, iters)?
+                fit_smooth(piece, k, s, dirs, iters, None)?
             }
             Smoothing::Factor(s) => {
                 let share = (piece.len() - 1) as f64 / (m - 1) as f64;
-                fit_smooth(piece, k, Target::exact(s * share), dirs, iters)?
+                fit_smooth(piece, k, Target::exact(s * share), dirs, iters, None)?
             }
         };
-        pieces.push(fit);
+        pieces.push(frame.piece_to_world(fit, (pts[w[0]], pts[w[1]]))?);
     }
 
     let (knots, coefs, corner_parameters) = join(&pieces, k);
@@ -293,7 +317,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     };
     let dev = match single.and_then(|p| p.deviation) {
         Some(dev) => dev,
-        None => metrics::deviation(&curve, pts)?,
+        None => frame.deviation(&curve, &local)?,
     };
     let fairness = single
         .and_then(|p| p.metrics)

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use super::clean::{polyline_length, resolved, ORDER_STEP};
 use super::error::FairError;
 use super::fit::{fit_with_system, smoothing_spline, Ends, Spline, System, Target};
 use super::lobes::flatten;
@@ -54,6 +55,17 @@ pub(crate) struct PieceFit {
     pub deviation: Option<Deviation>,
     /// The fairness metrics of `curve`, when the fit already measured them.
     pub metrics: Option<FairnessMetrics>,
+    /// The points (in parameter order) and data parameters `curve` was fitted on.
+    pub start: Option<Start>,
+}
+
+/// Data parameters to start a fit from: the points in parameter order and their parameters,
+/// corrected by an earlier fit to the same points (the search for S fits the same points
+/// again and again; their foot points on the last fit are a better start than chord lengths).
+#[derive(Clone, Debug)]
+pub(crate) struct Start {
+    pub points: Vec<DVec3>,
+    pub params: Vec<f64>,
 }
 
 /// End directions (unit vectors) of the piece, if fixed.
@@ -63,33 +75,41 @@ pub(crate) struct Directions {
     pub end: Option<DVec3>,
 }
 
-/// Smoothing spline of `points` with `E ≤ s.s`, starting from chord-length parameters and
-/// correcting them by foot-point projection until they settle or `max_iter` corrections are
-/// done (Dierckx parcur, then Hoschek's parameter correction). The first corrections project
-/// onto fits to a relaxed target ([`RELAXED_ROUNDS`]); every round starts from the knots of
-/// the one before.
+/// Smoothing spline of `points` with `E ≤ s.s`, starting from chord-length parameters (or
+/// those of `start`, corrected before) and correcting them by foot-point projection until
+/// they settle or `max_iter` corrections are done (Dierckx parcur, then Hoschek's parameter
+/// correction). From chord lengths, the first corrections project onto fits to a relaxed
+/// target ([`RELAXED_ROUNDS`]); every round starts from the knots of the one before.
 pub(crate) fn fit_smooth(
     points: &[DVec3],
     degree: usize,
     s: Target,
     dirs: Directions,
     max_iter: usize,
+    start: Option<Start>,
 ) -> Result<PieceFit, FairError> {
     let m = points.len();
     if m < degree + 1 {
         return short_piece(points, degree);
     }
-    let mut pts = points.to_vec();
-    let mut u = chord_length(&pts);
+    let warm = start.is_some();
+    let (mut pts, mut u) = match start {
+        Some(st) => (st.points, st.params),
+        None => (points.to_vec(), chord_length(points)),
+    };
     let domain = u[m - 1];
     let spacing = domain / (m - 1) as f64;
-    // |C′| of the fit; chord length makes it close to 1 to start with.
-    let mut speed = 1.0;
+    // The mean |C′| of the fixed end derivatives: the length of the data at the fit's
+    // resolution over the parameter domain (the fit's own length would feed back: a fixed
+    // tangent the data turn away from makes a loop, the loop a longer curve and a faster end
+    // derivative, and so on until the coefficients overflow).
+    let speed = polyline_length(&resolved(points, ORDER_STEP * (s.s / m as f64).sqrt())) / domain;
     let mut last: Option<(Spline, NurbsCurve)> = None;
     let mut iterations = 0;
     let mut settled = false;
     let noise = (s.s / m as f64).sqrt();
-    let relaxed = if noise > RELAX_NOISE_RATIO * spacing {
+    // A warm start's parameters are already corrected: no drift to remove.
+    let relaxed = if noise > RELAX_NOISE_RATIO * spacing && !warm {
         RELAXED_ROUNDS.len().min(max_iter)
     } else {
         0
@@ -137,10 +157,6 @@ pub(crate) fn fit_smooth(
             settled = true;
             break;
         }
-        if dirs.start.is_some() || dirs.end.is_some() {
-            let length = curve.arc_length(domain * 1e-9)?;
-            speed = length / domain;
-        }
     }
     // Curvature lobes the data do not demand are flattened (see `lobes`), on the knots and
     // data parameters of the last fit.
@@ -166,11 +182,16 @@ pub(crate) fn fit_smooth(
         settled,
         deviation: None,
         metrics,
+        start: Some(Start {
+            points: pts,
+            params: u,
+        }),
     })
 }
 
 /// Search S downwards from `M·tol²` until the largest orthogonal deviation of the fit is within
-/// `tol` (the designer's tolerance), each step scaling S by `(tol / deviation)²`.
+/// `tol` (the designer's tolerance), each step scaling S by `(tol / deviation)²` and starting
+/// from the data parameters the step before corrected (see [`Start`]).
 /// On failure returns the smallest deviation reached and the index of its worst point.
 pub(crate) fn fit_within(
     points: &[DVec3],
@@ -182,8 +203,16 @@ pub(crate) fn fit_within(
     let m = points.len();
     let mut s = m as f64 * tol * tol;
     let mut best: Option<(f64, usize)> = None;
+    let mut start: Option<Start> = None;
     for _ in 0..MAX_S_STEPS {
-        let mut fit = fit_smooth(points, degree, Target::exact(s), dirs, max_iter)?;
+        let mut fit = fit_smooth(
+            points,
+            degree,
+            Target::exact(s),
+            dirs,
+            max_iter,
+            start.take(),
+        )?;
         let dev = deviation(&fit.curve, points)?;
         if dev.max <= tol {
             fit.deviation = Some(dev);
@@ -197,6 +226,7 @@ pub(crate) fn fit_within(
             break;
         }
         s *= S_SAFETY * (tol / dev.max).powi(2);
+        start = fit.start.take();
     }
     Ok(Err(best.unwrap_or((f64::INFINITY, 0))))
 }
@@ -231,6 +261,7 @@ fn short_piece(points: &[DVec3], degree: usize) -> Result<PieceFit, FairError> {
             settled: true,
             deviation: None,
             metrics: None,
+            start: None,
         },
         degree,
     ))
