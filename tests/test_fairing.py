@@ -165,9 +165,10 @@ def test_fair_operator_reports_through_bpy_ops():
 # At the defaults, before curves were moved through their nodes, KCS built 4 faces with 144
 # near misses: each section faired on its own no longer met its neighbours.
 # The transom's side edge is a knuckle in the upper waterlines and the deck: joined, it is a chine
-# (one per ship).
+# (one per ship). KCS keeps one near miss: wl_z12.50 cannot meet the profile at the stem within
+# 5 mm of its points.
 @pytest.mark.parametrize(
-    ("ship", "faces", "near_misses", "chines"), [("kcs", 270, 0, 1), ("kvlcc2", 280, 0, 1)]
+    ("ship", "faces", "near_misses", "chines"), [("kcs", 280, 1, 1), ("kvlcc2", 280, 0, 1)]
 )
 def test_real_ship_curves_meet_at_their_nodes_and_build_at_the_defaults(ship, faces, near_misses, chines):
     coll, reports = api.import_sections(HULLS / ship / "network.json")
