@@ -224,8 +224,9 @@ fn worst_point(
     tol: f64,
 ) -> Result<(f64, usize, f64), CurveError> {
     let mut worst = (0.0, 0, curve.domain().0);
+    let pieces = curve.bezier_decomposition();
     for (i, p) in points.iter().enumerate() {
-        let n = curve.nearest(*p, DEVIATION_ACCURACY * tol)?;
+        let n = pieces.nearest(*p, DEVIATION_ACCURACY * tol)?;
         if n.distance > worst.0 {
             worst = (n.distance, i, n.t);
         }
