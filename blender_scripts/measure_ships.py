@@ -73,6 +73,25 @@ def surface_distance(points: np.ndarray, positions: np.ndarray) -> np.ndarray:
     return cKDTree(positions).query(points)[0]
 
 
+#: A data point lies on the flat of side (bottom) when it is within this (m) of half the
+#: breadth (of the baseline); a mesh vertex is in the flat when its nearest data points all are.
+FLAT = 1e-3
+FLAT_NEIGHBOURS = 6
+
+
+def flatness(points: np.ndarray, positions: np.ndarray, axis: int, value: float) -> float:
+    """Largest distance (m) from the plane ``x[axis] = value`` of the mesh vertices in the flat
+    the data show there (module constants), 0 when there is none."""
+    from scipy.spatial import cKDTree
+
+    flat = np.abs(points[:, axis] - value) <= FLAT
+    if flat.sum() < FLAT_NEIGHBOURS:
+        return 0.0
+    _, idx = cKDTree(points).query(positions, k=FLAT_NEIGHBOURS)
+    inside = flat[idx].all(axis=1)
+    return float(np.abs(positions[inside, axis] - value).max()) if inside.any() else 0.0
+
+
 def measure(api, ship: Path, resolution: int) -> dict:
     import bpy
 
@@ -93,6 +112,7 @@ def measure(api, ship: Path, resolution: int) -> dict:
     c = ref["computed"]
     points = np.array([p for curve in data["curves"] for p in curve["points"]])
     dist = surface_distance(points, positions)
+    half_breadth = ref["B"] / 2
     warnings = {}
     for w in r["warnings"]:
         warnings[w["kind"]] = warnings.get(w["kind"], 0) + 1
@@ -109,6 +129,9 @@ def measure(api, ship: Path, resolution: int) -> dict:
         "max_normal_angle_at": r["max_normal_angle_at"],
         "max_point_deviation_from_curve_mm": 1e3 * max(f["max_deviation"] for f in fits),
         "max_point_distance_from_mesh_vertices_mm": 1e3 * float(dist.max()),
+        "flat_of_side_max_mm": 1e3 * flatness(points, positions, 1, half_breadth),
+        "flat_of_bottom_max_mm": 1e3 * flatness(points, positions, 2, 0.0),
+        "crease_angles_deg": r["crease_angles_deg"],
         "volume": fig["volume"],
         "volume_diff_pct": 100 * (fig["volume"] / c["displaced_volume"] - 1),
         "lcb_diff_pct_lpp": 100 * (fig["lcb"] - c["LCB_from_AP"]) / lpp,
