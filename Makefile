@@ -72,6 +72,7 @@ bench: venv sysdeps
 	$(MAKE) --no-print-directory native PROFILE=release
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_curves.py
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_fairing.py
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_import.py
 
 clean:
 	rm -rf build $(OUT) target
