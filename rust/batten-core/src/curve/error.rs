@@ -79,6 +79,15 @@ pub enum CurveError {
         /// The most allowed at that place.
         max: usize,
     },
+    /// A knot span so short that its reciprocal overflows f64: the basis functions on it
+    /// evaluate to NaN.
+    #[error("knot span {index} is {span:e} wide, too short for f64 to evaluate")]
+    ShortSpan {
+        /// Index of the knot the span starts at.
+        index: usize,
+        /// Its width.
+        span: f64,
+    },
     /// The parameter domain has zero length.
     #[error("the parameter domain [{start}, {end}] is empty")]
     EmptyDomain {
