@@ -281,7 +281,7 @@ proptest! {
         let Ok(options) = HullOptions::try_new(tolerance_for(tol, size), resolution) else { return Ok(()) };
         let net = Arc::new(net);
         let n = Arc::clone(&net);
-        let o = options.clone();
+        let o = options;
         let hull = within(|| format!("build_hull({net:?}, {options:?})"), move || build_hull(&n, &o));
         if let Ok(hull) = hull {
             let r = &hull.report;
