@@ -96,6 +96,17 @@ pub enum CurveError {
         /// Domain end.
         end: f64,
     },
+    /// A positive weight too small to survive knot insertion: the edits' convex combinations
+    /// of it would fall below the smallest normal f64.
+    #[error("weight {index} is {value:e}, below the smallest weight batten can edit ({min:e})")]
+    TinyWeight {
+        /// Index of the weight.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The smallest weight accepted.
+        min: f64,
+    },
     /// Weights must be positive and finite.
     #[error("weight {index} is {value}; weights must be positive and finite")]
     BadWeight {

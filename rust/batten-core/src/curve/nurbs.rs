@@ -18,6 +18,12 @@ pub struct CurveDerivs {
     pub d3: DVec3,
 }
 
+/// The smallest weight a curve may have: 2^64 above the smallest normal f64. Knot insertion
+/// blends neighbouring weights with coefficients that may be 1e-300; their products underflow,
+/// and a weight at the normal limit (2.2e-308) came out below it (the Bézier decomposition
+/// then failed inside `bounding_box`).
+const MIN_WEIGHT: f64 = f64::MIN_POSITIVE * 18_446_744_073_709_551_616.0;
+
 /// A non-uniform rational B-spline curve in 3D; a B-spline when every weight is 1.
 ///
 /// Control points are stored homogeneous (`w·P, w`), so evaluation, knot insertion and
@@ -76,6 +82,13 @@ impl NurbsCurve {
                 .find(|(_, v)| !(v.is_finite() && **v > 0.0))
             {
                 return Err(CurveError::BadWeight { index, value });
+            }
+            if let Some((index, &value)) = w.iter().enumerate().find(|(_, v)| **v < MIN_WEIGHT) {
+                return Err(CurveError::TinyWeight {
+                    index,
+                    value,
+                    min: MIN_WEIGHT,
+                });
             }
         }
         validate_knots(&knots, degree, n)?;
