@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use crate::common::fuzz::{all_finite, fuzz_config, offset, offset3, scale, unit_point, within};
 
 /// Cases of each curve target in `make test` (each case is a dozen calls of microseconds).
-const SHORT_CASES: u32 = 400;
+const SHORT_CASES: u32 = 2000;
 
 /// Degrees of the random curves: those of ship lines (Blender offers orders up to 6).
 const FUZZ_MAX_DEGREE: usize = 5;

@@ -189,6 +189,14 @@ proptest! {
                 r.metrics.fairness_energy.is_finite() && r.metrics.max_curvature.is_finite(),
                 "fairness {:?} of the fit of {pts:?} with {opts:?}", r.metrics
             );
+            // "S is searched downwards … until the fit is within the tolerance" (Smoothing).
+            if let Smoothing::MaxDeviation(tol) = opts.smoothing {
+                prop_assert!(
+                    r.max_deviation <= tol,
+                    "max deviation {:e} above the tolerance {tol:e} in the fit of {pts:?} with {opts:?}",
+                    r.max_deviation
+                );
+            }
         }
     }
 }

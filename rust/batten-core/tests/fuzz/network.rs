@@ -15,7 +15,7 @@ use crate::common::fuzz::{fuzz_config, offset3, scale, unit_point, within};
 
 /// Cases of each network target in `make test` (a hull build of a small grid takes
 /// milliseconds in a dev build).
-const SHORT_CASES: u32 = 48;
+const SHORT_CASES: u32 = 400;
 
 /// The Wigley-like half-breadth `y(x, z)` the grids are drawn on, over x, z in [0, 1].
 fn half_breadth(x: f64, z: f64) -> f64 {
