@@ -297,3 +297,14 @@ def test_a_path_with_a_lone_surrogate_is_an_invalid_argument(tmp_path):
         api.read_network(tmp_path / "\ud800.json")
     with pytest.raises(bn.InvalidArgumentError, match="section file path .* cannot be a file name"):
         api.import_sections(str(tmp_path / "\ud800.csv"))
+
+
+def test_a_weight_at_the_normal_limit_is_refused_before_an_edit_loses_it():
+    """A weight of 2.2e-308 was accepted; knot insertion blended it below the limit and the
+    Bézier decomposition panicked inside bounding_box."""
+    pts = [[0, 0, 0], [1, 1, 0], [2, 0, 0]]
+    with pytest.raises(
+        bn.CurveError, match=r"curve 'w': weight 1 is 2\.2250738585072014e-308, below the smallest"
+    ):
+        bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 2.2250738585072014e-308, 1.0])
+    assert bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 1e-200, 1.0]).bounding_box()[1][0] == 2.0

@@ -83,13 +83,6 @@ impl NurbsCurve {
             {
                 return Err(CurveError::BadWeight { index, value });
             }
-            if let Some((index, &value)) = w.iter().enumerate().find(|(_, v)| **v < MIN_WEIGHT) {
-                return Err(CurveError::TinyWeight {
-                    index,
-                    value,
-                    min: MIN_WEIGHT,
-                });
-            }
         }
         validate_knots(&knots, degree, n)?;
         let rational = weights
@@ -105,6 +98,18 @@ impl NurbsCurve {
         };
         if let Some(index) = unrepresentable_point(&cw) {
             return Err(CurveError::WeightedPointOverflow { index });
+        }
+        if let Some((index, value)) = cw
+            .iter()
+            .map(|c| c.w)
+            .enumerate()
+            .find(|&(_, w)| w < MIN_WEIGHT)
+        {
+            return Err(CurveError::TinyWeight {
+                index,
+                value,
+                min: MIN_WEIGHT,
+            });
         }
         Ok(NurbsCurve {
             degree,
