@@ -3,7 +3,8 @@
 use batten_core::{CurveError, KnotLayout, NetworkCurve, NurbsCurve, Role};
 use glam::DVec3;
 use numpy::{
-    AllowTypeChange, PyArray1, PyArray2, PyArrayLike2, PyArrayMethods, PyUntypedArrayMethods,
+    AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyArrayLike2, PyArrayMethods,
+    PyUntypedArrayMethods,
 };
 use pyo3::prelude::*;
 
@@ -18,6 +19,17 @@ fn finite_parameters<'a>(name: &str, ts: &'a [f64]) -> PyResult<&'a [f64]> {
         Some(&bad) => Err(curve_err(name, CurveError::NonFiniteParameter(bad))),
         None => Ok(ts),
     }
+}
+
+/// The parameters of `t` for evaluating curve `name`: contiguous and every one finite.
+fn parameters<'a>(
+    name: &str,
+    t: &'a PyArrayLike1<'_, f64, AllowTypeChange>,
+) -> PyResult<&'a [f64]> {
+    let ts = t
+        .as_slice()
+        .map_err(|_| arg_err(format!("curve '{name}': t must be a contiguous 1-D array")))?;
+    finite_parameters(name, ts)
 }
 
 /// Below this many parameters evaluation stays on one thread (spawning costs more than it saves).
@@ -320,13 +332,7 @@ impl Curve {
         t: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let t = values(t, || format!("curve '{}': t", self.name()))?;
-        let ts = t.as_slice().map_err(|_| {
-            arg_err(format!(
-                "curve '{}': t must be a contiguous 1-D array",
-                self.name()
-            ))
-        })?;
-        let ts = finite_parameters(self.name(), ts)?;
+        let ts = parameters(self.name(), &t)?;
         let curve = &self.inner.curve;
         let out = py.detach(|| {
             guard(self.name(), || {
@@ -364,13 +370,7 @@ impl Curve {
     /// curvature overflows).
     fn curvature<'py>(&self, py: Python<'py>, t: &Bound<'py, PyAny>) -> PyResult<ArrayPair<'py>> {
         let t = values(t, || format!("curve '{}': t", self.name()))?;
-        let ts = t.as_slice().map_err(|_| {
-            arg_err(format!(
-                "curve '{}': t must be a contiguous 1-D array",
-                self.name()
-            ))
-        })?;
-        let ts = finite_parameters(self.name(), ts)?;
+        let ts = parameters(self.name(), &t)?;
         let curve = &self.inner.curve;
         let (pts, ks) = py.detach(|| {
             guard(self.name(), || {
