@@ -34,7 +34,7 @@ test: venv sysdeps lint
 ## replay; a Python call that hangs ends pytest and is printed from FUZZ_HANG. FUZZ_SKIP names
 ## core targets to leave out (e.g. FUZZ_SKIP=fit::).
 FUZZ_MINUTES ?= 10
-FUZZ_CASES ?= 4000
+FUZZ_CASES ?= 40000
 FUZZ_SKIP ?=
 FUZZ_HANG := $(abspath build)/fuzz_hang.txt
 fuzz: venv sysdeps
