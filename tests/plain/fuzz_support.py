@@ -11,6 +11,7 @@ Python traceback in :data:`HANG_REPORT`.
 
 from __future__ import annotations
 
+import atexit
 import faulthandler
 import math
 import os
@@ -27,9 +28,12 @@ CALL_SECONDS = 2.0
 #: A call still running after this long is a hang: the process ends, see :data:`HANG_REPORT`.
 HANG_SECONDS = 20.0
 #: Where a hang is reported: the pending call's input, then every thread's traceback (empty
-#: unless the process ended inside a call).
+#: unless the process ended inside a call): one file per process, as sessions may test side by
+#: side, removed at exit when no call hung.
 HANG_REPORT = Path(
-    os.environ.get("BATTEN_FUZZ_HANG_REPORT", Path(tempfile.gettempdir()) / "batten_fuzz_hang.txt")
+    os.environ.get(
+        "BATTEN_FUZZ_HANG_REPORT", Path(tempfile.gettempdir()) / f"batten_fuzz_hang_{os.getpid()}.txt"
+    )
 )
 
 #: Report entries documented to be infinite at times: a fairing piece's smoothing parameter
@@ -46,6 +50,13 @@ settings.register_profile("long", max_examples=3000, **_COMMON)
 settings.load_profile(os.environ.get("BATTEN_FUZZ_PROFILE", "short"))
 
 _report = HANG_REPORT.open("w", encoding="utf-8", errors="backslashreplace")
+
+
+@atexit.register
+def _remove_an_empty_report() -> None:
+    _report.close()
+    if "BATTEN_FUZZ_HANG_REPORT" not in os.environ and HANG_REPORT.stat().st_size == 0:
+        HANG_REPORT.unlink()
 
 
 def call(fn, *args, **kwargs):
