@@ -1,9 +1,9 @@
 """Hypothesis fuzzing of ``batten.api`` inside Blender (issue 21): curve objects drawn from
 jittered grids at extreme sizes, offsets and object transforms, and files of hostile content
-and names, through read_curves, topology, build, export_network, read_network and
-import_sections. Each call gives a finite result or raises a ``BattenError`` (never another
-exception, never a crash or a hang); the budget and limits are those of
-``plain/fuzz_support.py``."""
+and names, through read_curves, topology, build, export_network, read_network,
+import_sections, curvature_comb and fair_curves. Each call gives a finite result or raises a
+``BattenError`` (never another exception, never a crash or a hang); the budget and limits
+are those of ``plain/fuzz_support.py``."""
 
 from __future__ import annotations
 
@@ -73,6 +73,8 @@ def test_api_on_curve_objects(objects, tolerance, resolution, tmp_path):
     if not isinstance(written, api.BattenError):
         name, curves = api.read_network(written)
         assert [c.name for c in curves] == [o.name for o in objects]
+    _clean(call(api.curvature_comb, objects[0]))
+    _clean(call(api.fair_curves, objects, tolerance=tolerance))  # last: it redraws the objects
 
 
 paths = st.one_of(
