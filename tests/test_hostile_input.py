@@ -308,3 +308,12 @@ def test_a_weight_at_the_normal_limit_is_refused_before_an_edit_loses_it():
     ):
         bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 2.2250738585072014e-308, 1.0])
     assert bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 1e-200, 1.0]).bounding_box()[1][0] == 2.0
+
+
+def test_a_section_file_whose_name_is_not_utf8_draws_a_collection(tmp_path):
+    """A file named with the byte 0xff (Python: 'x\\udcff.csv') raised TypeError from
+    bpy.data.collections.new (its stem names the collection)."""
+    f = tmp_path / "x\udcff.csv"
+    f.write_text("st,0,0,0\nst,0,0.5,1\nst,0,1.5,2\nst,0,3,3\n")
+    coll, reports = api.import_sections(f)
+    assert coll.name == "x\ufffd" and [r["curve"] for r in reports] == ["st"]

@@ -52,7 +52,7 @@ from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
 from .fit_data import fit_data
-from .object_names import errors_named_by_object, objects_of, with_objects
+from .object_names import blender_name, errors_named_by_object, objects_of, with_objects
 
 __all__ = [
     "BuildResult",
@@ -197,8 +197,9 @@ def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):
 
 def _draw_collection(name: str, curves: list[Curve], *, resolution: int = CURVE_RESOLUTION):
     """Draw ``curves`` as curve objects in a new collection ``name`` linked to the scene:
-    all of them, or (if drawing fails midway) none, with everything created removed again."""
-    coll = bpy.data.collections.new(name)
+    all of them, or (if drawing fails midway) none, with everything created removed again.
+    A name Blender cannot store (a file name's undecodable bytes) is drawn with U+FFFD."""
+    coll = bpy.data.collections.new(blender_name(name))
     created = []
     try:
         for curve in curves:
