@@ -5,6 +5,7 @@ import json
 
 import batten.api as api
 import batten_native as bn
+import bpy
 import numpy as np
 import pytest
 
@@ -317,3 +318,14 @@ def test_a_section_file_whose_name_is_not_utf8_draws_a_collection(tmp_path):
     f.write_text("st,0,0,0\nst,0,0.5,1\nst,0,1.5,2\nst,0,3,3\n")
     coll, reports = api.import_sections(f)
     assert coll.name == "x\ufffd" and [r["curve"] for r in reports] == ["st"]
+
+
+def test_a_curve_beyond_float32_is_refused_before_blender_draws_it_as_inf(tmp_path):
+    """Found by the api fuzz test: sections beyond 3.4e38 m were drawn with float32 overflow (inf)."""
+    f = tmp_path / "huge.csv"
+    f.write_text("".join(f"st,{x * 1e39},{x * x * 1e38},0\n" for x in range(6)))
+    with pytest.raises(
+        bn.CurveError, match=r"curve 'st': a control point coordinate or weight \(.*\) is beyond"
+    ) as e:
+        api.import_sections(f, tolerance=1e36)
+    assert e.value.curve == "st" and "huge" not in bpy.data.collections
