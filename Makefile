@@ -14,7 +14,7 @@ OUT ?= out
 # local runs stay random. Failures found either way persist in tests/*.proptest-regressions.
 CI_PROPTEST_SEED := 12
 
-.PHONY: demo test extension package native venv sysdeps lint fmt bench clean
+.PHONY: demo test fuzz extension package native venv sysdeps lint fmt bench clean
 
 demo: venv sysdeps
 	$(MAKE) --no-print-directory native PROFILE=release
@@ -26,6 +26,28 @@ test: venv sysdeps lint
 	PYTHONPATH=build/native/dev $(VPY) -m pytest -q tests/plain
 	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \
 	  PYTHONPATH=build/native/dev:addon $(VPY) -m pytest -q --ignore=tests/plain tests
+
+## Fuzzing (issue 21): the core's proptest targets (rust/batten-core/tests/fuzz) and the
+## hypothesis tests (tests/plain/test_fuzz_native.py, tests/test_fuzz_api.py) with a long
+## budget, round after round with fresh seeds for FUZZ_MINUTES; stops at the first failure,
+## which stays in the proptest-regressions files / hypothesis database (.hypothesis/) to
+## replay; a Python call that hangs ends pytest and is printed from FUZZ_HANG. FUZZ_SKIP names
+## core targets to leave out (e.g. FUZZ_SKIP=fit::).
+FUZZ_MINUTES ?= 10
+FUZZ_CASES ?= 40000
+FUZZ_SKIP ?=
+FUZZ_HANG := $(abspath build)/fuzz_hang.txt
+fuzz: venv sysdeps
+	$(MAKE) --no-print-directory native PROFILE=dev
+	end=$$(( $$(date +%s) + 60 * $(FUZZ_MINUTES) )); round=0; \
+	while [ $$(date +%s) -lt $$end ]; do \
+	  round=$$((round + 1)); echo "fuzz round $$round ($$(( (end - $$(date +%s)) / 60 )) min left)"; \
+	  BATTEN_FUZZ_CASES=$(FUZZ_CASES) cargo test -p batten-core --test fuzz -- $(addprefix --skip ,$(FUZZ_SKIP)) || exit 1; \
+	  BATTEN_FUZZ_PROFILE=long BATTEN_FUZZ_HANG_REPORT=$(FUZZ_HANG) PYTHONPATH=build/native/dev \
+	    $(VPY) -m pytest -q tests/plain/test_fuzz_native.py || { cat $(FUZZ_HANG); exit 1; }; \
+	  BATTEN_FUZZ_PROFILE=long BATTEN_FUZZ_HANG_REPORT=$(FUZZ_HANG) PYTHONPATH=build/native/dev:addon \
+	    $(VPY) -m pytest -q tests/test_fuzz_api.py || { cat $(FUZZ_HANG); exit 1; }; \
+	done
 
 ## The installable Blender extension zip (release build) in build/extension/release/.
 extension: venv

@@ -5,6 +5,7 @@ import json
 
 import batten.api as api
 import batten_native as bn
+import bpy
 import numpy as np
 import pytest
 
@@ -205,3 +206,143 @@ def test_dense_noise_is_neither_corners_nor_disorder():
     assert report["max_deviation"] <= 5e-3 and np.isfinite(curve.control_points).all()
     with pytest.raises(bn.FairError, match="curve 'scan': the points are not in order"):
         bn.fair_points("scan", pts[rng.permutation(2000)], tolerance=5e-3)
+
+
+# Found by the fuzz suite (tests/plain/test_fuzz_native.py, rust/batten-core/tests/fuzz).
+
+
+@pytest.mark.parametrize(
+    ("call", "says"),
+    [
+        (
+            lambda: bn.Curve.from_poly(b"st", [[0, 0, 0], [1, 0, 0]]),
+            "the curve name must be text \\(str\\), not bytes",
+        ),
+        (
+            lambda: bn.Curve.from_poly("st\ud800", [[0, 0, 0], [1, 0, 0]]),
+            "the curve name 'st\\\\ud800' is not valid Unicode text",
+        ),
+        (
+            lambda: bn.Curve.from_poly("st", [[0, 0, 0], [1, 0, 0]], role=b"keel"),
+            "curve 'st': role must be text",
+        ),
+        (lambda: _cubic().renamed(name="\udcff"), "curve 'c': new name '\\\\udcff' is not valid Unicode"),
+        (lambda: bn.fair_points(b"st", np.zeros((9, 3))), "the curve name must be text"),
+        (
+            lambda: bn.fair_points("st", np.zeros((9, 3)), role="\ud800"),
+            "curve 'st': role '\\\\ud800' is not",
+        ),
+        (lambda: bn.network_to_json(b"net", [_cubic()]), "the network name must be text"),
+        (lambda: bn.network_from_json(b"{}"), "the network text must be text \\(str\\), not bytes"),
+    ],
+)
+def test_text_that_is_bytes_or_holds_a_lone_surrogate_is_an_invalid_argument(call, says):
+    """They raised TypeError and UnicodeEncodeError."""
+    with pytest.raises(bn.InvalidArgumentError, match=says):
+        call()
+
+
+@pytest.mark.parametrize(
+    ("call", "says"),
+    [
+        (lambda: bn.Curve("c", 1, [0, 0, 1, 1], []), "curve 'c': points must be a 2-D array of numbers"),
+        (lambda: bn.Curve.from_poly("p", [[0, 0, 0], [1, 0]]), "curve 'p': points must be a 2-D array"),
+        (
+            lambda: bn.Curve("c", 1, [[0, 0], [1, 1]], [[0, 0, 0], [1, 0, 0]]),
+            "curve 'c': knots must be a 1-D array",
+        ),
+        (lambda: _cubic().evaluate([[0.5]]), "curve 'c': t must be a 1-D array"),
+        (
+            lambda: bn.Curve("c", 2**70, [0, 1], [[0, 0, 0]]),
+            "curve 'c': degree 1180591620717411303424 must be a whole",
+        ),
+        (lambda: _cubic().insert_knot(0.5, 2**64), "curve 'c': times 18446744073709551616 must be a whole"),
+        (lambda: bn.fair_points("st", np.zeros((9, 3)), corners=[2**65]), "curve 'st': corner index"),
+        (lambda: bn.build_surface([_cubic()], 1e-4, 2**63), "resolution 9223372036854775808 must be a whole"),
+    ],
+)
+def test_points_of_the_wrong_shape_and_counts_beyond_64_bits_are_invalid_arguments(call, says):
+    """An empty or ragged list raised TypeError ("dimensionality mismatch"); 2**70 OverflowError."""
+    with pytest.raises(bn.InvalidArgumentError, match=says):
+        call()
+
+
+def test_a_knot_span_of_subnormals_is_refused_at_construction():
+    """Knots [0, 0, 4e-323, 4e-323] made a curve that evaluates to NaN (and bounding_box panicked)."""
+    with pytest.raises(
+        bn.CurveError, match="curve 'tiny': knot span 1 is 4e-323 wide, too short for f64"
+    ) as e:
+        bn.Curve("tiny", 1, [0, 0, 4e-323, 4e-323], [[0, 0, 0], [1, 0, 0]])
+    assert e.value.curve == "tiny"
+
+
+def test_derivatives_and_curvature_that_overflow_are_errors_naming_the_curve():
+    """Weights 1e-200 beside 0.1 gave C'' = -inf and a NaN curvature."""
+    c = bn.Curve("w", 1, [0, 0.01, 0.02, 0.03], [[0, 0, 0], [0, 0, 0.75]], [1e-200, 0.1])
+    with pytest.raises(
+        bn.CurveError, match="curve 'w': its derivatives or curvature at parameter 1e-2 overflow"
+    ):
+        c.derivatives(0.01)
+    with pytest.raises(
+        bn.CurveError, match="curve 'w': its derivatives or curvature at parameter 1e-2 overflow"
+    ):
+        c.curvature([0.015, 0.01])
+    assert np.isfinite(_cubic().derivatives(0.5)).all()
+
+
+def test_a_length_whose_speed_is_rougher_than_the_accuracy_is_an_error_not_a_hang():
+    """Weights 1e-200 beside 1e200 at 1e17 m: the quadrature halved to depth 40 everywhere."""
+    pts = [[1e17, 1e17, z] for z in (0.1, 0.0033, 0.1, 0.015, 0.0)]
+    c = bn.Curve("rough", 2, [0, 0, 0, 0.01, 0.02, 0.03, 0.03, 0.03], pts, [7.7, 1e-200, 4.85, 1e200, 1e200])
+    try:
+        assert np.isfinite(c.arc_length(1.0))
+    except bn.CurveError as e:
+        assert "curve 'rough': its length does not settle to the accuracy 1e0 m" in str(e)
+
+
+@pytest.mark.parametrize("path", [b"/nonexistent/net.json", "/nonexistent/\udcffnet.json"])
+def test_a_path_as_bytes_is_a_path(path):
+    """bytes paths raised TypeError from pathlib; they name a file like a str does."""
+    with pytest.raises(bn.NetworkFileError, match="network file '/nonexistent/.*net.json': No such file"):
+        api.read_network(path)
+
+
+def test_a_path_with_a_lone_surrogate_is_an_invalid_argument(tmp_path):
+    """It raised UnicodeEncodeError from open()."""
+    with pytest.raises(
+        bn.InvalidArgumentError, match="network file path '.*\\\\ud800.json' cannot be a file name"
+    ):
+        api.read_network(tmp_path / "\ud800.json")
+    with pytest.raises(bn.InvalidArgumentError, match="section file path .* cannot be a file name"):
+        api.import_sections(str(tmp_path / "\ud800.csv"))
+
+
+def test_a_weight_at_the_normal_limit_is_refused_before_an_edit_loses_it():
+    """A weight of 2.2e-308 was accepted; knot insertion blended it below the limit and the
+    Bézier decomposition panicked inside bounding_box."""
+    pts = [[0, 0, 0], [1, 1, 0], [2, 0, 0]]
+    with pytest.raises(
+        bn.CurveError, match=r"curve 'w': weight 1 is 2\.2250738585072014e-308, below the smallest"
+    ):
+        bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 2.2250738585072014e-308, 1.0])
+    assert bn.Curve("w", 2, [0, 0, 0, 1, 1, 1], pts, [1.0, 1e-200, 1.0]).bounding_box()[1][0] == 2.0
+
+
+def test_a_section_file_whose_name_is_not_utf8_draws_a_collection(tmp_path):
+    """A file named with the byte 0xff (Python: 'x\\udcff.csv') raised TypeError from
+    bpy.data.collections.new (its stem names the collection)."""
+    f = tmp_path / "x\udcff.csv"
+    f.write_text("st,0,0,0\nst,0,0.5,1\nst,0,1.5,2\nst,0,3,3\n")
+    coll, reports = api.import_sections(f)
+    assert coll.name == "x\ufffd" and [r["curve"] for r in reports] == ["st"]
+
+
+def test_a_curve_beyond_float32_is_refused_before_blender_draws_it_as_inf(tmp_path):
+    """Found by the api fuzz test: sections beyond 3.4e38 m were drawn with float32 overflow (inf)."""
+    f = tmp_path / "huge.csv"
+    f.write_text("".join(f"st,{x * 1e39},{x * x * 1e38},0\n" for x in range(6)))
+    with pytest.raises(
+        bn.CurveError, match=r"curve 'st': a control point coordinate or weight \(.*\) is beyond"
+    ) as e:
+        api.import_sections(f, tolerance=1e36)
+    assert e.value.curve == "st" and "huge" not in bpy.data.collections

@@ -53,9 +53,9 @@ from batten_native import topology as _topology
 
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
-from .file_text import read_text
+from .file_text import file_path, read_text
 from .fit_data import fit_data
-from .object_names import errors_named_by_object, objects_of, with_objects
+from .object_names import blender_name, errors_named_by_object, objects_of, with_objects
 
 __all__ = [
     "BuildResult",
@@ -168,7 +168,7 @@ def export_network(source, path, *, name: str | None = None, tolerance: float = 
     with errors_named_by_object(object_of):
         check_lengths(curves, tolerance)
     text = network_to_json(name if name is not None else _source_name(source), curves)
-    path = Path(path)
+    path = file_path(path, "network file")
     try:
         return write_atomically(path, text)
     except OSError as e:
@@ -178,7 +178,7 @@ def export_network(source, path, *, name: str | None = None, tolerance: float = 
 def read_network(path) -> tuple[str, list[Curve]]:
     """The network file at ``path`` as ``(name, curves)``; NetworkFileError naming the file
     (and the problem) if it cannot be read or is not a valid network."""
-    path = Path(path)
+    path = file_path(path, "network file")
     text = read_text(path, "network file")
     try:
         return network_from_json(text)
@@ -194,14 +194,15 @@ def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):
     everything created is removed again. Returns the collection.
     """
     name, curves = read_network(path)
-    coll_name = collection if isinstance(collection, str) else (name or Path(path).stem)
+    coll_name = collection if isinstance(collection, str) else (name or file_path(path, "network file").stem)
     return _draw_collection(coll_name, curves, resolution=resolution)
 
 
 def _draw_collection(name: str, curves: list[Curve], *, resolution: int = CURVE_RESOLUTION):
     """Draw ``curves`` as curve objects in a new collection ``name`` linked to the scene:
-    all of them, or (if drawing fails midway) none, with everything created removed again."""
-    coll = bpy.data.collections.new(name)
+    all of them, or (if drawing fails midway) none, with everything created removed again.
+    A name Blender cannot store (a file name's undecodable bytes) is drawn with U+FFFD."""
+    coll = bpy.data.collections.new(blender_name(name))
     created = []
     try:
         for curve in curves:

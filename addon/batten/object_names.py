@@ -14,6 +14,12 @@ from contextlib import contextmanager
 from batten_native import CurveError
 
 
+def blender_name(text: str) -> str:
+    """``text`` as a name Blender can store (UTF-8 only): each lone surrogate, as Python keeps
+    the undecodable bytes of a file name (``x\\udcff.csv``), becomes U+FFFD."""
+    return "".join("\ufffd" if "\ud800" <= ch <= "\udfff" else ch for ch in text)
+
+
 def objects_of(curves: Iterable[str], object_of: Mapping[str, str]) -> list[str]:
     """The names of the objects the named ``curves`` came from, sorted, without repeats
     (curves not in ``object_of`` are left out)."""

@@ -16,7 +16,23 @@ from batten_native import Curve, CurveError
 MAX_BLENDER_DEGREE = 5
 
 
+#: Blender stores curve points as float32: larger coordinates would be drawn as inf.
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+
+
 def _spline_data(curve: Curve) -> tuple[str, np.ndarray, dict]:
+    kind, points, flags = _spline_layout(curve)
+    largest = float(np.abs(points).max(initial=0.0))
+    if largest > FLOAT32_MAX:
+        raise CurveError(
+            f"curve '{curve.name}': a control point coordinate or weight ({largest:.3e}) is beyond "
+            f"what Blender stores (float32, {FLOAT32_MAX:.3e})",
+            curve.name,
+        )
+    return kind, points, flags
+
+
+def _spline_layout(curve: Curve) -> tuple[str, np.ndarray, dict]:
     degree = curve.degree
     if degree > MAX_BLENDER_DEGREE:
         raise CurveError(

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 from batten_native import NetworkFileError
 
-from ..file_text import read_text
+from ..file_text import file_path, read_text
 
 #: The batten role a curve of each kind gets.
 ROLE_OF_KIND = {
@@ -45,7 +45,7 @@ class PointCurve:
 def read_sections(path) -> tuple[str, list[PointCurve]]:
     """``(name, curves)`` from a neutral JSON or CSV point file; NetworkFileError naming the file
     (and the curve or row) when it cannot be read."""
-    path = Path(path)
+    path = file_path(path, "section file")
     text = read_text(path, "section file")
     if path.suffix.lower() == ".csv":
         return path.stem, _read_csv(path, text)

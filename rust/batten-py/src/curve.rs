@@ -8,7 +8,8 @@ use numpy::{
 };
 use pyo3::prelude::*;
 
-use crate::errors::{arg_err, count, curve_err, guard};
+use crate::args::{optional_text, optional_whole, role_or_free, rows, text, values, whole};
+use crate::errors::{arg_err, curve_err, guard};
 
 /// The parameters `ts` for evaluating curve `name`: every one finite (a NaN or infinite
 /// parameter is a `CurveError` naming the curve; finite ones outside the domain are clamped by
@@ -18,6 +19,17 @@ fn finite_parameters<'a>(name: &str, ts: &'a [f64]) -> PyResult<&'a [f64]> {
         Some(&bad) => Err(curve_err(name, CurveError::NonFiniteParameter(bad))),
         None => Ok(ts),
     }
+}
+
+/// The parameters of `t` for evaluating curve `name`: contiguous and every one finite.
+fn parameters<'a>(
+    name: &str,
+    t: &'a PyArrayLike1<'_, f64, AllowTypeChange>,
+) -> PyResult<&'a [f64]> {
+    let ts = t
+        .as_slice()
+        .map_err(|_| arg_err(format!("curve '{name}': t must be a contiguous 1-D array")))?;
+    finite_parameters(name, ts)
 }
 
 /// Below this many parameters evaluation stays on one thread (spawning costs more than it saves).
@@ -124,16 +136,25 @@ impl Curve {
     /// A NURBS curve from its degree, knot vector (n + degree + 1 values), control points (n, 3)
     /// and optional positive weights (n,).
     #[new]
-    #[pyo3(signature = (name, degree, knots, points, weights=None, role="free"))]
+    #[pyo3(signature = (name, degree, knots, points, weights=None, role=None),
+        text_signature = "(name, degree, knots, points, weights=None, role=\"free\")")]
     fn py_new(
-        name: &str,
-        degree: i64,
-        knots: PyArrayLike1<'_, f64, AllowTypeChange>,
-        points: PyArrayLike2<'_, f64, AllowTypeChange>,
-        weights: Option<PyArrayLike1<'_, f64, AllowTypeChange>>,
-        role: &str,
+        name: &Bound<'_, PyAny>,
+        degree: &Bound<'_, PyAny>,
+        knots: &Bound<'_, PyAny>,
+        points: &Bound<'_, PyAny>,
+        weights: Option<&Bound<'_, PyAny>>,
+        role: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Curve> {
-        let degree = count(degree, || format!("curve '{name}': degree"))?;
+        let name = &text(name, || "the curve name".to_owned())?;
+        let role = &role_or_free(name, role)?;
+        let degree = whole(degree, || format!("curve '{name}': degree"))?;
+        let knots = values(knots, || format!("curve '{name}': knots"))?;
+        let points = rows(points, || format!("curve '{name}': points"))?;
+        let weights = weights
+            .filter(|w| !w.is_none())
+            .map(|w| values(w, || format!("curve '{name}': weights")))
+            .transpose()?;
         let pts = points_of(name, "points", &points, &[3])?;
         let knots = knots.as_array().to_vec();
         let weights = weights.map(|w| w.as_array().to_vec());
@@ -145,17 +166,21 @@ impl Curve {
     /// A NURBS spline as Blender stores it: points (n, 4) with the weight in the last column
     /// (or (n, 3) for weight 1), its order and the end-point / Bézier / cyclic flags.
     #[staticmethod]
-    #[pyo3(signature = (name, points, order, endpoint=false, bezier=false, cyclic=false, role="free"))]
+    #[pyo3(signature = (name, points, order, endpoint=false, bezier=false, cyclic=false, role=None),
+        text_signature = "(name, points, order, endpoint=False, bezier=False, cyclic=False, role=\"free\")")]
     fn from_nurbs(
-        name: &str,
-        points: PyArrayLike2<'_, f64, AllowTypeChange>,
-        order: i64,
+        name: &Bound<'_, PyAny>,
+        points: &Bound<'_, PyAny>,
+        order: &Bound<'_, PyAny>,
         endpoint: bool,
         bezier: bool,
         cyclic: bool,
-        role: &str,
+        role: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Curve> {
-        let order = count(order, || format!("curve '{name}': order"))?;
+        let name = &text(name, || "the curve name".to_owned())?;
+        let role = &role_or_free(name, role)?;
+        let points = rows(points, || format!("curve '{name}': points"))?;
+        let order = whole(order, || format!("curve '{name}': order"))?;
         let pts = points_of(name, "points", &points, &[3, 4])?;
         let view = points.as_array();
         let weights: Option<Vec<f64>> = (view.ncols() == 4).then(|| view.column(3).to_vec());
@@ -177,15 +202,21 @@ impl Curve {
     /// A Bézier spline from its points and left/right handles (each (n, 3)); segment i runs on
     /// parameters [i, i+1]. Non-aligned handles stay corners.
     #[staticmethod]
-    #[pyo3(signature = (name, co, left, right, cyclic=false, role="free"))]
+    #[pyo3(signature = (name, co, left, right, cyclic=false, role=None),
+        text_signature = "(name, co, left, right, cyclic=False, role=\"free\")")]
     fn from_bezier(
-        name: &str,
-        co: PyArrayLike2<'_, f64, AllowTypeChange>,
-        left: PyArrayLike2<'_, f64, AllowTypeChange>,
-        right: PyArrayLike2<'_, f64, AllowTypeChange>,
+        name: &Bound<'_, PyAny>,
+        co: &Bound<'_, PyAny>,
+        left: &Bound<'_, PyAny>,
+        right: &Bound<'_, PyAny>,
         cyclic: bool,
-        role: &str,
+        role: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Curve> {
+        let name = &text(name, || "the curve name".to_owned())?;
+        let role = &role_or_free(name, role)?;
+        let co = rows(co, || format!("curve '{name}': co"))?;
+        let left = rows(left, || format!("curve '{name}': left handles"))?;
+        let right = rows(right, || format!("curve '{name}': right handles"))?;
         let co = points_of(name, "co", &co, &[3])?;
         let left = points_of(name, "left handles", &left, &[3])?;
         let right = points_of(name, "right handles", &right, &[3])?;
@@ -208,13 +239,17 @@ impl Curve {
 
     /// A polyline (points (n, 3), or (n, 4) whose last column is ignored) as a degree-1 curve.
     #[staticmethod]
-    #[pyo3(signature = (name, points, cyclic=false, role="free"))]
+    #[pyo3(signature = (name, points, cyclic=false, role=None),
+        text_signature = "(name, points, cyclic=False, role=\"free\")")]
     fn from_poly(
-        name: &str,
-        points: PyArrayLike2<'_, f64, AllowTypeChange>,
+        name: &Bound<'_, PyAny>,
+        points: &Bound<'_, PyAny>,
         cyclic: bool,
-        role: &str,
+        role: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Curve> {
+        let name = &text(name, || "the curve name".to_owned())?;
+        let role = &role_or_free(name, role)?;
+        let points = rows(points, || format!("curve '{name}': points"))?;
         let pts = points_of(name, "points", &points, &[3, 4])?;
         guard(name, || {
             Curve::make(name, role, NurbsCurve::from_polyline(&pts, cyclic))
@@ -235,10 +270,16 @@ impl Curve {
 
     /// This curve with another name and/or role.
     #[pyo3(signature = (name=None, role=None))]
-    fn renamed(&self, name: Option<&str>, role: Option<&str>) -> PyResult<Curve> {
-        let name = name.unwrap_or(self.name());
+    fn renamed(
+        &self,
+        name: Option<&Bound<'_, PyAny>>,
+        role: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Curve> {
+        let new_name = optional_text(name, || format!("curve '{}': new name", self.name()))?;
+        let name = new_name.as_deref().unwrap_or(self.name());
+        let role = optional_text(role, || format!("curve '{name}': role"))?;
         let role = match role {
-            Some(r) => parse_role(name, r)?,
+            Some(r) => parse_role(name, &r)?,
             None => self.inner.role,
         };
         Ok(Curve {
@@ -288,12 +329,10 @@ impl Curve {
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
-        t: PyArrayLike1<'py, f64, AllowTypeChange>,
+        t: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let ts = t
-            .as_slice()
-            .map_err(|_| arg_err("t must be a contiguous 1-D float64 array"))?;
-        let ts = finite_parameters(self.name(), ts)?;
+        let t = values(t, || format!("curve '{}': t", self.name()))?;
+        let ts = parameters(self.name(), &t)?;
         let curve = &self.inner.curve;
         let out = py.detach(|| {
             guard(self.name(), || {
@@ -315,29 +354,31 @@ impl Curve {
         to_array2(py, out, 3)
     }
 
-    /// C(t), C'(t), C''(t), C'''(t) as a (4, 3) array.
+    /// C(t), C'(t), C''(t), C'''(t) as a (4, 3) array (a `CurveError` where they overflow).
     fn derivatives<'py>(&self, py: Python<'py>, t: f64) -> PyResult<Bound<'py, PyArray2<f64>>> {
         finite_parameters(self.name(), &[t])?;
         let d = guard(self.name(), || Ok(self.inner.curve.derivs(t)))?;
-        points_array(py, &[d.point, d.d1, d.d2, d.d3])
+        let all = [d.point, d.d1, d.d2, d.d3];
+        if !all.iter().all(|v| v.is_finite()) {
+            return Err(curve_err(self.name(), CurveError::DerivativeOverflow { t }));
+        }
+        points_array(py, &all)
     }
 
     /// Points and curvature vectors (towards the centre of curvature, length κ) at the
-    /// parameters `t`: two (len(t), 3) arrays, for curvature combs.
-    fn curvature<'py>(
-        &self,
-        py: Python<'py>,
-        t: PyArrayLike1<'py, f64, AllowTypeChange>,
-    ) -> PyResult<ArrayPair<'py>> {
-        let ts = t
-            .as_slice()
-            .map_err(|_| arg_err("t must be a contiguous 1-D float64 array"))?;
-        let ts = finite_parameters(self.name(), ts)?;
+    /// parameters `t`: two (len(t), 3) arrays, for curvature combs (a `CurveError` where the
+    /// curvature overflows).
+    fn curvature<'py>(&self, py: Python<'py>, t: &Bound<'py, PyAny>) -> PyResult<ArrayPair<'py>> {
+        let t = values(t, || format!("curve '{}': t", self.name()))?;
+        let ts = parameters(self.name(), &t)?;
         let curve = &self.inner.curve;
         let (pts, ks) = py.detach(|| {
             guard(self.name(), || {
                 let pts: Vec<DVec3> = ts.iter().map(|&t| curve.point(t)).collect();
                 let ks: Vec<DVec3> = ts.iter().map(|&t| curve.curvature_vector(t)).collect();
+                if let Some((&t, _)) = ts.iter().zip(&ks).find(|(_, k)| !k.is_finite()) {
+                    return Err(curve_err(self.name(), CurveError::DerivativeOverflow { t }));
+                }
                 Ok((pts, ks))
             })
         })?;
@@ -408,9 +449,10 @@ impl Curve {
     }
 
     /// The same curve with the knot `t` inserted `times` times.
-    #[pyo3(signature = (t, times=1))]
-    fn insert_knot(&self, t: f64, times: i64) -> PyResult<Curve> {
-        let times = count(times, || format!("curve '{}': times", self.name()))?;
+    #[pyo3(signature = (t, times=None), text_signature = "($self, t, times=1)")]
+    fn insert_knot(&self, t: f64, times: Option<&Bound<'_, PyAny>>) -> PyResult<Curve> {
+        let times =
+            optional_whole(times, || format!("curve '{}': times", self.name()))?.unwrap_or(1);
         guard(self.name(), || {
             let c = self
                 .inner

@@ -56,13 +56,6 @@ pub(crate) fn arg_err(msg: impl Into<String>) -> PyErr {
     InvalidArgumentError::new_err(msg.into())
 }
 
-/// A whole-number argument taken as `i64` (so that a negative one reaches batten rather than
-/// failing Python's conversion with OverflowError) as a count; `what` names the argument and
-/// its curve in the `InvalidArgumentError`.
-pub(crate) fn count(value: i64, what: impl FnOnce() -> String) -> Result<usize, PyErr> {
-    usize::try_from(value).map_err(|_| arg_err(format!("{} {value} must not be negative", what())))
-}
-
 /// Run core work so that a panic becomes an `InternalError` naming what was being done, never a
 /// `PanicException` or a crashed Blender.
 pub(crate) fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, PyErr>) -> Result<T, PyErr> {

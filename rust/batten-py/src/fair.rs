@@ -6,12 +6,13 @@ use batten_core::{
     DEFAULT_FAIR_TOLERANCE, DEFAULT_PARAMETER_ITERATIONS, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
-use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
+use numpy::PyUntypedArrayMethods;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::{optional_whole, role_or_free, rows, text, whole};
 use crate::curve::Curve;
-use crate::errors::{arg_err, core_err, count, curve_err, guard};
+use crate::errors::{arg_err, core_err, curve_err, guard};
 
 fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
     d.set_item("inflections", m.inflections)?;
@@ -29,36 +30,38 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 #[pyo3(signature = (name, points, *, degree=None, tolerance=None, noise=None,
     smoothing_factor=None, corners=None, corner_angle_deg=Some(DEFAULT_CORNER_ANGLE_DEGREES),
     start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
-    max_parameter_iterations=None, role="free"))]
+    max_parameter_iterations=None, role=None),
+    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\")")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_points<'py>(
     py: Python<'py>,
-    name: &str,
-    points: PyArrayLike2<'py, f64, AllowTypeChange>,
-    degree: Option<i64>,
+    name: &Bound<'py, PyAny>,
+    points: &Bound<'py, PyAny>,
+    degree: Option<&Bound<'py, PyAny>>,
     tolerance: Option<f64>,
     noise: Option<f64>,
     smoothing_factor: Option<f64>,
-    corners: Option<Vec<i64>>,
+    corners: Option<Vec<Bound<'py, PyAny>>>,
     corner_angle_deg: Option<f64>,
     start_tangent: Option<[f64; 3]>,
     end_tangent: Option<[f64; 3]>,
     model_tolerance: f64,
-    max_parameter_iterations: Option<i64>,
-    role: &str,
+    max_parameter_iterations: Option<&Bound<'py, PyAny>>,
+    role: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(Curve, Bound<'py, PyDict>)> {
-    let degree = match degree {
-        Some(d) => count(d, || format!("curve '{name}': degree"))?,
-        None => DEFAULT_FAIR_DEGREE,
-    };
-    let max_parameter_iterations = match max_parameter_iterations {
-        Some(n) => count(n, || format!("curve '{name}': max_parameter_iterations"))?,
-        None => DEFAULT_PARAMETER_ITERATIONS,
-    };
+    let name = &text(name, || "the curve name".to_owned())?;
+    let role = &role_or_free(name, role)?;
+    let points = rows(points, || format!("curve '{name}': points"))?;
+    let degree = optional_whole(degree, || format!("curve '{name}': degree"))?
+        .unwrap_or(DEFAULT_FAIR_DEGREE);
+    let max_parameter_iterations = optional_whole(max_parameter_iterations, || {
+        format!("curve '{name}': max_parameter_iterations")
+    })?
+    .unwrap_or(DEFAULT_PARAMETER_ITERATIONS);
     let corners = corners
         .unwrap_or_default()
-        .into_iter()
-        .map(|c| count(c, || format!("curve '{name}': corner index")))
+        .iter()
+        .map(|c| whole(c, || format!("curve '{name}': corner index")))
         .collect::<PyResult<Vec<usize>>>()?;
     if points.shape()[1] != 3 {
         return Err(arg_err(format!(

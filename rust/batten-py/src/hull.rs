@@ -7,8 +7,9 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::{optional_whole, text};
 use crate::curve::Curve;
-use crate::errors::{core_err, count, guard, NoSurfaceError};
+use crate::errors::{core_err, guard, NoSurfaceError};
 
 /// A warning (or a topology diagnostic) as a dict: `kind`, `message`, `curves` (names),
 /// `location` ([x, y, z] or None) and `error` (`{"kind", "message"}` of the underlying face or
@@ -68,19 +69,21 @@ fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
 /// of [x, y, z] along the edge). `name` (the collection's) names the network in errors. The
 /// GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=""))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None))]
 pub(crate) fn build_surface<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,
-    resolution: Option<i64>,
-    name: &str,
+    resolution: Option<&Bound<'py, PyAny>>,
+    name: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
-    let resolution = match resolution {
-        Some(r) => count(r, || "resolution".to_owned())?,
-        None => DEFAULT_RESOLUTION,
-    };
+    let resolution =
+        optional_whole(resolution, || "resolution".to_owned())?.unwrap_or(DEFAULT_RESOLUTION);
     let options = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
+    let name = match name {
+        Some(n) => text(n, || "the network name".to_owned())?,
+        None => String::new(),
+    };
     let network = Network::try_new(name, curves.iter().map(|c| c.inner.clone()).collect())
         .map_err(core_err)?;
     let hull = py.detach(|| {

@@ -8,6 +8,7 @@
 //! or truncate (kurbo's stricter lints).
 #![warn(clippy::cast_possible_wrap, clippy::cast_possible_truncation)]
 
+mod args;
 mod curve;
 mod errors;
 mod fair;

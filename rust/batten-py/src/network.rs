@@ -6,6 +6,7 @@ use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::{self, text};
 use crate::curve::Curve;
 use crate::errors::{arg_err, core_err, guard};
 
@@ -19,20 +20,25 @@ fn to_network(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
 #[pyo3(signature = (name, curves))]
 pub(crate) fn network_to_json(
     py: Python<'_>,
-    name: &str,
+    name: &Bound<'_, PyAny>,
     curves: Vec<PyRef<'_, Curve>>,
 ) -> PyResult<String> {
-    let network = to_network(name, &curves)?;
+    let name = text(name, || "the network name".to_owned())?;
+    let network = to_network(&name, &curves)?;
     py.detach(|| guard("writing network", || Ok(network.to_json())))
 }
 
 /// Read batten's JSON network text: returns `(name, [Curve, ...])`; a bad curve raises
 /// `BattenError` naming it.
 #[pyfunction]
-pub(crate) fn network_from_json(py: Python<'_>, text: &str) -> PyResult<(String, Vec<Curve>)> {
+pub(crate) fn network_from_json(
+    py: Python<'_>,
+    text: &Bound<'_, PyAny>,
+) -> PyResult<(String, Vec<Curve>)> {
+    let text = args::text(text, || "the network text".to_owned())?;
     let network = py.detach(|| {
         guard("reading network", || {
-            Network::from_json(text).map_err(core_err)
+            Network::from_json(&text).map_err(core_err)
         })
     })?;
     let curves = network

@@ -1,7 +1,9 @@
 //! Arc length by adaptive Gauss–Legendre quadrature of |C'(t)| over each knot span.
 
+use glam::DVec3;
+
 use super::error::CurveError;
-use super::nurbs::NurbsCurve;
+use super::nurbs::{unrepresentable_point, NurbsCurve};
 
 /// 8-point Gauss–Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun 25.4.30), with
 /// the digits as published.
@@ -18,6 +20,12 @@ pub(crate) const GL8: [(f64, f64); 8] = [
 ];
 
 const MAX_DEPTH: u32 = 40;
+
+/// Most halvings one arc-length call may make in all (16 evaluations of C′ each; about 0.1 s
+/// in all). A smooth curve needs a few per knot span; an integrand whose rounding noise
+/// exceeds the budget everywhere (neighbouring weights 1e-200 and 1e200 cancel in the
+/// rational derivative) would otherwise halve to `MAX_DEPTH` everywhere: 2^40 halvings.
+const MAX_HALVINGS: usize = 1 << 16;
 
 /// Relative rounding noise of one Gauss–Legendre estimate (a sum of 8 terms, each a length
 /// from three squared coordinates): 16 ulps. A difference between two estimates below this
@@ -39,7 +47,9 @@ impl NurbsCurve {
     ///
     /// Errors: an accuracy that is not positive and finite, or finer than f64 resolves for this
     /// length ([`CurveError::AccuracyBelowResolution`]: `ROUNDING` × the length), and a length
-    /// that is not finite ([`CurveError::NonFiniteLength`], coordinates too large). A halving that
+    /// that is not finite ([`CurveError::NonFiniteLength`], coordinates too large), and a length
+    /// that does not settle within [`MAX_HALVINGS`] halvings ([`CurveError::ArcLengthUnsettled`]:
+    /// a speed too rough for the accuracy, as extreme weights make it). A halving that
     /// cannot split its interval any more (spans of a few ulps) ends the recursion there.
     pub fn arc_length_between(&self, t0: f64, t1: f64, accuracy: f64) -> Result<f64, CurveError> {
         if !(accuracy.is_finite() && accuracy > 0.0) {
@@ -50,6 +60,34 @@ impl NurbsCurve {
         if lo.partial_cmp(&hi) != Some(std::cmp::Ordering::Less) {
             return Ok(0.0);
         }
+        self.about_centre().length_between(lo, hi, accuracy)
+    }
+
+    /// This curve moved so that its control points' bounding box is centred on the origin:
+    /// the same speed |C′|, computed without the rounding noise of large coordinates. At an
+    /// offset of 1e7 m (georeferenced data) the noise of C′ from coordinates of 1e7 exceeded
+    /// any millimetre budget and the quadrature halved to its depth limit everywhere.
+    fn about_centre(&self) -> NurbsCurve {
+        let Some(bbox) = super::bbox::Aabb::from_points(self.control_points()) else {
+            return self.clone();
+        };
+        let centre = 0.5 * (bbox.min + bbox.max);
+        if !centre.is_finite() || centre == DVec3::ZERO {
+            return self.clone();
+        }
+        let cw: Vec<_> = self
+            .homogeneous_points()
+            .iter()
+            .map(|c| (c.truncate() - centre * c.w).extend(c.w))
+            .collect();
+        if unrepresentable_point(&cw).is_some() {
+            return self.clone(); // a huge weight times the centre overflows: keep the curve
+        }
+        NurbsCurve::new_unchecked(self.degree(), self.knots().to_vec(), cw)
+    }
+
+    /// [`NurbsCurve::arc_length_between`] on `lo < hi` inside the domain.
+    fn length_between(&self, lo: f64, hi: f64, accuracy: f64) -> Result<f64, CurveError> {
         let mut breaks: Vec<f64> = vec![lo];
         breaks.extend(self.knots().iter().copied().filter(|&u| u > lo && u < hi));
         breaks.push(hi);
@@ -68,8 +106,11 @@ impl NurbsCurve {
             });
         }
         let mut total = 0.0;
+        let mut halvings = 0;
         for (w, &whole) in breaks.windows(2).zip(&wholes) {
-            total += self.adaptive(w[0], w[1], whole, accuracy / spans, 0);
+            total += self
+                .adaptive(w[0], w[1], whole, accuracy / spans, 0, &mut halvings)
+                .ok_or(CurveError::ArcLengthUnsettled { accuracy })?;
         }
         if total.is_finite() {
             Ok(total)
@@ -86,19 +127,35 @@ impl NurbsCurve {
             * half
     }
 
-    fn adaptive(&self, a: f64, b: f64, whole: f64, budget: f64, depth: u32) -> f64 {
+    /// The length over `[a, b]` (whose single Gauss estimate is `whole`) within `budget`, or
+    /// `None` once `halvings` (counted over the whole call) passes [`MAX_HALVINGS`].
+    fn adaptive(
+        &self,
+        a: f64,
+        b: f64,
+        whole: f64,
+        budget: f64,
+        depth: u32,
+        halvings: &mut usize,
+    ) -> Option<f64> {
         let m = 0.5 * (a + b);
         if m <= a || m >= b {
-            return whole; // the interval is a few ulps wide: nothing left to halve
+            return Some(whole); // the interval is a few ulps wide: nothing left to halve
+        }
+        *halvings += 1;
+        if *halvings > MAX_HALVINGS {
+            return None;
         }
         let (left, right) = (self.gauss(a, m), self.gauss(m, b));
         let diff = (left + right - whole).abs();
         let noise = ROUNDING * (left.abs() + right.abs());
         if diff <= budget || diff <= noise || !diff.is_finite() || depth >= MAX_DEPTH {
-            return left + right;
+            return Some(left + right);
         }
-        self.adaptive(a, m, left, 0.5 * budget, depth + 1)
-            + self.adaptive(m, b, right, 0.5 * budget, depth + 1)
+        Some(
+            self.adaptive(a, m, left, 0.5 * budget, depth + 1, halvings)?
+                + self.adaptive(m, b, right, 0.5 * budget, depth + 1, halvings)?,
+        )
     }
 }
 
@@ -116,6 +173,60 @@ mod tests {
             None,
         )
         .expect("line")
+    }
+
+    #[test]
+    fn a_georeferenced_curve_is_measured_as_at_the_origin() {
+        // Found by the fuzz suite: a cubic at x = -1e7 m, z = 1e17 m (where z rounds to 16 m)
+        // made C′ noisy, above a 1 cm budget everywhere, and the quadrature halved to depth 40.
+        let pts = [(0.0, 0.0), (1.0, 2.0), (2.0, -1.0), (3.0, 0.5)];
+        let cubic = |at: f64| {
+            NurbsCurve::try_new(
+                3,
+                vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+                pts.iter()
+                    .map(|&(x, y)| DVec3::new(x - at, y, at * 1e10))
+                    .collect(),
+                None,
+            )
+            .expect("cubic")
+        };
+        let here = cubic(0.0).arc_length(1e-9).expect("at the origin");
+        let started = std::time::Instant::now();
+        let there = cubic(1e7).arc_length(1e-2).expect("1e7 m and 1e17 m away");
+        assert!((here - there).abs() <= 1e-2, "{here} vs {there}");
+        assert!(
+            started.elapsed().as_secs_f64() < 0.1,
+            "{:?}",
+            started.elapsed()
+        );
+    }
+
+    #[test]
+    fn a_speed_rougher_than_the_accuracy_is_an_error_not_a_hang() {
+        // Found by the fuzz suite: weights 1e-200 beside 1e200 at 1e17 m. The rational
+        // derivative's rounding noise exceeds every budget, and the recursion halved to depth
+        // 40 everywhere (it ran for hours).
+        let p = |z: f64| DVec3::new(1e17, 1e17, z);
+        let c = NurbsCurve::try_new(
+            2,
+            vec![0.0, 0.0, 0.0, 0.01, 0.02, 0.03, 0.03, 0.03],
+            vec![p(0.1), p(0.0033), p(0.1), p(0.015), p(0.0)],
+            Some(vec![7.7, 1e-200, 4.85, 1e200, 1e200]),
+        )
+        .expect("valid, if extreme");
+        let started = std::time::Instant::now();
+        let got = c.arc_length(1.0);
+        assert!(
+            matches!(got, Ok(l) if l.is_finite())
+                || got == Err(CurveError::ArcLengthUnsettled { accuracy: 1.0 }),
+            "{got:?}"
+        );
+        assert!(
+            started.elapsed().as_secs_f64() < 1.0,
+            "{:?}",
+            started.elapsed()
+        );
     }
 
     #[test]

@@ -3,7 +3,7 @@
 use glam::DVec4;
 
 use super::error::CurveError;
-use super::nurbs::{unrepresentable_point, NurbsCurve};
+use super::nurbs::{unrepresentable_point, unresolvable_span, NurbsCurve};
 
 impl NurbsCurve {
     /// Insert the knot `t` `times` times without changing the curve's shape (A5.1, applied to
@@ -90,12 +90,7 @@ impl NurbsCurve {
     /// insertion at 5e-324 makes, evaluates to NaN). Else [`CurveError::SpanTooShort`] or
     /// [`CurveError::WeightedPointOverflow`].
     fn resolvable(self, t: f64) -> Result<NurbsCurve, CurveError> {
-        if let Some(span) = self
-            .knots()
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .find(|&d| d > 0.0 && !(1.0 / d).is_finite())
-        {
+        if let Some((_, span)) = unresolvable_span(self.knots()) {
             return Err(CurveError::SpanTooShort { t, span });
         }
         if let Some(index) = unrepresentable_point(self.homogeneous_points()) {

@@ -79,6 +79,15 @@ pub enum CurveError {
         /// The most allowed at that place.
         max: usize,
     },
+    /// A knot span so short that its reciprocal overflows f64: the basis functions on it
+    /// evaluate to NaN.
+    #[error("knot span {index} is {span:e} wide, too short for f64 to evaluate")]
+    ShortSpan {
+        /// Index of the knot the span starts at.
+        index: usize,
+        /// Its width.
+        span: f64,
+    },
     /// The parameter domain has zero length.
     #[error("the parameter domain [{start}, {end}] is empty")]
     EmptyDomain {
@@ -86,6 +95,17 @@ pub enum CurveError {
         start: f64,
         /// Domain end.
         end: f64,
+    },
+    /// A positive weight too small to survive knot insertion: the edits' convex combinations
+    /// of it would fall below the smallest normal f64.
+    #[error("weight {index} is {value:e}, below the smallest weight batten can edit ({min:e})")]
+    TinyWeight {
+        /// Index of the weight.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The smallest weight accepted.
+        min: f64,
     },
     /// Weights must be positive and finite.
     #[error("weight {index} is {value}; weights must be positive and finite")]
@@ -152,6 +172,13 @@ pub enum CurveError {
     /// The curve's length overflows f64 (coordinates or derivatives too large).
     #[error("the curve's length is not finite: its derivative overflows f64 (coordinates too large, or a knot span too short)")]
     NonFiniteLength,
+    /// The adaptive arc-length quadrature did not settle to the accuracy within its work
+    /// limit: the curve's speed is too rough (extreme weights or knot spans).
+    #[error("its length does not settle to the accuracy {accuracy:e} m (its speed varies too sharply: extreme weights or knot spans)")]
+    ArcLengthUnsettled {
+        /// The accuracy asked for.
+        accuracy: f64,
+    },
     /// An edit at `t` would leave a knot span too short for f64 to evaluate.
     #[error(
         "an edit at parameter {t:e} leaves a knot span of {span:e}, too short for f64 to evaluate"
@@ -169,6 +196,13 @@ pub enum CurveError {
     /// too far out).
     #[error("the distance to the query point overflows f64 (coordinates too large)")]
     DistanceOverflow,
+    /// The derivatives or the curvature at a parameter overflow f64 (a knot span tiny beside
+    /// the coordinates, extreme neighbouring weights, or a speed near zero).
+    #[error("its derivatives or curvature at parameter {t:e} overflow f64 (a knot span too short for its size, extreme weights, or a cusp)")]
+    DerivativeOverflow {
+        /// Where.
+        t: f64,
+    },
     /// A figure measured on the curve (curvature, its integral) overflows f64.
     #[error("its fairness figures overflow f64 (coordinates too large)")]
     FiguresOverflow,

@@ -18,6 +18,12 @@ pub struct CurveDerivs {
     pub d3: DVec3,
 }
 
+/// The smallest weight a curve may have: 2^64 above the smallest normal f64. Knot insertion
+/// blends neighbouring weights with coefficients that may be 1e-300; their products underflow,
+/// and a weight at the normal limit (2.2e-308) came out below it (the Bézier decomposition
+/// then failed inside `bounding_box`).
+const MIN_WEIGHT: f64 = f64::MIN_POSITIVE * 18_446_744_073_709_551_616.0;
+
 /// A non-uniform rational B-spline curve in 3D; a B-spline when every weight is 1.
 ///
 /// Control points are stored homogeneous (`w·P, w`), so evaluation, knot insertion and
@@ -36,8 +42,9 @@ impl NurbsCurve {
     /// them), `points`, and optional positive `weights` (`None` means all 1).
     ///
     /// Rejects degrees outside `1..=MAX_DEGREE`, fewer points than the order, non-finite
-    /// coordinates, knots or weights, decreasing knots, an empty domain, and interior knots
-    /// repeated more than `degree` times (the curve would fall apart).
+    /// coordinates, knots or weights, decreasing knots, an empty domain, knot spans too short
+    /// for f64 to evaluate, and interior knots repeated more than `degree` times (the curve
+    /// would fall apart).
     pub fn try_new(
         degree: usize,
         knots: Vec<f64>,
@@ -91,6 +98,18 @@ impl NurbsCurve {
         };
         if let Some(index) = unrepresentable_point(&cw) {
             return Err(CurveError::WeightedPointOverflow { index });
+        }
+        if let Some((index, value)) = cw
+            .iter()
+            .map(|c| c.w)
+            .enumerate()
+            .find(|&(_, w)| w < MIN_WEIGHT)
+        {
+            return Err(CurveError::TinyWeight {
+                index,
+                value,
+                min: MIN_WEIGHT,
+            });
         }
         Ok(NurbsCurve {
             degree,
@@ -246,13 +265,18 @@ impl NurbsCurve {
 
     /// The curvature vector at `t`: pointing to the centre of curvature, length κ = 1/radius
     /// (`(C′ × C″) × C′ / |C′|⁴`); zero where the curve has no tangent.
+    ///
+    /// Computed as the part of C″ normal to the unit tangent, divided by the speed twice (the
+    /// same vector): `|C′|⁴` under- or overflows for speeds beyond 1e±77 (a knot span of 1e83
+    /// gave 0/0 = NaN).
     pub fn curvature_vector(&self, t: f64) -> DVec3 {
         let d = self.derivs(t);
-        let speed2 = d.d1.length_squared();
-        if speed2 == 0.0 {
+        let speed = d.d1.length();
+        if speed == 0.0 {
             return DVec3::ZERO;
         }
-        d.d1.cross(d.d2).cross(d.d1) / (speed2 * speed2)
+        let tangent = d.d1 / speed;
+        (d.d2 - tangent * d.d2.dot(tangent)) / speed / speed
     }
 
     /// The curve traversed the other way: same shape, parameter `t` maps to `a + b - t` on the
@@ -286,6 +310,16 @@ pub(crate) fn unrepresentable_point(cw: &[DVec4]) -> Option<usize> {
         .position(|c| !(c.is_finite() && c.w >= f64::MIN_POSITIVE))
 }
 
+/// The first non-empty knot span (start index, width) too short for f64 to evaluate: its
+/// reciprocal overflows (a span of a few subnormals; Cox–de Boor divides by it).
+pub(crate) fn unresolvable_span(knots: &[f64]) -> Option<(usize, f64)> {
+    knots
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .enumerate()
+        .find(|&(_, d)| d > 0.0 && !(1.0 / d).is_finite())
+}
+
 fn validate_knots(knots: &[f64], degree: usize, n: usize) -> Result<(), CurveError> {
     let expected = n + degree + 1;
     if knots.len() != expected {
@@ -309,6 +343,9 @@ fn validate_knots(knots: &[f64], degree: usize, n: usize) -> Result<(), CurveErr
     let (start, end) = (knots[degree], knots[n]);
     if start >= end {
         return Err(CurveError::EmptyDomain { start, end });
+    }
+    if let Some((index, span)) = unresolvable_span(knots) {
+        return Err(CurveError::ShortSpan { index, span });
     }
     let mut i = 0;
     while i < knots.len() {

@@ -2,6 +2,8 @@
 //! `tolerance.rs`) and a few analytic curves.
 #![allow(dead_code)]
 
+pub(crate) mod fuzz;
+
 use batten_core::{KnotLayout, NurbsCurve};
 use glam::DVec3;
 

@@ -143,5 +143,5 @@ def build_surface(
     curves: list[Curve],
     tolerance: float = ...,  # DEFAULT_TOLERANCE
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
-    name: str = "",
+    name: str | None = None,
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...

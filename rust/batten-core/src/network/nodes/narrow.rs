@@ -12,6 +12,11 @@ use crate::curve::{Aabb, BezierPiece, TangentCone};
 const CONE_MARGIN: f64 = 0.087;
 /// Segments smaller than this fraction of their curve's size are leaves whatever their shape.
 const LEAF_SIZE_FRACTION: f64 = 1e-2;
+/// A segment whose box is within this many units of rounding of its coordinates is a leaf:
+/// halving cannot shrink it (at 1e17 m, where f64 resolves 16 m, boxes never got small and every
+/// pair of pieces halved to `MAX_DEPTH`). 64 ulps: a de Casteljau halving rounds each point by
+/// a few ulps per level.
+const ROUNDING_ULPS: f64 = 64.0;
 /// Subdivision depth limit per candidate pair (a guard for overlapping curves).
 const MAX_DEPTH: u32 = 48;
 /// Leaves examined per curve pair at most (a guard for long overlaps).
@@ -35,6 +40,11 @@ impl PieceBounds {
             cone: piece.tangent_cone(),
         }
     }
+}
+
+/// The size below which halving a box at its coordinates is rounding, not refinement.
+fn rounding(b: &Aabb) -> f64 {
+    ROUNDING_ULPS * f64::EPSILON * b.min.abs().max(b.max.abs()).max_element()
 }
 
 /// The narrow phase of one pair of curves: halves candidate piece pairs until they are
@@ -68,8 +78,14 @@ impl Narrow<'_, '_> {
             return;
         }
         let (dx, dy) = (bx.diagonal(), by.diagonal());
-        let small_x = dx <= (LEAF_SIZE_FRACTION * self.a.size).max(self.near);
-        let small_y = dy <= (LEAF_SIZE_FRACTION * self.b.size).max(self.near);
+        let small_x = dx
+            <= (LEAF_SIZE_FRACTION * self.a.size)
+                .max(self.near)
+                .max(rounding(&bx));
+        let small_y = dy
+            <= (LEAF_SIZE_FRACTION * self.b.size)
+                .max(self.near)
+                .max(rounding(&by));
         let leaf = (small_x && small_y)
             || depth >= MAX_DEPTH
             || match (
