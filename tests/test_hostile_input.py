@@ -346,3 +346,35 @@ def test_a_curve_beyond_float32_is_refused_before_blender_draws_it_as_inf(tmp_pa
     ) as e:
         api.import_sections(f, tolerance=1e36)
     assert e.value.curve == "st" and "huge" not in bpy.data.collections
+
+
+def test_fairness_of_a_slow_parametrisation_is_finite_and_the_same():
+    """∫κ²ds and κ do not depend on the parametrisation: a cubic over [0, 1e60] (speed 1e-60,
+    whose cube and sixth power underflow) gives the figures of the same cubic over [0, 1]."""
+    pts = [[0, 0, 0], [1, 1, 0], [2, 1, 0], [3, 0, 0]]
+    unit = bn.fairness(bn.Curve("c", 3, [0, 0, 0, 0, 1, 1, 1, 1], pts))
+    slow = bn.fairness(bn.Curve("c", 3, [0, 0, 0, 0, 1e60, 1e60, 1e60, 1e60], pts))
+    for key in ("fairness_energy", "max_curvature"):
+        assert np.isfinite(slow[key]) and slow[key] == pytest.approx(unit[key], rel=1e-9), key
+
+
+@pytest.mark.parametrize(
+    ("points", "kwargs"),
+    [
+        # Found by the fuzz suite: 5 mm asked of points 4.5e14 m out (f64 resolves 1.6 m there)
+        # was reported as a fit 0.5 m off.
+        ([[0.0, 0.0, 451248538562651.0], [0, 0, 0], [0, 0, 1], [0, 0, 0]], {"tolerance": 5e-3}),
+        # Noise of 1e-82 m on an arc at x = -976 m (f64 resolves 3.5e-12 m): a NaN energy.
+        (
+            np.column_stack(
+                [np.cos(np.linspace(0, 4.8, 174)), np.sin(np.linspace(0, 4.8, 174)), np.zeros(174)]
+            )
+            * 1e-79
+            + [-976.43, 0, 0],
+            {"noise": 1e-82, "degree": 2, "corner_angle_deg": None, "model_tolerance": 1e-300},
+        ),
+    ],
+)
+def test_a_closeness_finer_than_f64_resolves_is_refused(points, kwargs):
+    with pytest.raises(bn.FairError, match="curve 'st': the asked closeness .* is finer than f64 resolves"):
+        bn.fair_points("st", points, **kwargs)

@@ -33,6 +33,19 @@ pub enum FairError {
         /// Consecutive duplicates that were dropped.
         dropped: usize,
     },
+    /// The asked closeness (tolerance, noise, or √(S/M) for a smoothing factor) is finer than
+    /// f64 resolves at the points' coordinates (16 ulps of their largest magnitude): no fit
+    /// could be measured to meet it.
+    #[error(
+        "the asked closeness {asked:.3e} m is finer than f64 resolves at these coordinates \
+         ({resolvable:.3e} m); ask for a coarser tolerance or move the points nearer the origin"
+    )]
+    BelowResolution {
+        /// The closeness asked for (m).
+        asked: f64,
+        /// What f64 resolves at the points (m).
+        resolvable: f64,
+    },
     /// Every point lies within the model tolerance of the first: there is no curve to fit.
     #[error("all {count} points coincide within the model tolerance {tolerance:.3e} m")]
     AllPointsIdentical {

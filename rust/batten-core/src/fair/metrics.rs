@@ -94,7 +94,7 @@ pub(crate) fn curvature_samples(curve: &NurbsCurve, energy: bool) -> CurvatureSa
                 let (d1, d2) = piece_derivs(&bez, t);
                 let speed = d1.length();
                 let kappa = if speed > 0.0 {
-                    d1.cross(d2).dot(n) / speed.powi(3)
+                    curvature_vector(d1, d2, speed).dot(n)
                 } else {
                     0.0
                 };
@@ -154,6 +154,13 @@ fn piece_derivs(bez: &BezierDecomposition, t: f64) -> (DVec3, DVec3) {
     (d.d1, d.d2)
 }
 
+/// `C′ × C″ / |C′|³` (curvature times the binormal) from the unit tangent, one power of the
+/// speed at a time: `|C′|³` and `|C′|⁶` underflow to zero, and the quotient to 0/0, at speeds
+/// that f64 still holds (below about 1e-51 and 1e-103).
+fn curvature_vector(d1: DVec3, d2: DVec3, speed: f64) -> DVec3 {
+    (d1 / speed).cross(d2 / speed) / speed
+}
+
 fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
     // Two Gauss–Legendre panels per span: κ²|C′| is smooth but not polynomial.
     let mut total = 0.0;
@@ -163,7 +170,7 @@ fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64
             let (d1, d2) = derivs(mid + half * x);
             let speed = d1.length();
             if speed > 0.0 {
-                let k2 = d1.cross(d2).length_squared() / speed.powi(6);
+                let k2 = curvature_vector(d1, d2, speed).length_squared();
                 total += w * k2 * speed * half;
             }
         }

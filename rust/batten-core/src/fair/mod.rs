@@ -45,6 +45,29 @@ use fit::Target;
 use frame::Frame;
 use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
 
+/// A closeness finer than this many ulps of the points' largest coordinate cannot be measured
+/// (every distance the fit compares is a difference of such coordinates).
+const RESOLUTION_ULPS: f64 = 16.0;
+
+/// Refuse a closeness (tolerance, noise or √(S/M)) finer than f64 resolves at the points
+/// ([`FairError::BelowResolution`]).
+fn check_resolution(pts: &[DVec3], smoothing: Smoothing) -> Result<(), FairError> {
+    let size = pts
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    let resolvable = RESOLUTION_ULPS * f64::EPSILON * size;
+    let asked = match smoothing {
+        Smoothing::MaxDeviation(t) => t,
+        Smoothing::Noise(s) => s,
+        Smoothing::Factor(f) => (f / pts.len() as f64).sqrt(),
+    };
+    if asked < resolvable {
+        return Err(FairError::BelowResolution { asked, resolvable });
+    }
+    Ok(())
+}
+
 /// Highest degree the fairing accepts (Dierckx's curfit: 1 ≤ k ≤ 5).
 pub const MAX_FAIR_DEGREE: usize = 5;
 
@@ -241,6 +264,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
             dropped: cleaned.dropped,
         });
     }
+    check_resolution(pts, options.smoothing)?;
     clean::check_order(pts, options.smoothing.reach(m))?;
 
     // Corners in cleaned indexing: a given corner that was dropped as a duplicate moves to the
