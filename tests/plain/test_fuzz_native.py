@@ -291,6 +291,24 @@ def test_network_calls(curves, tolerance, resolution, name):
 
 
 @given(
+    curves=networks(),
+    capture=numbers,
+    with_data=st.booleans(),
+    data=arrays(),
+    tolerance=numbers,
+    knuckles=arrays(),
+    name=names,
+)
+def test_wireframe_calls(curves, capture, with_data, data, tolerance, knuckles, name):
+    """Snapping to nodes (with or without data per curve), chines from knuckles, and a named
+    build: finite results or a BattenError."""
+    points = [data] * len(curves) if with_data else None
+    _clean(call(bn.snap_to_nodes, curves, capture, points, tolerance if with_data else None))
+    _clean(call(bn.chines_from_knuckles, curves, [knuckles] * len(curves), tolerance))
+    _clean(call(bn.build_surface, curves, tolerance, None, name))
+
+
+@given(
     base=networks(),
     cut=st.integers(0, 10**6),
     insert=st.one_of(

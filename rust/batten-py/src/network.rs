@@ -2,7 +2,7 @@
 
 use batten_core::{Network, NetworkCurve, SnapData, Tolerance};
 use glam::DVec3;
-use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
+use numpy::PyUntypedArrayMethods;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -81,7 +81,7 @@ pub(crate) fn snap_to_nodes<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     capture: f64,
-    points: Option<Vec<PyArrayLike2<'py, f64, AllowTypeChange>>>,
+    points: Option<Vec<Bound<'py, PyAny>>>,
     tolerance: Option<f64>,
 ) -> PyResult<(Vec<Curve>, Vec<Bound<'py, PyDict>>)> {
     let capture = Tolerance::try_new(capture).map_err(core_err)?;
@@ -90,7 +90,7 @@ pub(crate) fn snap_to_nodes<'py>(
         .map(|all| {
             all.iter()
                 .zip(&curves)
-                .map(|(p, c)| rows3(p, &c.inner.name))
+                .map(|(p, c)| points3(p, &c.inner.name, "points"))
                 .collect::<PyResult<Vec<_>>>()
         })
         .transpose()?;
@@ -135,14 +135,19 @@ pub(crate) fn snap_to_nodes<'py>(
     Ok((curves, reports))
 }
 
-/// The rows of an (n, 3) array as points; any other shape is an error naming the curve.
-fn rows3(points: &PyArrayLike2<'_, f64, AllowTypeChange>, name: &str) -> PyResult<Vec<DVec3>> {
-    if points.shape()[1] != 3 {
+/// `obj` as points: an (n, 3) array-like, or an empty sequence for none; anything else is an
+/// InvalidArgumentError naming the curve and the argument.
+fn points3(obj: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<Vec<DVec3>> {
+    if obj.len().is_ok_and(|n| n == 0) {
+        return Ok(Vec::new());
+    }
+    let arr = args::rows(obj, || format!("curve '{name}': {what}"))?;
+    if arr.shape()[1] != 3 {
         return Err(arg_err(format!(
-            "curve '{name}': points must have shape (n, 3)"
+            "curve '{name}': {what} must have shape (n, 3)"
         )));
     }
-    Ok(points
+    Ok(arr
         .as_array()
         .rows()
         .into_iter()
@@ -159,7 +164,7 @@ fn rows3(points: &PyArrayLike2<'_, f64, AllowTypeChange>, name: &str) -> PyResul
 pub(crate) fn chines_from_knuckles<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
-    knuckles: Vec<PyArrayLike2<'py, f64, AllowTypeChange>>,
+    knuckles: Vec<Bound<'py, PyAny>>,
     tolerance: f64,
 ) -> PyResult<Vec<Curve>> {
     let tol = Tolerance::try_new(tolerance).map_err(core_err)?;
@@ -167,7 +172,7 @@ pub(crate) fn chines_from_knuckles<'py>(
     let knuckles = knuckles
         .iter()
         .zip(&curves)
-        .map(|(k, c)| rows3(k, &c.inner.name))
+        .map(|(k, c)| points3(k, &c.inner.name, "knuckles"))
         .collect::<PyResult<Vec<_>>>()?;
     let chines = py.detach(|| {
         guard("joining knuckles into chines", || {
