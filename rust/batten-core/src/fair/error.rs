@@ -46,6 +46,12 @@ pub enum FairError {
         /// What f64 resolves at the points (m).
         resolvable: f64,
     },
+    /// The asked closeness is so large that the smoothing factor `M·closeness²` overflows f64.
+    #[error("the asked closeness {asked:.3e} m is too large: its smoothing factor overflows f64")]
+    ClosenessOverflow {
+        /// The closeness asked for (m).
+        asked: f64,
+    },
     /// Every point lies within the model tolerance of the first: there is no curve to fit.
     #[error("all {count} points coincide within the model tolerance {tolerance:.3e} m")]
     AllPointsIdentical {

@@ -50,7 +50,8 @@ use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
 const RESOLUTION_ULPS: f64 = 16.0;
 
 /// Refuse a closeness (tolerance, noise or √(S/M)) finer than f64 resolves at the points
-/// ([`FairError::BelowResolution`]).
+/// ([`FairError::BelowResolution`]), or so coarse that its smoothing factor overflows
+/// ([`FairError::ClosenessOverflow`]).
 fn check_resolution(pts: &[DVec3], smoothing: Smoothing) -> Result<(), FairError> {
     let size = pts
         .iter()
@@ -64,6 +65,10 @@ fn check_resolution(pts: &[DVec3], smoothing: Smoothing) -> Result<(), FairError
     };
     if asked < resolvable {
         return Err(FairError::BelowResolution { asked, resolvable });
+    }
+    // The smoothing factor S = M·closeness² (m²) must be a number too.
+    if !(asked * asked * pts.len() as f64).is_finite() {
+        return Err(FairError::ClosenessOverflow { asked });
     }
     Ok(())
 }
