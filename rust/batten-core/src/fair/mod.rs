@@ -41,6 +41,7 @@ use crate::defaults::{
     DEFAULT_PARAMETER_ITERATIONS,
 };
 use crate::tolerance::Tolerance;
+use clean::ORDER_STEP;
 use fit::Target;
 use frame::Frame;
 use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
@@ -261,6 +262,13 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     let frame = Frame::of(pts);
     let local: Vec<DVec3> = pts.iter().map(|&p| frame.to_local(p)).collect();
     let smoothing = frame.smoothing(options.smoothing);
+    // Where S states a noise level, the parameters start as the arc length of the data at the
+    // scale the fit resolves (see `param::resolved_chord_length`); in tolerance mode the points
+    // are design offsets, taken as they are (chord lengths).
+    let resolution = match smoothing {
+        Smoothing::MaxDeviation(_) => None,
+        Smoothing::Noise(_) | Smoothing::Factor(_) => Some(ORDER_STEP * smoothing.reach(m)),
+    };
 
     let mut bounds = vec![0];
     bounds.extend_from_slice(&corners);
@@ -275,7 +283,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
         };
         let iters = options.max_parameter_iterations;
         let fit = match smoothing {
-            Smoothing::MaxDeviation(t) => match fit_within(piece, k, t, dirs, iters)? {
+            Smoothing::MaxDeviation(t) => match fit_within(piece, k, t, dirs, iters, resolution)? {
                 Ok(fit) => fit,
                 Err((achieved, index)) => {
                     return Err(FairError::ToleranceNotReached {
@@ -292,12 +300,21 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                 let s = Target {
                     s: mp * sigma * sigma,
                     accept: (mp + (2.0 * mp).sqrt()) * sigma * sigma,
+                    noise: true,
                 };
-                fit_smooth(piece, k, s, dirs, iters, None)?
+                fit_smooth(piece, k, s, dirs, iters, resolution, None)?
             }
             Smoothing::Factor(s) => {
                 let share = (piece.len() - 1) as f64 / (m - 1) as f64;
-                fit_smooth(piece, k, Target::exact(s * share), dirs, iters, None)?
+                fit_smooth(
+                    piece,
+                    k,
+                    Target::exact(s * share),
+                    dirs,
+                    iters,
+                    resolution,
+                    None,
+                )?
             }
         };
         pieces.push(frame.piece_to_world(fit, (pts[w[0]], pts[w[1]]))?);
