@@ -144,6 +144,8 @@ pub(crate) fn fit_smooth(
         let round = Target {
             s: s.s * factor,
             accept: s.accept * factor,
+            // The likelihood-ratio stop for noise knots only where the noise is larger than
+            // the spacing (see `Target::noise`).
             noise: s.noise && noise > spacing,
         };
         let exact = iterations >= relaxed;
@@ -213,7 +215,6 @@ pub(crate) fn fit_within(
     tol: f64,
     dirs: Directions,
     max_iter: usize,
-    resolution: Option<f64>,
 ) -> Result<Result<PieceFit, (f64, usize)>, FairError> {
     let m = points.len();
     let mut s = m as f64 * tol * tol;
@@ -226,7 +227,7 @@ pub(crate) fn fit_within(
             Target::exact(s),
             dirs,
             max_iter,
-            resolution,
+            None,
             start.take(),
         )?;
         let dev = deviation(&fit.curve, points)?;
