@@ -70,15 +70,25 @@ pub(crate) const ORDER_STEP: f64 = 4.0;
 /// The points at the resolution `step`: the first, each next one at least `step` from the one
 /// kept before, and the last.
 pub(crate) fn resolved(points: &[DVec3], step: f64) -> Vec<DVec3> {
+    resolved_indices(points, step)
+        .into_iter()
+        .map(|i| points[i])
+        .collect()
+}
+
+/// The indices of [`resolved`]`(points, step)`.
+pub(crate) fn resolved_indices(points: &[DVec3], step: f64) -> Vec<usize> {
     let m = points.len();
-    let mut kept = vec![points[0]];
-    for &p in &points[1..m.saturating_sub(1)] {
-        if (p - kept[kept.len() - 1]).length() >= step {
-            kept.push(p);
+    let mut kept = vec![0];
+    let mut last = points[0];
+    for (i, &p) in points.iter().enumerate().take(m.saturating_sub(1)).skip(1) {
+        if (p - last).length() >= step {
+            kept.push(i);
+            last = p;
         }
     }
     if m > 1 {
-        kept.push(points[m - 1]);
+        kept.push(m - 1);
     }
     kept
 }

@@ -26,16 +26,13 @@
 
 use glam::DVec3;
 
-use super::fit::{constrained_fit, Spline, System, Target, ZeroCurvature};
+use super::fit::{constrained_fit, Spline, System, Target, ZeroCurvature, CHI2_99};
 use super::metrics::{
     bending_energy, curvature_samples, sign_changes, CurvatureSamples, FairnessMetrics,
     INFLECTION_THRESHOLD,
 };
 use crate::curve::NurbsCurve;
 
-/// The 99 % quantiles of χ² with 1..=8 degrees of freedom: the largest rise of E, in units of
-/// the noise variance, that so many conditions may cause and still be accepted.
-const CHI2_99: [f64; 8] = [6.635, 9.210, 11.345, 13.277, 15.086, 16.812, 18.475, 20.090];
 /// Most constrained refits tried per piece (each costs about one fit on fixed knots).
 const MAX_TRIES: usize = 8;
 

@@ -3,12 +3,12 @@
 
 use glam::DVec3;
 
-use super::clean::{polyline_length, resolved, ORDER_STEP};
+use super::clean::ORDER_STEP;
 use super::error::FairError;
 use super::fit::{fit_with_system, smoothing_spline, Ends, Spline, System, Target};
 use super::lobes::flatten;
 use super::metrics::{deviation, Deviation, FairnessMetrics};
-use super::param::{chord_length, reproject};
+use super::param::{chord_length, reproject, resolved_chord_length, sort_by_parameter};
 use crate::curve::NurbsCurve;
 
 /// The parameters have settled when no parameter moved by more than this fraction of the mean
@@ -75,10 +75,11 @@ pub(crate) struct Directions {
     pub end: Option<DVec3>,
 }
 
-/// Smoothing spline of `points` with `E ≤ s.s`, starting from chord-length parameters (or
-/// those of `start`, corrected before) and correcting them by foot-point projection until
+/// Smoothing spline of `points` with `E ≤ s.s`, starting from chord-length parameters (at
+/// the data's `resolution` when given, see [`resolved_chord_length`]; or those of `start`,
+/// corrected before) and correcting them by foot-point projection until
 /// they settle or `max_iter` corrections are done (Dierckx parcur, then Hoschek's parameter
-/// correction). From chord lengths, the first corrections project onto fits to a relaxed
+/// correction). From plain chord lengths, the first corrections project onto fits to a relaxed
 /// target ([`RELAXED_ROUNDS`]); every round starts from the knots of the one before.
 pub(crate) fn fit_smooth(
     points: &[DVec3],
@@ -86,6 +87,7 @@ pub(crate) fn fit_smooth(
     s: Target,
     dirs: Directions,
     max_iter: usize,
+    resolution: Option<f64>,
     start: Option<Start>,
 ) -> Result<PieceFit, FairError> {
     let m = points.len();
@@ -93,9 +95,20 @@ pub(crate) fn fit_smooth(
         return short_piece(points, degree);
     }
     let warm = start.is_some();
-    let (mut pts, mut u) = match start {
-        Some(st) => (st.points, st.params),
-        None => (points.to_vec(), chord_length(points)),
+    // The data at the fit's resolution: its length, and (with a resolution given) the
+    // parameters to start from.
+    let noise = (s.s / m as f64).sqrt();
+    let resolved = resolved_chord_length(points, resolution.unwrap_or(ORDER_STEP * noise));
+    let data_length = resolved[m - 1];
+    let (mut pts, mut u) = match (start, resolution) {
+        (Some(st), _) => (st.points, st.params),
+        (None, Some(_)) => {
+            let mut pts = points.to_vec();
+            let mut u = resolved;
+            sort_by_parameter(&mut pts, &mut u);
+            (pts, u)
+        }
+        (None, None) => (points.to_vec(), chord_length(points)),
     };
     let domain = u[m - 1];
     let spacing = domain / (m - 1) as f64;
@@ -103,13 +116,13 @@ pub(crate) fn fit_smooth(
     // resolution over the parameter domain (the fit's own length would feed back: a fixed
     // tangent the data turn away from makes a loop, the loop a longer curve and a faster end
     // derivative, and so on until the coefficients overflow).
-    let speed = polyline_length(&resolved(points, ORDER_STEP * (s.s / m as f64).sqrt())) / domain;
+    let speed = data_length / domain;
     let mut last: Option<(Spline, NurbsCurve)> = None;
     let mut iterations = 0;
     let mut settled = false;
-    let noise = (s.s / m as f64).sqrt();
-    // A warm start's parameters are already corrected: no drift to remove.
-    let relaxed = if noise > RELAX_NOISE_RATIO * spacing && !warm {
+    // A warm start's parameters are already corrected, and those at the data's resolution do
+    // not drift: no drift to remove.
+    let relaxed = if noise > RELAX_NOISE_RATIO * spacing && !warm && resolution.is_none() {
         RELAXED_ROUNDS.len().min(max_iter)
     } else {
         0
@@ -131,6 +144,9 @@ pub(crate) fn fit_smooth(
         let round = Target {
             s: s.s * factor,
             accept: s.accept * factor,
+            // The likelihood-ratio stop for noise knots only where the noise is larger than
+            // the spacing (see `Target::noise`).
+            noise: s.noise && noise > spacing,
         };
         let exact = iterations >= relaxed;
         // A fit to S searches p, from the p of the fit before (the data barely moved).
@@ -211,6 +227,7 @@ pub(crate) fn fit_within(
             Target::exact(s),
             dirs,
             max_iter,
+            None,
             start.take(),
         )?;
         let dev = deviation(&fit.curve, points)?;
