@@ -21,6 +21,20 @@ fn cubic(name: &str, pts: [[f64; 3]; 4]) -> NetworkCurve {
     }
 }
 
+/// A station in the plane x = 0, from the keel (origin) up to (0, 2, 2); at parameter 0.5 it
+/// passes (0, 0.925, 1.075).
+fn station() -> NetworkCurve {
+    cubic(
+        "st",
+        [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.5, 0.7],
+            [0.0, 1.3, 1.5],
+            [0.0, 2.0, 2.0],
+        ],
+    )
+}
+
 fn near_misses(t: &Topology) -> usize {
     t.diagnostics
         .iter()
@@ -33,15 +47,7 @@ fn two_curves_that_miss_by_half_a_millimetre_meet_exactly_after_snapping() {
     // A station and a waterline crossing at (0, 0.925, 1.075) (both at parameter 0.5); the
     // waterline is then moved 0.5 mm along their common normal there: a near miss at the
     // default 0.1 mm.
-    let station = cubic(
-        "st",
-        [
-            [0.0, 0.0, 0.0],
-            [0.0, 0.5, 0.7],
-            [0.0, 1.3, 1.5],
-            [0.0, 2.0, 2.0],
-        ],
-    );
+    let station = station();
     let mut wl = cubic(
         "wl",
         [
@@ -156,15 +162,7 @@ fn faired_apart_kcs_builds_at_the_default_tolerance_once_snapped() {
 
 #[test]
 fn a_curve_leaves_out_the_node_its_data_forbid() {
-    let station = cubic(
-        "st",
-        [
-            [0.0, 0.0, 0.0],
-            [0.0, 0.5, 0.7],
-            [0.0, 1.3, 1.5],
-            [0.0, 2.0, 2.0],
-        ],
-    );
+    let station = station();
     let wl = cubic(
         "wl",
         [
@@ -233,15 +231,7 @@ fn a_curve_leaves_out_the_node_its_data_forbid() {
 
 #[test]
 fn a_duplicate_follows_the_curve_it_duplicates() {
-    let station = cubic(
-        "st",
-        [
-            [0.0, 0.0, 0.0],
-            [0.0, 0.5, 0.7],
-            [0.0, 1.3, 1.5],
-            [0.0, 2.0, 2.0],
-        ],
-    );
+    let station = station();
     let mut copy = station.clone();
     copy.name = "st copy".to_owned();
     copy.curve = copy.curve.try_reversed().expect("reversed");
