@@ -378,3 +378,10 @@ def test_fairness_of_a_slow_parametrisation_is_finite_and_the_same():
 def test_a_closeness_finer_than_f64_resolves_is_refused(points, kwargs):
     with pytest.raises(bn.FairError, match="curve 'st': the asked closeness .* is finer than f64 resolves"):
         bn.fair_points("st", points, **kwargs)
+
+
+def test_points_too_far_for_squared_distances_are_refused():
+    """Found by the fuzz suite: points 4.5e154 m out gave a report with an infinite residual."""
+    far = [[0, 0, 0], [0, -4.5e154, 0], [0, 0, 0], [0, -4.5e154, 0], [0, 0, 0]]
+    with pytest.raises(bn.FairError, match="curve 'st': point 1 is more than 1e150 m from the origin"):
+        bn.fair_points("st", far, tolerance=1e148, degree=2, model_tolerance=1e-3)

@@ -46,6 +46,16 @@ pub enum FairError {
         /// What f64 resolves at the points (m).
         resolvable: f64,
     },
+    /// A point lies so far from the origin that squared distances of the fit would overflow.
+    #[error(
+        "point {index} is more than {limit:.0e} m from the origin: too far for the fit's squared distances"
+    )]
+    CoordinatesTooLarge {
+        /// Index of the point among the points kept (duplicates dropped).
+        index: usize,
+        /// The largest coordinate taken (m).
+        limit: f64,
+    },
     /// The asked closeness is so large that the smoothing factor `M·closeness²` overflows f64.
     #[error("the asked closeness {asked:.3e} m is too large: its smoothing factor overflows f64")]
     ClosenessOverflow {

@@ -46,18 +46,32 @@ use fit::Target;
 use frame::Frame;
 use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
 
+/// Largest coordinate (m) the fitter takes: its squared distances and their sums over the
+/// points must stay finite (f64 squares overflow beyond about 1.3e154).
+const MAX_COORDINATE: f64 = 1e150;
+
 /// A closeness finer than this many ulps of the points' largest coordinate cannot be measured
 /// (every distance the fit compares is a difference of such coordinates).
 const RESOLUTION_ULPS: f64 = 16.0;
 
-/// Refuse a closeness (tolerance, noise or √(S/M)) finer than f64 resolves at the points
-/// ([`FairError::BelowResolution`]), or so coarse that its smoothing factor overflows
+/// Refuse points beyond [`MAX_COORDINATE`] ([`FairError::CoordinatesTooLarge`]), and a
+/// closeness (tolerance, noise or √(S/M)) finer than f64 resolves at the points
+/// ([`FairError::BelowResolution`]) or so coarse that its smoothing factor overflows
 /// ([`FairError::ClosenessOverflow`]).
 fn check_resolution(pts: &[DVec3], smoothing: Smoothing) -> Result<(), FairError> {
     let size = pts
         .iter()
         .map(|p| p.abs().max_element())
         .fold(0.0, f64::max);
+    if let Some(index) = pts
+        .iter()
+        .position(|p| p.abs().max_element() > MAX_COORDINATE)
+    {
+        return Err(FairError::CoordinatesTooLarge {
+            index,
+            limit: MAX_COORDINATE,
+        });
+    }
     let resolvable = RESOLUTION_ULPS * f64::EPSILON * size;
     let asked = match smoothing {
         Smoothing::MaxDeviation(t) => t,
