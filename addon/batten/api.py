@@ -342,7 +342,8 @@ def import_sections(
 ):
     """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets
     table ``name, x, y, z``), fair every curve within ``tolerance`` (m) keeping its end points
-    and corners, then move the curves, as little as possible, through the nodes where they
+    and corners, join the corners (knuckles) of consecutive sections into chines (role
+    ``knuckle``), then move the curves, as little as possible, through the nodes where they
     meet (where two curves come within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each
     other they are one node, and both pass exactly through it), and draw them as NURBS curve
     objects in a new collection, with roles from the curve kinds. So curves that cross in the
@@ -350,7 +351,8 @@ def import_sections(
     fitted before anything is created. A file that cannot be read, or holds no curves, raises
     NetworkFileError naming it.
 
-    Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`), with
+    Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`; a
+    chine's report has ``kind`` ``"chine"`` and ``points``, the knuckles it joins), with
     ``points`` (how many the data had), ``nodes`` (nodes the curve was moved through),
     ``skipped_nodes`` (nodes it leaves out because meeting them would take one of its points
     past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
@@ -384,7 +386,9 @@ def import_sections(
         knuckles = [_corner_points(c, r) for c, r in fits]
         chines = chines_from_knuckles(curves, knuckles, tolerance)
         # A chine's own data are the knuckles it joins.
-        points = [sec.points for sec in sections] + [_chain_points(ch, knuckles) for ch in chines]
+        points = [sec.points for sec in sections] + [
+            _chain_points(ch, knuckles, model_tolerance) for ch in chines
+        ]
         snapped, snaps = snap_to_nodes(
             curves + chines, SECTION_CAPTURE_FACTOR * tolerance, points, SNAP_KEEP_WITHIN * tolerance
         )
@@ -416,9 +420,9 @@ def _corner_points(curve: Curve, report: dict) -> np.ndarray:
     return np.asarray(curve.evaluate(t), dtype=float).reshape(-1, 3) if t else np.zeros((0, 3))
 
 
-def _chain_points(chine: Curve, knuckles: list[np.ndarray]) -> np.ndarray:
-    """The knuckle points a chine joins: those it passes through (to the capture distance)."""
-    found = [k for ks in knuckles for k in ks if chine.nearest(k)[1] <= DEFAULT_SECTION_MODEL_TOLERANCE]
+def _chain_points(chine: Curve, knuckles: list[np.ndarray], within: float) -> np.ndarray:
+    """The knuckle points a chine joins: those it passes through (within ``within`` m)."""
+    found = [k for ks in knuckles for k in ks if chine.nearest(k)[1] <= within]
     return np.asarray(found, dtype=float).reshape(-1, 3)
 
 
