@@ -161,6 +161,17 @@ fn curvature_vector(d1: DVec3, d2: DVec3, speed: f64) -> DVec3 {
     (d1 / speed).cross(d2 / speed) / speed
 }
 
+/// `|v|` without squaring `v` itself (its squares overflow beyond about 1.3e154, a curvature
+/// f64 holds): the largest component times the length of `v` over it.
+fn scaled_length(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        m * (v / m).length()
+    } else {
+        m
+    }
+}
+
 fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64 {
     // Two Gauss–Legendre panels per span: κ²|C′| is smooth but not polynomial.
     let mut total = 0.0;
@@ -170,8 +181,10 @@ fn span_energy(derivs: &impl Fn(f64) -> (DVec3, DVec3), t0: f64, t1: f64) -> f64
             let (d1, d2) = derivs(mid + half * x);
             let speed = d1.length();
             if speed > 0.0 {
-                let k2 = curvature_vector(d1, d2, speed).length_squared();
-                total += w * k2 * speed * half;
+                // κ · (κ ds): κ² alone overflows on tiny curves (radius 1e-152) whose energy,
+                // the turning angle over the radius, f64 holds; and so would |κ| taken as √(κ·κ).
+                let k = scaled_length(curvature_vector(d1, d2, speed));
+                total += k * (w * k * speed * half);
             }
         }
     }
