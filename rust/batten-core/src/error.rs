@@ -5,6 +5,7 @@ use thiserror::Error;
 
 use crate::curve::CurveError;
 use crate::fair::FairError;
+use crate::hydro::HydroError;
 use crate::patch::PatchError;
 use crate::tolerance::InvalidTolerance;
 
@@ -61,6 +62,10 @@ pub enum Error {
     /// indices).
     #[error("no surface: {0}")]
     Mesh(#[from] PatchError),
+    /// A hydrostatic calculation that cannot give a true figure (bad flotation, the water
+    /// below the keel or over the top, a hole under water).
+    #[error("hydrostatics: {0}")]
+    Hydro(#[from] HydroError),
 }
 
 impl From<InvalidTolerance> for Error {

@@ -13,6 +13,7 @@ mod diagnostic;
 mod error;
 mod fair;
 mod hull;
+mod hydro;
 mod network;
 mod patch;
 mod tolerance;
@@ -38,6 +39,11 @@ pub use hull::{
     build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
     Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES, KNUCKLE_EDGE_SAMPLES,
     KNUCKLE_POINT_ANGLE_DEGREES,
+};
+pub use hydro::{
+    default_datums, hydrostatics, immersed_section_area, sectional_areas, Datums, Flotation,
+    HullGeometry, HydroError, Hydrostatics, OpenEdgePoint, SectionSegment, Waterplane,
+    WetIntegrals, ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

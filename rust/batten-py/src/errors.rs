@@ -10,11 +10,12 @@
 //! | [`Error::Format`] | `NetworkFileError` |
 //! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
 //! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
+//! | [`Error::Hydro`] (other than [`HydroError::InvalidInput`], an `InvalidArgumentError`) | `HydrostaticsError` |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use batten_core::{CurveError as CoreCurveError, Error};
+use batten_core::{CurveError as CoreCurveError, Error, HydroError};
 use pyo3::PyErr;
 
 pyo3::import_exception!(batten_native._errors, BattenError);
@@ -23,6 +24,7 @@ pyo3::import_exception!(batten_native._errors, FairError);
 pyo3::import_exception!(batten_native._errors, NetworkFileError);
 pyo3::import_exception!(batten_native._errors, NoSurfaceError);
 pyo3::import_exception!(batten_native._errors, InvalidArgumentError);
+pyo3::import_exception!(batten_native._errors, HydrostaticsError);
 pyo3::import_exception!(batten_native._errors, InternalError);
 
 /// A core error as the `BattenError` subclass of its kind, with the core's message (which names
@@ -40,7 +42,9 @@ pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
         Error::Tolerance(_)
         | Error::Resolution { .. }
         | Error::EmptyName(_)
-        | Error::InvalidInput(_) => InvalidArgumentError::new_err(message),
+        | Error::InvalidInput(_)
+        | Error::Hydro(HydroError::InvalidInput(_)) => InvalidArgumentError::new_err(message),
+        Error::Hydro(_) => HydrostaticsError::new_err(message),
     }
 }
 

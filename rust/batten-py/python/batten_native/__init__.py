@@ -3,13 +3,14 @@
 Everything here is implemented in Rust (``batten_native._native``); errors are raised as
 subclasses of :class:`BattenError`, a :class:`ValueError` whose message names the curve and the
 problem (``batten_native._errors``: CurveError with ``.curve``, FairError, NetworkFileError,
-NoSurfaceError, InvalidArgumentError, InternalError).
+NoSurfaceError, InvalidArgumentError, HydrostaticsError, InternalError).
 """
 
 from ._errors import (
     BattenError,
     CurveError,
     FairError,
+    HydrostaticsError,
     InternalError,
     InvalidArgumentError,
     NetworkFileError,
@@ -53,6 +54,7 @@ __all__ = [
     "BattenError",
     "CurveError",
     "FairError",
+    "HydrostaticsError",
     "InternalError",
     "InvalidArgumentError",
     "NetworkFileError",

@@ -40,6 +40,11 @@ class InvalidArgumentError(BattenError):
     """An argument is out of range or of the wrong kind (resolution 0, negative tolerance, unknown role …)."""
 
 
+class HydrostaticsError(BattenError):
+    """Hydrostatics that cannot give a true figure: the water below the keel or over the hull's
+    open top, a hole in the surface under water (the message says where), no equilibrium."""
+
+
 class InternalError(BattenError):
     """A defect of batten (a caught panic of the core); please report it with the curves that caused it."""
 
@@ -48,6 +53,7 @@ __all__ = [
     "BattenError",
     "CurveError",
     "FairError",
+    "HydrostaticsError",
     "InternalError",
     "InvalidArgumentError",
     "NetworkFileError",

@@ -1,0 +1,25 @@
+//! Hydrostatics on batten's own surface (the H-rep paper's "secondary functions": hydrostatics
+//! and the sectional area curve): volume, displacement, centres, waterplane, coefficients,
+//! metacentres, TPC, MTC, sectional areas and curves of form, at any draft, trim and heel, and
+//! the inverse — the flotation at a displacement and centre of gravity.
+//!
+//! Every figure is a surface integral over the wet part of the hull ([`WetIntegrals`]: the
+//! divergence theorem closes the region by the waterplane, and a half hull's centreplane adds
+//! nothing), or a plane section ([`HullGeometry::plane_section`]). The patch surface integrates
+//! its patches themselves ([`PatchHydroModel`]); any triangle mesh can be given too, so the
+//! numbers can be set beside other tools' on identical input.
+
+mod error;
+mod geometry;
+mod hydrostatics;
+mod integrals;
+mod waterplane;
+
+pub use error::HydroError;
+pub use geometry::{HullGeometry, OpenEdgePoint, SectionSegment};
+pub use hydrostatics::{
+    default_datums, hydrostatics, immersed_section_area, sectional_areas, Hydrostatics,
+    ENTRANCE_FIT_FRACTION, SECTION_TOLERANCE_RELATIVE,
+};
+pub use integrals::WetIntegrals;
+pub use waterplane::{Datums, Flotation, Waterplane, SEA_WATER_DENSITY};
