@@ -77,10 +77,10 @@ impl HullModel {
     fn geometry(&self, live: bool) -> &PatchHydroModel {
         if live {
             self.live
-                .get_or_init(|| PatchHydroModel::with_density(&self.surface, CellDensity::LIVE))
+                .get_or_init(|| self.surface.hydro_model(CellDensity::LIVE))
         } else {
             self.model
-                .get_or_init(|| PatchHydroModel::new(&self.surface))
+                .get_or_init(|| self.surface.hydro_model(CellDensity::DEFAULT))
         }
     }
 }
