@@ -95,6 +95,7 @@ bench: venv sysdeps
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_curves.py
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_fairing.py
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_import.py
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_hydro_surface.py
 
 clean:
 	rm -rf build $(OUT) target

@@ -31,9 +31,6 @@ pub const CENTREPLANE_RELATIVE: f64 = 1e-5;
 /// Samples per cell side when looking for the extent of the wet surface (about a centimetre on a
 /// ship, where a cell is a few metres).
 const RANGE_SAMPLES: usize = 8;
-/// How closely (relative to the hull's size) the waterline is followed when it starts the
-/// search for the wet surface's extent.
-const RANGE_WATERLINE_RELATIVE: f64 = 1e-4;
 
 /// The mirror image `y → −y`.
 #[inline]
@@ -177,10 +174,13 @@ impl PatchHydroModel {
 
     /// The range of `dir·p` over the wet part of the drawn half: the ends of the waterline's
     /// pieces, then samples of the cells under water whose boxes reach beyond that range.
-    fn own_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
+    fn own_range(
+        &self,
+        plane: &Waterplane,
+        dir: DVec3,
+        waterline: &[SectionSegment],
+    ) -> Option<(f64, f64)> {
         let c = plane.e3.dot(plane.origin);
-        let size = (self.bounds.1 - self.bounds.0).length();
-        let waterline = self.own_section(plane.e3, c, RANGE_WATERLINE_RELATIVE * size);
         let mut range = waterline
             .iter()
             .flatten()
@@ -296,11 +296,17 @@ impl HullGeometry for PatchHydroModel {
         self.half
     }
 
-    fn wet_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
-        let own = self.own_range(plane, dir);
+    fn wet_range(
+        &self,
+        plane: &Waterplane,
+        dir: DVec3,
+        waterline: &[SectionSegment],
+    ) -> Option<(f64, f64)> {
+        // The waterline holds both halves, so its ends bound the image's range too.
+        let own = self.own_range(plane, dir, waterline);
         // Upright, the image's range along a direction in the centreplane is the half's own.
         if self.half && !(plane.is_upright() && dir.y == 0.0) {
-            merge(own, self.own_range(&plane.mirrored(), mirror(dir)))
+            merge(own, self.own_range(&plane.mirrored(), mirror(dir), &[]))
         } else {
             own
         }
