@@ -36,6 +36,7 @@ from ._native import (
     fairness,
     network_from_json,
     network_to_json,
+    nodes_from_data,
     snap_to_nodes,
     topology,
 )
@@ -68,6 +69,7 @@ __all__ = [
     "fairness",
     "network_from_json",
     "network_to_json",
+    "nodes_from_data",
     "snap_to_nodes",
     "topology",
 ]
