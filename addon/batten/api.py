@@ -49,6 +49,7 @@ from batten_native import (
     fairness,
     network_from_json,
     network_to_json,
+    nodes_from_data,
     snap_to_nodes,
 )
 from batten_native import topology as _topology
@@ -349,20 +350,23 @@ def import_sections(
     model_tolerance: float = DEFAULT_SECTION_MODEL_TOLERANCE,
     collection: str | None = None,
 ):
-    """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets
-    table ``name, x, y, z``), fair every curve within ``tolerance`` (m) keeping its end points
-    and corners, join the corners (knuckles) of consecutive sections into chines (role
-    ``knuckle``), then move the curves, as little as possible, through the nodes where they
-    meet (where two curves come within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each
-    other they are one node, and both pass exactly through it), and draw them as NURBS curve
-    objects in a new collection, with roles from the curve kinds. So curves that cross in the
-    data meet exactly, and the network builds at the default model tolerance. All curves are
-    fitted before anything is created. A file that cannot be read, or holds no curves, raises
-    NetworkFileError naming it.
+    """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets table
+    ``name, x, y, z``), find where the point curves cross or end on each other
+    (``nodes_from_data``: within twice ``tolerance`` plus what their chords may miss the true
+    curve by) and give each such node one point that every curve through it takes among its
+    points, fair every curve within ``tolerance`` (m) keeping its end points and corners, join
+    the corners (knuckles) of consecutive sections into chines (role ``knuckle``), then move the
+    curves, as little as possible, through the nodes where they meet (where two curves come
+    within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each other they are one node, and both
+    pass exactly through it), and draw them as NURBS curve objects in a new collection, with
+    roles from the curve kinds. So curves that cross in the data meet exactly, and the network
+    builds at the default model tolerance. All curves are fitted before anything is created. A
+    file that cannot be read, or holds no curves, raises NetworkFileError naming it.
 
     Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`; a
     chine's report has ``kind`` ``"chine"`` and ``points``, the knuckles it joins), with
-    ``points`` (how many the data had), ``nodes`` (nodes the curve was moved through),
+    ``points`` (how many the data had), ``data_nodes`` (nodes of the data it was fitted
+    through), ``nodes`` (nodes the curve was moved through),
     ``skipped_nodes`` (nodes it leaves out because meeting them would take one of its points
     past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
     distance to a node before the move), ``max_deviation`` and ``max_deviation_index``
@@ -373,6 +377,15 @@ def import_sections(
     name, sections = sections_in.read_sections(path)
     if not sections:
         raise NetworkFileError(f"section file '{path}': no curves")
+    # Nodes from the data: where the point curves meet, one point each curve is fitted through.
+    noded, sources, nodes = nodes_from_data(
+        [sec.name for sec in sections],
+        [sec.points for sec in sections],
+        tolerance,
+        corner_angle_deg,
+        model_tolerance,
+    )
+    data = [sections_in.PointCurve(sec.name, sec.role, pts) for sec, pts in zip(sections, noded, strict=True)]
 
     def fit(sec, within: float):
         curve, report = fair_points(
@@ -385,17 +398,16 @@ def import_sections(
             role=sec.role,
         )
         report["curve"] = sec.name
-        report["points"] = len(sec.points)
         return curve, report
 
-    fits = [fit(sec, tolerance) for sec in sections]
+    fits = [fit(sec, tolerance) for sec in data]
     within = [tolerance] * len(sections)
     for round_ in range(SNAP_ROUNDS + 1):
         curves = [c for c, _ in fits]
         knuckles = [_corner_points(c, r) for c, r in fits]
         chines = chines_from_knuckles(curves, knuckles, tolerance)
         # A chine's own data are the knuckles it joins.
-        points = [sec.points for sec in sections] + [
+        points = [sec.points for sec in data] + [
             _chain_points(ch, knuckles, model_tolerance) for ch in chines
         ]
         snapped, snaps = snap_to_nodes(
@@ -407,7 +419,7 @@ def import_sections(
         # These curves would leave their data to meet some nodes: fit them closer and try again.
         for i in short:
             within[i] *= SNAP_TIGHTEN
-            fits[i] = fit(sections[i], within[i])
+            fits[i] = fit(data[i], within[i])
     reports = [report for _, report in fits]
     reports += [
         {"curve": ch.name, "kind": "chine", "points": len(p), "corners": [], "fit_tolerance": None}
@@ -420,7 +432,19 @@ def import_sections(
         report["fit_tolerance"] = w
         report["max_deviation"] = snap["max_deviation"]
         report["max_deviation_index"] = snap["max_deviation_index"]
+    # Point indices in the reports are the file's: a node between two points is the nearer.
+    for i, (report, sec, source) in enumerate(zip(reports[: len(sections)], sections, sources, strict=True)):
+        report["points"] = len(sec.points)
+        report["data_nodes"] = sum(1 for n in nodes if i in n["curves"])
+        report["max_deviation_index"] = _file_index(report["max_deviation_index"], source)
+        report["corners"] = [_file_index(k, source) for k in report["corners"]]
     return _draw_collection(collection or name, snapped), reports
+
+
+def _file_index(k: int, source: list[int | None]) -> int:
+    """The index in the file of point ``k`` of a curve's points with its data nodes
+    (``source`` from ``nodes_from_data``): its own, or for an inserted node the point before."""
+    return max((i for i in source[: k + 1] if i is not None), default=0)
 
 
 def _corner_points(curve: Curve, report: dict) -> np.ndarray:

@@ -18,6 +18,7 @@ mod network;
 mod patch;
 mod tolerance;
 mod topo;
+mod union_find;
 mod wireframe;
 
 pub use curve::{
@@ -61,4 +62,7 @@ pub use topo::{
     Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
 };
-pub use wireframe::{chines_from_knuckles, snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};
+pub use wireframe::{
+    chines_from_knuckles, nodes_from_data, snap_to_nodes, CurveSnap, DataNode, NodedPoints,
+    SnapData, SnappedNetwork,
+};

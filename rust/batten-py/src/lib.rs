@@ -55,6 +55,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
     m.add_function(wrap_pyfunction!(network::snap_to_nodes, m)?)?;
     m.add_function(wrap_pyfunction!(network::chines_from_knuckles, m)?)?;
+    m.add_function(wrap_pyfunction!(network::nodes_from_data, m)?)?;
     #[cfg(feature = "test-hooks")]
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;

@@ -39,6 +39,7 @@ from ._native import (
     fairness,
     network_from_json,
     network_to_json,
+    nodes_from_data,
     snap_to_nodes,
     topology,
 )
@@ -74,6 +75,7 @@ __all__ = [
     "fairness",
     "network_from_json",
     "network_to_json",
+    "nodes_from_data",
     "snap_to_nodes",
     "topology",
 ]

@@ -29,6 +29,7 @@ __all__ = [
     "fairness",
     "network_from_json",
     "network_to_json",
+    "nodes_from_data",
     "snap_to_nodes",
     "topology",
 ]
@@ -117,6 +118,13 @@ def check_lengths(curves: list[Curve], tolerance: float) -> None: ...
 def chines_from_knuckles(
     curves: list[Curve], knuckles: list[_ArrayLike], tolerance: float
 ) -> list[Curve]: ...
+def nodes_from_data(
+    names: list[str],
+    points: list[_ArrayLike],
+    tolerance: float,
+    corner_angle_deg: float | None,
+    model_tolerance: float,
+) -> tuple[list[_F64], list[list[int | None]], list[dict]]: ...
 def snap_to_nodes(
     curves: list[Curve],
     capture: float,
