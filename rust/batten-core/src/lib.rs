@@ -42,8 +42,9 @@ pub use hull::{
 };
 pub use hydro::{
     default_datums, hydrostatics, immersed_section_area, sectional_areas, Datums, Flotation,
-    HullGeometry, HydroError, Hydrostatics, OpenEdgePoint, SectionSegment, Waterplane,
-    WetIntegrals, ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
+    HullGeometry, HydroError, Hydrostatics, OpenEdgePoint, SectionSegment, TriangleHull,
+    Waterplane, WetIntegrals, CENTREPLANE_TOLERANCE_RELATIVE, ENTRANCE_FIT_FRACTION,
+    SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

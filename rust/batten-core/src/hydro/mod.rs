@@ -13,6 +13,7 @@ mod error;
 mod geometry;
 mod hydrostatics;
 mod integrals;
+mod mesh;
 mod waterplane;
 
 pub use error::HydroError;
@@ -22,4 +23,5 @@ pub use hydrostatics::{
     ENTRANCE_FIT_FRACTION, SECTION_TOLERANCE_RELATIVE,
 };
 pub use integrals::WetIntegrals;
+pub use mesh::{TriangleHull, CENTREPLANE_TOLERANCE_RELATIVE};
 pub use waterplane::{Datums, Flotation, Waterplane, SEA_WATER_DENSITY};

@@ -1,0 +1,263 @@
+//! Any triangle mesh as a hull for hydrostatics ([`TriangleHull`]): each triangle clipped exactly
+//! by the waterplane and integrated exactly, so a mesh's figures are those of the polyhedron it
+//! is, and can be set beside other tools' on identical input.
+
+mod boundary;
+mod clip;
+mod stations;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::error::HydroError;
+use super::geometry::{HullGeometry, OpenEdgePoint, SectionSegment};
+use super::integrals::WetIntegrals;
+use super::waterplane::Waterplane;
+use clip::{add_wet_triangle, section_segment, widen_wet_range};
+use stations::StationIndex;
+
+/// How far from `y = 0` (relative to the mesh's size, the diagonal of its box) a vertex may be
+/// and still lie on the centreplane: a mesh stored in single precision (Blender's) rounds to
+/// about 1.2e-7 of its size.
+pub const CENTREPLANE_TOLERANCE_RELATIVE: f64 = 2e-7;
+
+/// Triangles per parallel task: large enough that the split costs nothing beside the work.
+const TRIANGLES_PER_TASK: usize = 8192;
+
+/// A triangle mesh as a hull: positions in the ship's axes (m) and triangles of vertex indices,
+/// wound counter-clockwise about the outward normal.
+///
+/// Orientation: the signed volume of the closed mesh (its mirror image included for a half
+/// hull; an open top or centreplane adds nothing, measured as the flux of `y e2`) decides.
+/// When it is negative the triangles are taken as wound inward and every one is reversed, so a
+/// mesh of either winding gives the same figures.
+///
+/// A half hull (no vertex to starboard and free edges along `y = 0`, see
+/// [`CENTREPLANE_TOLERANCE_RELATIVE`]) answers for the whole ship: upright, its mirror image
+/// doubles the integrals; heeled, the image is integrated explicitly.
+#[derive(Clone, Debug)]
+pub struct TriangleHull {
+    positions: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    half: bool,
+    reversed: bool,
+    bounds: (DVec3, DVec3),
+    open: Vec<OpenEdgePoint>,
+    stations: StationIndex,
+}
+
+impl TriangleHull {
+    /// A hull from `positions` (m) and `triangles` (indices into `positions`).
+    ///
+    /// Errors ([`HydroError::InvalidInput`]): no triangles, a coordinate that is not finite
+    /// (naming the vertex), an index out of range (naming the triangle and the index).
+    pub fn try_new(
+        positions: &[DVec3],
+        triangles: &[[u32; 3]],
+    ) -> Result<TriangleHull, HydroError> {
+        if triangles.is_empty() {
+            return Err(HydroError::InvalidInput(
+                "the mesh has no triangles: a hull needs at least one".into(),
+            ));
+        }
+        if u32::try_from(triangles.len()).is_err() {
+            return Err(HydroError::InvalidInput(format!(
+                "the mesh has {} triangles, more than the 2³² a mesh may have",
+                triangles.len()
+            )));
+        }
+        if let Some((k, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+            return Err(HydroError::InvalidInput(format!(
+                "mesh vertex {k} at ({}, {}, {}) is not a finite point",
+                p.x, p.y, p.z
+            )));
+        }
+        let n = positions.len();
+        if let Some((k, t)) = triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&i| i as usize >= n))
+        {
+            let bad = t
+                .iter()
+                .find(|&&i| i as usize >= n)
+                .copied()
+                .unwrap_or(t[0]);
+            return Err(HydroError::InvalidInput(format!(
+                "mesh triangle {k} refers to vertex {bad}, but the mesh has {n} vertices"
+            )));
+        }
+        let (mut lo, mut hi) = positions.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(a, b), p| (a.min(*p), b.max(*p)),
+        );
+        let size = (hi - lo).length();
+        let tol = CENTREPLANE_TOLERANCE_RELATIVE * size;
+        let found = boundary::boundary(positions, triangles, tol, tol);
+        if found.half {
+            lo.y = lo.y.min(-hi.y);
+            hi.y = hi.y.max(-lo.y);
+        }
+        let mut triangles = triangles.to_vec();
+        let reversed = signed_volume_flux(positions, &triangles) < 0.0;
+        if reversed {
+            triangles.par_iter_mut().for_each(|t| t.swap(1, 2));
+        }
+        let stations = StationIndex::new(positions, &triangles);
+        Ok(TriangleHull {
+            positions: positions.to_vec(),
+            triangles,
+            half: found.half,
+            reversed,
+            bounds: (lo, hi),
+            open: found.open,
+            stations,
+        })
+    }
+
+    /// Whether the triangles were wound inward and have been reversed.
+    pub fn was_reversed(&self) -> bool {
+        self.reversed
+    }
+
+    /// The number of triangles (of the half given, for a half hull).
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The corners of triangle `t` in the ship's axes, wound outward; of its mirror image
+    /// (`y → −y`, the winding reversed so the normal stays outward) when `mirror`.
+    #[inline]
+    fn corners(&self, t: &[u32; 3], mirror: bool) -> [DVec3; 3] {
+        let p = |i: u32| self.positions[i as usize];
+        if mirror {
+            let m = |i: u32| {
+                let v = p(i);
+                DVec3::new(v.x, -v.y, v.z)
+            };
+            [m(t[0]), m(t[2]), m(t[1])]
+        } else {
+            [p(t[0]), p(t[1]), p(t[2])]
+        }
+    }
+
+    /// The halves to go over: the mesh, and its mirror image for a half hull unless `symmetric`
+    /// (the quantity asked for is the same on both).
+    fn halves(&self, symmetric: bool) -> &'static [bool] {
+        if self.half && !symmetric {
+            &[false, true]
+        } else {
+            &[false]
+        }
+    }
+
+    /// The wet integrals of one half (the mesh, or its mirror image).
+    fn wet_half(&self, plane: &Waterplane, mirror: bool) -> WetIntegrals {
+        self.triangles
+            .par_chunks(TRIANGLES_PER_TASK)
+            .map(|chunk| {
+                let mut w = WetIntegrals::default();
+                for t in chunk {
+                    add_wet_triangle(&mut w, plane, self.corners(t, mirror));
+                }
+                w
+            })
+            .reduce(WetIntegrals::default, |a, b| a + b)
+    }
+}
+
+/// The signed volume of the closed mesh as the flux of `F = y e2` (`div F = 1`), exact on each
+/// flat triangle (its integrand is linear): `Σ Ay · ȳ`. An opening in a plane `y = 0`, `z =
+/// const` or `x = const` (the centreplane of a half hull, a deck or transom left open) has no
+/// flux, so the sign says the winding of an open hull too.
+fn signed_volume_flux(positions: &[DVec3], triangles: &[[u32; 3]]) -> f64 {
+    triangles
+        .par_chunks(TRIANGLES_PER_TASK)
+        .map(|chunk| {
+            chunk
+                .iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| positions[i as usize]);
+                    let area_y = 0.5 * (b - a).cross(c - a).y;
+                    area_y * (a.y + b.y + c.y) / 3.0
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+impl HullGeometry for TriangleHull {
+    fn wet_integrals(&self, plane: &Waterplane) -> WetIntegrals {
+        let w = self.wet_half(plane, false);
+        if !self.half {
+            w
+        } else if plane.is_upright() {
+            w.with_mirror_upright()
+        } else {
+            w + self.wet_half(plane, true)
+        }
+    }
+
+    /// Exact for a mesh (`tolerance` is not needed): one segment per triangle the plane cuts.
+    /// A station (`m = ±x`) reads only the triangles of its slab.
+    fn plane_section(&self, m: DVec3, c: f64, _tolerance: f64) -> Vec<SectionSegment> {
+        let mut out = Vec::new();
+        if m.y == 0.0 && m.z == 0.0 && m.x != 0.0 {
+            for &mirror in self.halves(false) {
+                out.extend(self.stations.candidates(c / m.x).iter().filter_map(|&k| {
+                    section_segment(m, c, self.corners(&self.triangles[k as usize], mirror))
+                }));
+            }
+            return out;
+        }
+        for &mirror in self.halves(false) {
+            out.par_extend(
+                self.triangles
+                    .par_chunks(TRIANGLES_PER_TASK)
+                    .flat_map_iter(|chunk| {
+                        chunk
+                            .iter()
+                            .filter_map(move |t| section_segment(m, c, self.corners(t, mirror)))
+                    }),
+            );
+        }
+        out
+    }
+
+    fn bounds(&self) -> (DVec3, DVec3) {
+        self.bounds
+    }
+
+    fn open_edges(&self) -> &[OpenEdgePoint] {
+        &self.open
+    }
+
+    fn is_half(&self) -> bool {
+        self.half
+    }
+
+    fn wet_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
+        // Upright, the mirror image has the same wet part mirrored: the same range along a
+        // direction without a transverse part.
+        let symmetric = plane.is_upright() && dir.y == 0.0;
+        let empty = (f64::INFINITY, f64::NEG_INFINITY);
+        let merge = |a: (f64, f64), b: (f64, f64)| (a.0.min(b.0), a.1.max(b.1));
+        let range = self
+            .halves(symmetric)
+            .iter()
+            .map(|&mirror| {
+                self.triangles
+                    .par_chunks(TRIANGLES_PER_TASK)
+                    .map(|chunk| {
+                        let mut r = empty;
+                        for t in chunk {
+                            widen_wet_range(&mut r, plane, dir, self.corners(t, mirror));
+                        }
+                        r
+                    })
+                    .reduce(|| empty, merge)
+            })
+            .fold(empty, merge);
+        (range.0 <= range.1).then_some(range)
+    }
+}
