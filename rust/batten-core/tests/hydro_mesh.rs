@@ -245,11 +245,14 @@ fn a_trimmed_box_keeps_its_volume_and_moves_its_centre_aft() {
             ..Flotation::at_draft(T)
         },
         &PERPENDICULARS,
-        &[0.25 * L, 0.5 * L],
+        &[0.25 * L, 0.5 * L, 0.0, L],
     )
     .expect("stations");
     assert_rel(areas[0], B * (T + 0.25 * trim), EXACT, "A at L/4");
     assert_rel(areas[1], B * T, EXACT, "A at midships");
+    // Stations in the box's end faces are taken from the inside: the ends' areas.
+    assert_rel(areas[2], B * (T + 0.5 * trim), EXACT, "A at the aft end");
+    assert_rel(areas[3], B * (T - 0.5 * trim), EXACT, "A at the fore end");
 }
 
 #[test]

@@ -13,6 +13,7 @@ mod curve;
 mod errors;
 mod fair;
 mod hull;
+mod hydro;
 mod network;
 mod topology;
 
@@ -60,5 +61,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(hydro::mesh_hydrostatics, m)?)?;
+    m.add_function(wrap_pyfunction!(hydro::mesh_sectional_areas, m)?)?;
     Ok(())
 }

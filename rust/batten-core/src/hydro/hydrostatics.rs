@@ -279,9 +279,8 @@ fn check_open_edges(
 /// Whether the whole of a closed hull is under the water surface `plane` (no waterplane: the
 /// water is over its top), its highest wet point below the water by more than rounding.
 fn sunk(geom: &dyn HullGeometry, plane: &Waterplane, scale: f64) -> bool {
-    geom.wet_range(plane, plane.e3).is_some_and(|(_, top)| {
-        top - plane.e3.dot(plane.origin) < -SUNK_SLACK_RELATIVE * scale
-    })
+    geom.wet_range(plane, plane.e3)
+        .is_some_and(|(_, top)| top - plane.e3.dot(plane.origin) < -SUNK_SLACK_RELATIVE * scale)
 }
 
 /// The half angle of entrance (degrees): the slope at the fore end of the least-squares parabola

@@ -24,6 +24,8 @@ __all__ = [
     "chines_from_knuckles",
     "fair_points",
     "fairness",
+    "mesh_hydrostatics",
+    "mesh_sectional_areas",
     "network_from_json",
     "network_to_json",
     "snap_to_nodes",
@@ -145,3 +147,25 @@ def build_surface(
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
     name: str | None = None,
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
+def mesh_hydrostatics(
+    positions: _ArrayLike,
+    triangles: _ArrayLike,
+    draft: float,
+    *,
+    trim: float = 0.0,
+    heel: float = 0.0,
+    density: float = ...,  # 1.025 t/m³, sea water
+    lpp: float | None = None,
+    fp: float | None = None,
+) -> dict[str, float]: ...
+def mesh_sectional_areas(
+    positions: _ArrayLike,
+    triangles: _ArrayLike,
+    draft: float,
+    stations: int,
+    *,
+    trim: float = 0.0,
+    heel: float = 0.0,
+    lpp: float | None = None,
+    fp: float | None = None,
+) -> tuple[_F64, _F64]: ...

@@ -70,15 +70,22 @@ pub(super) fn add_wet_triangle(w: &mut WetIntegrals, plane: &Waterplane, p: [DVe
 
 /// The section of the ship triangle `p` (outward winding) by the plane `m·x = c`: a segment
 /// oriented along `m × n` (`n` the outward normal), or `None` when the plane misses it. A corner
-/// on the plane counts as above it, so the segments of a closed mesh chain into closed loops.
+/// on the plane counts as above it when `on_plane_above` (as if the plane were moved an
+/// infinitesimal step back along `m`), below it otherwise; either way, the segments of a closed
+/// mesh chain into closed loops.
 ///
 /// Orientation: with the lone corner `i` below the plane, `m × n` runs from the crossing on
 /// edge `k–i` to the crossing on edge `i–j` (`j`, `k` following `i` counter-clockwise about
 /// `n`); with `i` alone above, the other way.
 #[inline]
-pub(super) fn section_segment(m: DVec3, c: f64, p: [DVec3; 3]) -> Option<SectionSegment> {
+pub(super) fn section_segment(
+    m: DVec3,
+    c: f64,
+    p: [DVec3; 3],
+    on_plane_above: bool,
+) -> Option<SectionSegment> {
     let d = p.map(|v| m.dot(v) - c);
-    let above = d.map(|x| x >= 0.0);
+    let above = d.map(|x| if on_plane_above { x >= 0.0 } else { x > 0.0 });
     let n_above = above.iter().filter(|&&b| b).count();
     let (i, lone_above) = match n_above {
         1 => (above.iter().position(|&b| b)?, true),
@@ -93,6 +100,18 @@ pub(super) fn section_segment(m: DVec3, c: f64, p: [DVec3; 3]) -> Option<Section
     } else {
         [on_ik, on_ij]
     })
+}
+
+/// The area vector of the ship triangle `p` projected on `m` when the triangle lies in the
+/// plane `m·x = c` (its three corners exactly on it), else `0`: the sign says on which side of
+/// a face in the plane the solid is.
+#[inline]
+pub(super) fn coplanar_flux(m: DVec3, c: f64, p: [DVec3; 3]) -> f64 {
+    if p.iter().all(|v| m.dot(*v) == c) {
+        0.5 * m.dot((p[1] - p[0]).cross(p[2] - p[0]))
+    } else {
+        0.0
+    }
 }
 
 /// Widen `range` by `dir·x` over the wet part of the ship triangle `p` below `plane`: its wet
@@ -136,12 +155,15 @@ mod tests {
             DVec3::new(1.0, 1.0, 0.0),
             DVec3::new(-1.0, 1.0, 0.0),
         ];
-        let [a, b] = section_segment(DVec3::Y, 0.5, p).expect("the plane cuts it");
+        let [a, b] = section_segment(DVec3::Y, 0.5, p, true).expect("the plane cuts it");
         assert!((b - a).x > 0.0, "along +x: {a} → {b}");
         // The plane y = 0.5 with m = −y: m × n = −x.
-        let [a, b] = section_segment(-DVec3::Y, -0.5, p).expect("the plane cuts it");
+        let [a, b] = section_segment(-DVec3::Y, -0.5, p, true).expect("the plane cuts it");
         assert!((b - a).x < 0.0, "along −x: {a} → {b}");
-        assert!(section_segment(DVec3::Y, 2.0, p).is_none(), "above it");
+        assert!(
+            section_segment(DVec3::Y, 2.0, p, true).is_none(),
+            "above it"
+        );
     }
 
     #[test]

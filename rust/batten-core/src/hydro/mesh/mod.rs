@@ -13,7 +13,7 @@ use super::error::HydroError;
 use super::geometry::{HullGeometry, OpenEdgePoint, SectionSegment};
 use super::integrals::WetIntegrals;
 use super::waterplane::Waterplane;
-use clip::{add_wet_triangle, section_segment, widen_wet_range};
+use clip::{add_wet_triangle, coplanar_flux, section_segment, widen_wet_range};
 use stations::StationIndex;
 
 /// How far from `y = 0` (relative to the mesh's size, the diagonal of its box) a vertex may be
@@ -199,14 +199,26 @@ impl HullGeometry for TriangleHull {
     }
 
     /// Exact for a mesh (`tolerance` is not needed): one segment per triangle the plane cuts.
-    /// A station (`m = ±x`) reads only the triangles of its slab.
+    /// A station (`m = ±x`) reads only the triangles of its slab; when it lies in faces of the
+    /// mesh (a flat transom or end), it is taken from the solid's side of them, so a box's
+    /// station at its very end has the end's area.
     fn plane_section(&self, m: DVec3, c: f64, _tolerance: f64) -> Vec<SectionSegment> {
         let mut out = Vec::new();
         if m.y == 0.0 && m.z == 0.0 && m.x != 0.0 {
+            let candidates = self.stations.candidates(c / m.x);
+            let tri = |k: u32, mirror: bool| self.corners(&self.triangles[k as usize], mirror);
+            // Faces in the plane with the solid ahead (along m): move the plane into it.
+            let flux: f64 = candidates
+                .iter()
+                .map(|&k| coplanar_flux(m, c, tri(k, false)))
+                .sum();
+            let on_plane_above = flux >= 0.0;
             for &mirror in self.halves(false) {
-                out.extend(self.stations.candidates(c / m.x).iter().filter_map(|&k| {
-                    section_segment(m, c, self.corners(&self.triangles[k as usize], mirror))
-                }));
+                out.extend(
+                    candidates
+                        .iter()
+                        .filter_map(|&k| section_segment(m, c, tri(k, mirror), on_plane_above)),
+                );
             }
             return out;
         }
@@ -215,9 +227,9 @@ impl HullGeometry for TriangleHull {
                 self.triangles
                     .par_chunks(TRIANGLES_PER_TASK)
                     .flat_map_iter(|chunk| {
-                        chunk
-                            .iter()
-                            .filter_map(move |t| section_segment(m, c, self.corners(t, mirror)))
+                        chunk.iter().filter_map(move |t| {
+                            section_segment(m, c, self.corners(t, mirror), true)
+                        })
                     }),
             );
         }
