@@ -147,3 +147,16 @@ def test_a_convex_hull_agrees_with_trimesh(draft, heel):
     assert close(h["lcb"], cx, 1e-9)
     assert abs(h["tcb"] - cy) < 1e-9 * 5.0, (h["tcb"], cy)
     assert close(h["vcb"], cz, 1e-9)
+
+
+def test_a_mesh_hull_built_once_answers_like_the_one_call():
+    v, f = box(open_top=True, half=True)
+    hull = bn.MeshHull(v, f)
+    assert hull.is_half and hull.triangle_count == len(f)
+    for draft in (0.7, T):
+        assert hull.hydrostatics(draft, lpp=L, fp=L) == bn.mesh_hydrostatics(v, f, draft, lpp=L, fp=L)
+        assert close(hull.hydrostatics(draft, lpp=L, fp=L)["volume"], L * B * draft)
+    xs, areas = hull.sectional_areas(T, 3, lpp=L, fp=L)
+    assert np.allclose(areas, B * T, rtol=1e-12, atol=0)
+    with pytest.raises(bn.InvalidArgumentError, match="no triangles"):
+        bn.MeshHull(v, np.zeros((0, 3), dtype=np.int64))

@@ -429,3 +429,40 @@ fn a_plane_section_of_a_closed_mesh_is_closed_and_oriented() {
     let top: f64 = 0.5 * (B / 2.0 * D - (-B / 2.0) * D);
     assert_rel(area + top, B * D, EXACT, "station area");
 }
+
+#[test]
+fn the_triangle_order_does_not_change_the_figures() {
+    // The runs of consecutive triangles only skip work: a mesh in scrambled order (a fixed
+    // permutation, so the runs' boxes span the whole sphere) gives the same figures.
+    let (p, t) = sphere(2.0, 96, 48);
+    let n = t.len();
+    let scrambled: Vec<[u32; 3]> = (0..n).map(|k| t[(k * 7919) % n]).collect();
+    assert!(
+        n % 7919 != 0,
+        "7919 is prime and n not its multiple: a permutation"
+    );
+    let datums = Datums {
+        x_ap: -2.0,
+        x_fp: 2.0,
+    };
+    for heel_deg in [0.0, 20.0] {
+        let f = Flotation {
+            heel_deg,
+            ..Flotation::at_draft(1.3)
+        };
+        let a = hydrostatics(&hull(&(p.clone(), t.clone())), &f, &datums).expect("in order");
+        let b =
+            hydrostatics(&hull(&(p.clone(), scrambled.clone())), &f, &datums).expect("scrambled");
+        for (x, y, what) in [
+            (a.volume, b.volume, "volume"),
+            (a.vcb, b.vcb, "KB"),
+            (a.bmt, b.bmt, "BMt"),
+            (a.waterplane_area, b.waterplane_area, "Awp"),
+            (a.midship_area, b.midship_area, "Am"),
+            (a.lwl, b.lwl, "Lwl"),
+            (a.los, b.los, "LOS"),
+        ] {
+            assert_rel(x, y, 1e-12, &format!("{what} at heel {heel_deg}°"));
+        }
+    }
+}

@@ -86,10 +86,17 @@ fn mesh_positions(obj: &Bound<'_, PyAny>) -> PyResult<Vec<DVec3>> {
             a.shape()
         )));
     }
-    Ok(a.rows()
-        .into_iter()
-        .map(|r| DVec3::new(r[0], r[1], r[2]))
-        .collect())
+    Ok(match a.as_slice() {
+        Some(flat) => flat
+            .chunks_exact(3)
+            .map(|r| DVec3::new(r[0], r[1], r[2]))
+            .collect(),
+        None => a
+            .rows()
+            .into_iter()
+            .map(|r| DVec3::new(r[0], r[1], r[2]))
+            .collect(),
+    })
 }
 
 /// `triangles` as vertex indices: an `(m, 3)` array of whole numbers from 0 to 2³² − 1 (an
@@ -118,30 +125,137 @@ fn mesh_triangles(obj: &Bound<'_, PyAny>) -> PyResult<Vec<[u32; 3]>> {
             a.shape()
         )));
     }
-    a.rows()
-        .into_iter()
-        .enumerate()
-        .map(|(k, r)| {
-            let index = |c: usize| {
-                u32::try_from(r[c]).map_err(|_| {
-                    arg_err(format!(
-                        "triangle {k} has vertex index {}: indices run from 0 to 2**32 - 1",
-                        r[c]
-                    ))
-                })
-            };
-            Ok([index(0)?, index(1)?, index(2)?])
-        })
-        .collect()
+    let triangle = |k: usize, r: [i64; 3]| {
+        let index = |v: i64| {
+            u32::try_from(v).map_err(|_| {
+                arg_err(format!(
+                    "triangle {k} has vertex index {v}: indices run from 0 to 2**32 - 1"
+                ))
+            })
+        };
+        Ok([index(r[0])?, index(r[1])?, index(r[2])?])
+    };
+    match a.as_slice() {
+        Some(flat) => flat
+            .chunks_exact(3)
+            .enumerate()
+            .map(|(k, r)| triangle(k, [r[0], r[1], r[2]]))
+            .collect(),
+        None => a
+            .rows()
+            .into_iter()
+            .enumerate()
+            .map(|(k, r)| triangle(k, [r[0], r[1], r[2]]))
+            .collect(),
+    }
+}
+
+/// A triangle mesh built once as a hull (validated, its free edges and half-hull form found),
+/// for the hydrostatics at many flotations: `MeshHull(positions, triangles)` with
+/// `positions` (n, 3) m and `triangles` (m, 3) vertex indices. A half hull (port side, open
+/// along `y = 0`) is mirrored; an inward-wound mesh is reversed.
+#[pyclass(frozen, module = "batten_native")]
+pub(crate) struct MeshHull {
+    inner: TriangleHull,
+}
+
+#[pymethods]
+impl MeshHull {
+    #[new]
+    fn py_new(
+        py: Python<'_>,
+        positions: &Bound<'_, PyAny>,
+        triangles: &Bound<'_, PyAny>,
+    ) -> PyResult<MeshHull> {
+        let points = mesh_positions(positions)?;
+        let tris = mesh_triangles(triangles)?;
+        let inner = py.detach(|| {
+            guard("building a mesh hull", || {
+                TriangleHull::try_new(&points, &tris).map_err(core_err)
+            })
+        })?;
+        Ok(MeshHull { inner })
+    }
+
+    /// Whether the mesh is a half hull (answered for both sides).
+    #[getter]
+    fn is_half(&self) -> bool {
+        self.inner.is_half()
+    }
+
+    /// The number of triangles given.
+    #[getter]
+    fn triangle_count(&self) -> usize {
+        self.inner.triangle_count()
+    }
+
+    /// The hydrostatics at `draft` (m at midships), `trim` (m, by the stern positive), `heel`
+    /// (degrees, to starboard positive) and `density` (t/m³); the perpendiculars: FP at `fp`
+    /// and AP `lpp` aft of it when `fp` is given (`lpp` required then), else FP at the
+    /// waterline's fore end and AP `lpp` aft of it (or at the waterline's aft end). Returns a
+    /// dict of every figure of the core's `Hydrostatics`. The GIL is released.
+    #[pyo3(signature = (draft, *, trim=0.0, heel=0.0, density=SEA_WATER_DENSITY, lpp=None, fp=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn hydrostatics<'py>(
+        &self,
+        py: Python<'py>,
+        draft: f64,
+        trim: f64,
+        heel: f64,
+        density: f64,
+        lpp: Option<f64>,
+        fp: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let f = flotation(draft, trim, heel, density);
+        let geom = &self.inner;
+        let h = py.detach(|| {
+            guard("the hydrostatics of a mesh", || {
+                let d = datums(geom, draft, lpp, fp)?;
+                hydrostatics(geom, &f, &d).map_err(core_err)
+            })
+        })?;
+        hydrostatics_dict(py, &h)
+    }
+
+    /// Sectional areas at `stations` equally spaced stations from AP to FP inclusive (the
+    /// flotation and perpendiculars as for [`hydrostatics`](Self::hydrostatics)): returns
+    /// `(xs, areas)`, float64 arrays (m, m²). The GIL is released.
+    #[pyo3(signature = (draft, stations, *, trim=0.0, heel=0.0, lpp=None, fp=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn sectional_areas<'py>(
+        &self,
+        py: Python<'py>,
+        draft: f64,
+        stations: &Bound<'py, PyAny>,
+        trim: f64,
+        heel: f64,
+        lpp: Option<f64>,
+        fp: Option<f64>,
+    ) -> PyResult<SectionalAreas<'py>> {
+        let n = whole(stations, || "stations".to_owned())?;
+        if n < 2 {
+            return Err(arg_err(format!(
+                "stations = {n}: at least 2 (AP and FP) are needed"
+            )));
+        }
+        let f = flotation(draft, trim, heel, SEA_WATER_DENSITY);
+        let geom = &self.inner;
+        let (xs, areas) = py.detach(|| {
+            guard("the sectional areas of a mesh", || {
+                let d = datums(geom, draft, lpp, fp)?;
+                let step = d.lpp() / (n - 1) as f64;
+                let xs: Vec<f64> = (0..n).map(|k| d.x_ap + step * k as f64).collect();
+                let areas = sectional_areas(geom, &f, &d, &xs).map_err(core_err)?;
+                Ok((xs, areas))
+            })
+        })?;
+        Ok((PyArray1::from_vec(py, xs), PyArray1::from_vec(py, areas)))
+    }
 }
 
 /// The hydrostatics of the triangle mesh `positions` (n, 3) m, `triangles` (m, 3) vertex
-/// indices, at `draft` (m at midships), `trim` (m, by the stern positive), `heel` (degrees, to
-/// starboard positive) and `density` (t/m³). A half hull (port side, open along `y = 0`) is
-/// mirrored. The perpendiculars: FP at `fp` and AP `lpp` aft of it when `fp` is given (`lpp`
-/// required then), else FP at the waterline's fore end and AP `lpp` aft of it (or at the
-/// waterline's aft end). Returns a dict of every figure of the core's `Hydrostatics`. The GIL is
-/// released.
+/// indices, in one call: [`MeshHull`] built and asked once (see
+/// [`MeshHull::hydrostatics`] for the arguments and the result).
 #[pyfunction]
 #[pyo3(signature = (positions, triangles, draft, *, trim=0.0, heel=0.0, density=SEA_WATER_DENSITY, lpp=None, fp=None))]
 #[allow(clippy::too_many_arguments)]
@@ -156,25 +270,15 @@ pub(crate) fn mesh_hydrostatics<'py>(
     lpp: Option<f64>,
     fp: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let points = mesh_positions(positions)?;
-    let tris = mesh_triangles(triangles)?;
-    let f = flotation(draft, trim, heel, density);
-    let h = py.detach(|| {
-        guard("the hydrostatics of a mesh", || {
-            let geom = TriangleHull::try_new(&points, &tris).map_err(core_err)?;
-            let d = datums(&geom, draft, lpp, fp)?;
-            hydrostatics(&geom, &f, &d).map_err(core_err)
-        })
-    })?;
-    hydrostatics_dict(py, &h)
+    MeshHull::py_new(py, positions, triangles)?
+        .hydrostatics(py, draft, trim, heel, density, lpp, fp)
 }
 
 /// Station positions (m) and their immersed areas (m²), float64.
 type SectionalAreas<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
-/// Sectional areas of the triangle mesh (as [`mesh_hydrostatics`]) at `stations` equally spaced
-/// stations from AP to FP inclusive: returns `(xs, areas)`, float64 arrays (m, m²). The GIL is
-/// released.
+/// Sectional areas of the triangle mesh in one call: [`MeshHull`] built and asked once (see
+/// [`MeshHull::sectional_areas`]).
 #[pyfunction]
 #[pyo3(signature = (positions, triangles, draft, stations, *, trim=0.0, heel=0.0, lpp=None, fp=None))]
 #[allow(clippy::too_many_arguments)]
@@ -189,24 +293,6 @@ pub(crate) fn mesh_sectional_areas<'py>(
     lpp: Option<f64>,
     fp: Option<f64>,
 ) -> PyResult<SectionalAreas<'py>> {
-    let points = mesh_positions(positions)?;
-    let tris = mesh_triangles(triangles)?;
-    let n = whole(stations, || "stations".to_owned())?;
-    if n < 2 {
-        return Err(arg_err(format!(
-            "stations = {n}: at least 2 (AP and FP) are needed"
-        )));
-    }
-    let f = flotation(draft, trim, heel, SEA_WATER_DENSITY);
-    let (xs, areas) = py.detach(|| {
-        guard("the sectional areas of a mesh", || {
-            let geom = TriangleHull::try_new(&points, &tris).map_err(core_err)?;
-            let d = datums(&geom, draft, lpp, fp)?;
-            let step = d.lpp() / (n - 1) as f64;
-            let xs: Vec<f64> = (0..n).map(|k| d.x_ap + step * k as f64).collect();
-            let areas = sectional_areas(&geom, &f, &d, &xs).map_err(core_err)?;
-            Ok((xs, areas))
-        })
-    })?;
-    Ok((PyArray1::from_vec(py, xs), PyArray1::from_vec(py, areas)))
+    MeshHull::py_new(py, positions, triangles)?
+        .sectional_areas(py, draft, stations, trim, heel, lpp, fp)
 }

@@ -61,6 +61,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
+    m.add_class::<hydro::MeshHull>()?;
     m.add_function(wrap_pyfunction!(hydro::mesh_hydrostatics, m)?)?;
     m.add_function(wrap_pyfunction!(hydro::mesh_sectional_areas, m)?)?;
     Ok(())

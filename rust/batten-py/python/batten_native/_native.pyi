@@ -7,6 +7,7 @@ import numpy.typing as npt
 
 __all__ = [
     "Curve",
+    "MeshHull",
     "DEFAULT_CORNER_ANGLE_DEG",
     "DEFAULT_FAIR_DEGREE",
     "DEFAULT_FAIR_TOLERANCE",
@@ -169,3 +170,32 @@ def mesh_sectional_areas(
     lpp: float | None = None,
     fp: float | None = None,
 ) -> tuple[_F64, _F64]: ...
+@final
+class MeshHull:
+    """A triangle mesh built once as a hull, for its hydrostatics at many flotations."""
+
+    def __new__(cls, positions: _ArrayLike, triangles: _ArrayLike) -> MeshHull: ...
+    @property
+    def is_half(self) -> bool: ...
+    @property
+    def triangle_count(self) -> int: ...
+    def hydrostatics(
+        self,
+        draft: float,
+        *,
+        trim: float = 0.0,
+        heel: float = 0.0,
+        density: float = ...,  # 1.025 t/m³, sea water
+        lpp: float | None = None,
+        fp: float | None = None,
+    ) -> dict[str, float]: ...
+    def sectional_areas(
+        self,
+        draft: float,
+        stations: int,
+        *,
+        trim: float = 0.0,
+        heel: float = 0.0,
+        lpp: float | None = None,
+        fp: float | None = None,
+    ) -> tuple[_F64, _F64]: ...

@@ -4,7 +4,7 @@
 
 mod boundary;
 mod clip;
-mod stations;
+mod runs;
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -13,8 +13,8 @@ use super::error::HydroError;
 use super::geometry::{HullGeometry, OpenEdgePoint, SectionSegment};
 use super::integrals::WetIntegrals;
 use super::waterplane::Waterplane;
+use runs::{Runs, RUN};
 use clip::{add_wet_triangle, coplanar_flux, section_segment, widen_wet_range};
-use stations::StationIndex;
 
 /// How far from `y = 0` (relative to the mesh's size, the diagonal of its box) a vertex may be
 /// and still lie on the centreplane: a mesh stored in single precision (Blender's) rounds to
@@ -23,6 +23,9 @@ pub const CENTREPLANE_TOLERANCE_RELATIVE: f64 = 2e-7;
 
 /// Triangles per parallel task: large enough that the split costs nothing beside the work.
 const TRIANGLES_PER_TASK: usize = 8192;
+
+/// A run of triangles (see [`Runs`]) and whether it is taken mirrored.
+type RunKey = (usize, bool);
 
 /// A triangle mesh as a hull: positions in the ship's axes (m) and triangles of vertex indices,
 /// wound counter-clockwise about the outward normal.
@@ -43,7 +46,7 @@ pub struct TriangleHull {
     reversed: bool,
     bounds: (DVec3, DVec3),
     open: Vec<OpenEdgePoint>,
-    stations: StationIndex,
+    runs: Runs,
 }
 
 impl TriangleHull {
@@ -103,7 +106,7 @@ impl TriangleHull {
         if reversed {
             triangles.par_iter_mut().for_each(|t| t.swap(1, 2));
         }
-        let stations = StationIndex::new(positions, &triangles);
+        let runs = Runs::new(positions, &triangles);
         Ok(TriangleHull {
             positions: positions.to_vec(),
             triangles,
@@ -111,7 +114,7 @@ impl TriangleHull {
             reversed,
             bounds: (lo, hi),
             open: found.open,
-            stations,
+            runs,
         })
     }
 
@@ -151,18 +154,50 @@ impl TriangleHull {
         }
     }
 
-    /// The wet integrals of one half (the mesh, or its mirror image).
+    /// The triangles of run `k`.
+    #[inline]
+    fn run(&self, k: usize) -> &[[u32; 3]] {
+        &self.triangles[k * RUN..((k + 1) * RUN).min(self.triangles.len())]
+    }
+
+    /// The runs (of the halves to go over, see [`halves`](Self::halves)) whose box reaches
+    /// `m·p = c` (`at_or_below`: reaches down to it or below; else: straddles it).
+    fn runs_reaching(&self, m: DVec3, c: f64, symmetric: bool, at_or_below: bool) -> Vec<RunKey> {
+        self.halves(symmetric)
+            .iter()
+            .flat_map(|&mirror| {
+                (0..self.runs.len()).filter_map(move |k| {
+                    let (lo, hi) = self.runs.span(k, m, mirror);
+                    (lo <= c && (at_or_below || hi >= c)).then_some((k, mirror))
+                })
+            })
+            .collect()
+    }
+
+    /// The wet integrals of one half (the mesh, or its mirror image): the runs wholly above the
+    /// water are skipped.
     fn wet_half(&self, plane: &Waterplane, mirror: bool) -> WetIntegrals {
-        self.triangles
-            .par_chunks(TRIANGLES_PER_TASK)
-            .map(|chunk| {
+        let level = plane.e3.dot(plane.origin);
+        (0..self.runs.len())
+            .into_par_iter()
+            .filter(|&k| self.runs.span(k, plane.e3, mirror).0 <= level)
+            .map(|k| {
                 let mut w = WetIntegrals::default();
-                for t in chunk {
+                for t in self.run(k) {
                     add_wet_triangle(&mut w, plane, self.corners(t, mirror));
                 }
                 w
             })
             .reduce(WetIntegrals::default, |a, b| a + b)
+    }
+
+    /// The range of `dir·p` over the wet part of run `key`.
+    fn run_wet_range(&self, plane: &Waterplane, dir: DVec3, key: RunKey) -> (f64, f64) {
+        let mut r = (f64::INFINITY, f64::NEG_INFINITY);
+        for t in self.run(key.0) {
+            widen_wet_range(&mut r, plane, dir, self.corners(t, key.1));
+        }
+        r
     }
 }
 
@@ -198,42 +233,48 @@ impl HullGeometry for TriangleHull {
         }
     }
 
-    /// Exact for a mesh (`tolerance` is not needed): one segment per triangle the plane cuts.
-    /// A station (`m = ±x`) reads only the triangles of its slab; when it lies in faces of the
-    /// mesh (a flat transom or end), it is taken from the solid's side of them, so a box's
+    /// Exact for a mesh (`tolerance` is not needed): one segment per triangle the plane cuts,
+    /// read from the runs whose box the plane crosses. A plane lying in faces of the mesh (a
+    /// flat transom or end, a flat bottom) is taken from the solid's side of them, so a box's
     /// station at its very end has the end's area.
     fn plane_section(&self, m: DVec3, c: f64, _tolerance: f64) -> Vec<SectionSegment> {
-        let mut out = Vec::new();
-        if m.y == 0.0 && m.z == 0.0 && m.x != 0.0 {
-            let candidates = self.stations.candidates(c / m.x);
-            let tri = |k: u32, mirror: bool| self.corners(&self.triangles[k as usize], mirror);
-            // Faces in the plane with the solid ahead (along m): move the plane into it.
-            let flux: f64 = candidates
-                .iter()
-                .map(|&k| coplanar_flux(m, c, tri(k, false)))
-                .sum();
-            let on_plane_above = flux >= 0.0;
-            for &mirror in self.halves(false) {
-                out.extend(
-                    candidates
-                        .iter()
-                        .filter_map(|&k| section_segment(m, c, tri(k, mirror), on_plane_above)),
-                );
-            }
-            return out;
-        }
-        for &mirror in self.halves(false) {
-            out.par_extend(
-                self.triangles
-                    .par_chunks(TRIANGLES_PER_TASK)
-                    .flat_map_iter(|chunk| {
-                        chunk.iter().filter_map(move |t| {
-                            section_segment(m, c, self.corners(t, mirror), true)
-                        })
-                    }),
+        let keys = self.runs_reaching(m, c, false, false);
+        // The segments with on-plane corners counted above, and the flux of the faces lying in
+        // the plane (of the half given).
+        let (segments, flux) = keys
+            .par_iter()
+            .fold(
+                || (Vec::new(), 0.0),
+                |(mut out, mut flux), &(k, mirror)| {
+                    for t in self.run(k) {
+                        let p = self.corners(t, mirror);
+                        out.extend(section_segment(m, c, p, true));
+                        if !mirror {
+                            flux += coplanar_flux(m, c, p);
+                        }
+                    }
+                    (out, flux)
+                },
+            )
+            .reduce(
+                || (Vec::new(), 0.0),
+                |(mut a, fa), (b, fb)| {
+                    a.extend(b);
+                    (a, fa + fb)
+                },
             );
+        if flux >= 0.0 {
+            return segments;
         }
-        out
+        // Faces in the plane with the solid ahead (along m): move the plane into the solid
+        // (rare: only a plane exactly in faces, such as a box's aft end).
+        keys.par_iter()
+            .flat_map_iter(|&(k, mirror)| {
+                self.run(k)
+                    .iter()
+                    .filter_map(move |t| section_segment(m, c, self.corners(t, mirror), false))
+            })
+            .collect()
     }
 
     fn bounds(&self) -> (DVec3, DVec3) {
@@ -248,28 +289,37 @@ impl HullGeometry for TriangleHull {
         self.half
     }
 
+    /// Exact, by bounds: the runs that reach below the water are ordered by how far their box
+    /// reaches along `dir`, and read only while their box could still widen the range.
     fn wet_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
         // Upright, the mirror image has the same wet part mirrored: the same range along a
         // direction without a transverse part.
         let symmetric = plane.is_upright() && dir.y == 0.0;
-        let empty = (f64::INFINITY, f64::NEG_INFINITY);
-        let merge = |a: (f64, f64), b: (f64, f64)| (a.0.min(b.0), a.1.max(b.1));
-        let range = self
-            .halves(symmetric)
-            .iter()
-            .map(|&mirror| {
-                self.triangles
-                    .par_chunks(TRIANGLES_PER_TASK)
-                    .map(|chunk| {
-                        let mut r = empty;
-                        for t in chunk {
-                            widen_wet_range(&mut r, plane, dir, self.corners(t, mirror));
-                        }
-                        r
-                    })
-                    .reduce(|| empty, merge)
-            })
-            .fold(empty, merge);
+        let level = plane.e3.dot(plane.origin);
+        let mut keys: Vec<(RunKey, (f64, f64))> = self
+            .runs_reaching(plane.e3, level, symmetric, true)
+            .into_iter()
+            .map(|key| (key, self.runs.span(key.0, dir, key.1)))
+            .collect();
+        let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+        let widen = |range: &mut (f64, f64), r: (f64, f64)| {
+            range.0 = range.0.min(r.0);
+            range.1 = range.1.max(r.1);
+        };
+        keys.sort_by(|a, b| b.1 .1.total_cmp(&a.1 .1));
+        for &(key, (_, hi)) in &keys {
+            if hi < range.1 {
+                break;
+            }
+            widen(&mut range, self.run_wet_range(plane, dir, key));
+        }
+        keys.sort_by(|a, b| a.1 .0.total_cmp(&b.1 .0));
+        for &(key, (lo, _)) in &keys {
+            if lo > range.0 {
+                break;
+            }
+            widen(&mut range, self.run_wet_range(plane, dir, key));
+        }
         (range.0 <= range.1).then_some(range)
     }
 }
