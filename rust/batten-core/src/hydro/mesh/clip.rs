@@ -42,14 +42,13 @@ fn add_flat(w: &mut WetIntegrals, a: DVec3, b: DVec3, c: DVec3) {
 /// exactly ([`add_flat`]). A corner on the water (`ζ = 0`) counts as wet.
 #[inline]
 pub(super) fn add_wet_triangle(w: &mut WetIntegrals, plane: &Waterplane, p: [DVec3; 3]) {
-    let zeta = p.map(|v| plane.zeta(v));
-    let wet = zeta.map(|z| z <= 0.0);
-    let n_wet = wet.iter().filter(|&&b| b).count();
-    if n_wet == 0 {
-        return;
-    }
+    // Earth coordinates at once (the dry runs are skipped before, so most triangles here are
+    // wet and need them).
     let q = p.map(|v| plane.earth(v));
+    let wet = q.map(|v| v.z <= 0.0);
+    let n_wet = wet.iter().filter(|&&b| b).count();
     match n_wet {
+        0 => {}
         3 => add_flat(w, q[0], q[1], q[2]),
         1 => {
             // The wet corner `a` and the two crossings on its edges: one triangle.
