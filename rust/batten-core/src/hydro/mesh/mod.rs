@@ -13,8 +13,8 @@ use super::error::HydroError;
 use super::geometry::{HullGeometry, OpenEdgePoint, SectionSegment};
 use super::integrals::WetIntegrals;
 use super::waterplane::Waterplane;
-use runs::{Runs, RUN};
 use clip::{add_wet_triangle, coplanar_flux, section_segment, widen_wet_range};
+use runs::{Runs, RUN};
 
 /// How far from `y = 0` (relative to the mesh's size, the diagonal of its box) a vertex may be
 /// and still lie on the centreplane: a mesh stored in single precision (Blender's) rounds to
