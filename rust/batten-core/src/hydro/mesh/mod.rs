@@ -161,14 +161,23 @@ impl TriangleHull {
     }
 
     /// The runs (of the halves to go over, see [`halves`](Self::halves)) whose box reaches
-    /// `m·p = c` (`at_or_below`: reaches down to it or below; else: straddles it).
+    /// `m·p = c` (`at_or_below`: reaches down to it or below; else: straddles it); a station
+    /// (`m = ±x`) looks only at the runs of its slab.
     fn runs_reaching(&self, m: DVec3, c: f64, symmetric: bool, at_or_below: bool) -> Vec<RunKey> {
+        let station = m.y == 0.0 && m.z == 0.0 && m.x != 0.0;
+        let all: Vec<u32>;
+        let candidates: &[u32] = if station {
+            self.runs.at_station(c / m.x)
+        } else {
+            all = (0..self.runs.len() as u32).collect();
+            &all
+        };
         self.halves(symmetric)
             .iter()
             .flat_map(|&mirror| {
-                (0..self.runs.len()).filter_map(move |k| {
-                    let (lo, hi) = self.runs.span(k, m, mirror);
-                    (lo <= c && (at_or_below || hi >= c)).then_some((k, mirror))
+                candidates.iter().filter_map(move |&k| {
+                    let (lo, hi) = self.runs.span(k as usize, m, mirror);
+                    (lo <= c && (at_or_below || hi >= c)).then_some((k as usize, mirror))
                 })
             })
             .collect()
