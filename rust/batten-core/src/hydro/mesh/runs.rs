@@ -1,7 +1,7 @@
 //! Runs of consecutive triangles with their bounding boxes, so a plane skips the runs it cannot
 //! touch: a station or waterline reads the few runs it crosses (a station finds them in an
-//! index of the runs by slabs of `x`), the wet integrals skip the dry
-//! runs, and the wet part's extent is found by bounding runs before reading any.
+//! index of the runs by slabs of `x`), the wet integrals skip the dry runs, and the wet part's
+//! extent is found by bounding runs before reading any.
 //!
 //! Implementation note: the runs follow the mesh's own triangle order, which is spatially
 //! coherent for a tessellated surface, a Blender mesh or an STL export (neighbours are stored
