@@ -17,6 +17,10 @@ use super::waterplane::{Datums, Flotation, Waterplane};
 /// arcs are good to far better than this (the error goes as its square).
 pub const SECTION_TOLERANCE_RELATIVE: f64 = 1e-4;
 
+/// How far below the water (relative to the hull's size) the highest wet point must be for a
+/// closed hull to count as sunk: a waterline's points are exact, so this only absorbs rounding.
+const SUNK_SLACK_RELATIVE: f64 = 1e-9;
+
 /// The foremost part of the waterline, as a fraction of `Lwl`, whose least-squares parabola
 /// gives the half angle of entrance at its fore end (leaves out a stem rounding much smaller
 /// than that, as the lines of a design are read).
@@ -280,6 +284,18 @@ pub fn sectional_areas(
         .collect()
 }
 
+/// Whether the whole of a closed hull is under the water surface `plane` (no waterplane: the
+/// water is over its top), its highest wet point below the water by more than rounding.
+fn sunk(
+    geom: &dyn HullGeometry,
+    plane: &Waterplane,
+    scale: f64,
+    waterline: &[SectionSegment],
+) -> bool {
+    geom.wet_range(plane, plane.e3, waterline)
+        .is_some_and(|(_, top)| top - plane.e3.dot(plane.origin) < -SUNK_SLACK_RELATIVE * scale)
+}
+
 /// The half angle of entrance (degrees): the slope at the fore end of the least-squares parabola
 /// `y(x)` through the waterline points (port side, `y ≥ 0`) within the foremost `fraction·Lwl`.
 fn entrance_half_angle(waterline: &[SectionSegment], plane: &Waterplane, lwl: f64) -> f64 {
@@ -428,6 +444,13 @@ pub fn hydrostatics(
     let v = w.volume;
     let floats = v > 1e-12 * scale.powi(3) && w.wp_area > 1e-12 * scale * scale;
     if !floats {
+        if sunk(geom, &plane, scale, &waterline) {
+            let (lo, hi) = geom.bounds();
+            return Err(HydroError::above_top(
+                draft,
+                DVec3::new(0.5 * (lo.x + hi.x), 0.0, hi.z),
+            ));
+        }
         return Err(HydroError::Degenerate(format!(
             "at draft {draft} m the hull displaces {v:.3e} m³ with a waterplane of {:.3e} m²: nothing floats",
             w.wp_area
