@@ -111,3 +111,15 @@ def test_bad_drafts_and_numbers_are_refused(wigley):
         api.float_to(wigley, 1e9, 0.0)
     with pytest.raises(InvalidArgumentError, match="stations"):
         api.sectional_areas(wigley, T, 1)
+
+
+def test_the_surface_mesh_gives_the_patches_figures(wigley):
+    """The mesh batten writes, as a Blender mesh object (the port half): the same figures as
+    the patches to within its chords' error."""
+    result = api.build(wigley, resolution=32, mirror=False)
+    exact = api.hydrostatics(wigley, T)
+    mesh = api.hydrostatics(result.object, T, lpp=L, fp=L / 2)
+    for key in ("volume", "waterplane_area", "vcb", "bmt", "wetted_area"):
+        assert mesh[key] == pytest.approx(exact[key], rel=2e-3), key
+    xs, areas = api.sectional_areas(result.object, T, 5, lpp=L, fp=L / 2)
+    np.testing.assert_allclose(areas, 2 / 3 * B * T * (1 - (2 * xs / L) ** 2), rtol=3e-3, atol=1e-2)

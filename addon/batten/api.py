@@ -40,6 +40,7 @@ from batten_native import (
     HydrostaticsError,
     InternalError,
     InvalidArgumentError,
+    MeshHull,
     NetworkFileError,
     NoSurfaceError,
     build_hull_model,
@@ -570,6 +571,39 @@ FP_PROPERTY = "batten_fp"
 DESIGN_DRAFT_PROPERTY = "batten_design_draft"
 
 
+#: Vertices of a mesh object closer than this (relative to its size) are one vertex.
+MESH_WELD_RELATIVE = 1e-9
+
+
+def _is_mesh(source) -> bool:
+    return isinstance(source, bpy.types.Object) and source.type == "MESH"
+
+
+def _mesh_hull(obj) -> MeshHull:
+    """A Blender mesh object (as evaluated: modifiers such as Mirror applied, in world
+    coordinates) as a triangle hull."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        mesh.calc_loop_triangles()
+        n = len(mesh.vertices)
+        positions = np.empty(n * 3, dtype=np.float64)
+        mesh.vertices.foreach_get("co", positions)
+        positions = positions.reshape(n, 3)
+        tris = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+        mesh.loop_triangles.foreach_get("vertices", tris)
+    finally:
+        evaluated.to_mesh_clear()
+    m = np.array(obj.matrix_world, dtype=np.float64)
+    positions = positions @ m[:3, :3].T + m[:3, 3]
+    # Weld coincident vertices (a Mirror modifier's seam, split edges): within 1e-9 of the size.
+    size = float(np.ptp(positions, axis=0).max()) if n else 1.0
+    key = np.round(positions / (MESH_WELD_RELATIVE * max(size, 1e-300))).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return MeshHull(positions[first], inverse.reshape(-1)[tris].reshape(-1, 3))
+
+
 def _hull_model(source):
     """The exact surface of the hull in ``source`` (a collection or its name), built if its
     curves changed since the last build, with errors naming the curve objects."""
@@ -631,7 +665,13 @@ def hydrostatics(
     Raises HydrostaticsError when the draft is below the keel or floods the open top, or the
     surface has a hole under water (the message says where); an open transom in a steep plane is
     closed by that plane. InvalidArgumentError for NaN, a density ≤ 0, a heel of 90° or more.
+
+    ``source`` may also be a Blender mesh object: its triangles (as evaluated, in world
+    coordinates) are integrated exactly, so its figures can be set beside another tool's on the
+    same mesh.
     """
+    if _is_mesh(source):
+        return _mesh_hull(source).hydrostatics(draft, trim=trim, heel=heel, density=density, lpp=lpp, fp=fp)
     model = _hull_model(source)
     lpp, fp = _datums(source, lpp, fp)
     return model.hydrostatics(draft, trim, heel, density, lpp, fp, live)
@@ -662,7 +702,12 @@ def sectional_areas(
     """The sectional area curve of the hull in ``source`` at ``draft`` (and ``trim``, ``heel``):
     ``(xs, areas)``, the immersed area (m², both sides) of each station plane ``x = xs[k]``.
     ``stations``: a count of stations equally spaced from AP to FP inclusive (21: stations 0 to
-    20), or the x values themselves. Perpendiculars as in :func:`hydrostatics`."""
+    20), or the x values themselves. Perpendiculars as in :func:`hydrostatics`. A mesh object
+    takes a count only."""
+    if _is_mesh(source):
+        if not isinstance(stations, int | np.integer):
+            raise InvalidArgumentError("a mesh's sectional areas take a count of stations")
+        return _mesh_hull(source).sectional_areas(draft, int(stations), trim=trim, heel=heel, lpp=lpp, fp=fp)
     model = _hull_model(source)
     lpp, fp = _datums(source, lpp, fp)
     xs = _stations(model, draft, stations, lpp, fp)
