@@ -28,7 +28,7 @@ pub const ENTRANCE_FIT_FRACTION: f64 = 0.025;
 
 /// Stations sampled along the submerged length to find the largest section before refining
 /// its place by golden-section search.
-const MAX_SECTION_SAMPLES: usize = 11;
+const MAX_SECTION_SAMPLES: usize = 9;
 
 /// Rounds of parabolic refinement of the largest section's place, each a quarter of the last
 /// spacing: the place to 1/4³ of the station spacing, the area far closer (flat at the top).

@@ -274,7 +274,13 @@ impl HullGeometry for PatchHydroModel {
         if self.half {
             // The image's section is the mirrored section of the half by the mirrored plane,
             // its direction reversed (a reflection turns m × n round).
-            let image = self.own_section(mirror(m), c, tolerance);
+            // A plane square to the centreplane (a station, an upright waterplane) is its own
+            // image: the half's pieces, mirrored, are the image's.
+            let image = if m.y == 0.0 {
+                out.clone()
+            } else {
+                self.own_section(mirror(m), c, tolerance)
+            };
             out.extend(
                 image
                     .into_iter()
