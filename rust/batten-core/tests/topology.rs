@@ -427,6 +427,83 @@ fn a_t_joint_side_is_one_side_of_two_edges() {
     assert_eq!(wl_side.edges.len(), 2, "composite side");
 }
 
+/// Angles (degrees, about the x axis from +y towards +z) of the longitudinals of the tube
+/// network: the first two 95° apart, so the surface normals of those neighbouring nodes along a
+/// station point more than a right angle apart (like a shaft boss or a bulb between two
+/// waterlines).
+const TUBE_ANGLES: [f64; 3] = [-90.0, 5.0, 85.0];
+
+/// A station of the tube: the unit circle about the x axis at `x`, from the first to the last
+/// of [`TUBE_ANGLES`], exactly, as a rational quadratic B-spline of one arc per gap.
+fn tube_station(name: &str, x: f64) -> NetworkCurve {
+    let at = |deg: f64, r: f64| {
+        let a = deg.to_radians();
+        DVec3::new(x, r * a.cos(), r * a.sin())
+    };
+    let (mut points, mut weights, mut knots) =
+        (vec![at(TUBE_ANGLES[0], 1.0)], vec![1.0], vec![0.0; 3]);
+    for (k, w) in TUBE_ANGLES.windows(2).enumerate() {
+        let half = 0.5 * (w[1] - w[0]);
+        let c = half.to_radians().cos();
+        points.extend([at(w[0] + half, 1.0 / c), at(w[1], 1.0)]);
+        weights.extend([c, 1.0]);
+        let reps = if k + 2 == TUBE_ANGLES.len() { 3 } else { 2 };
+        knots.extend(std::iter::repeat_n((k + 1) as f64, reps));
+    }
+    let curve = NurbsCurve::try_new(2, knots, points, Some(weights)).expect("a valid arc");
+    NetworkCurve {
+        name: name.to_owned(),
+        role: Role::Free,
+        curve,
+    }
+}
+
+/// A tube round 175° of the unit circle about the x axis, from x = 0 to 3: four stations and
+/// three straight longitudinals at [`TUBE_ANGLES`].
+fn tube_curves() -> Vec<NetworkCurve> {
+    let mut c: Vec<NetworkCurve> = (0..4)
+        .map(|i| tube_station(&format!("st{i}"), i as f64))
+        .collect();
+    for (j, deg) in TUBE_ANGLES.iter().enumerate() {
+        let a = deg.to_radians();
+        let p = |x: f64| DVec3::new(x, a.cos(), a.sin());
+        let curve = NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![p(0.0), p(3.0)], None)
+            .expect("a valid line");
+        c.push(NetworkCurve {
+            name: format!("long{j}"),
+            role: Role::Free,
+            curve,
+        });
+    }
+    c
+}
+
+#[test]
+fn a_tube_turning_by_more_than_a_right_angle_between_nodes_has_all_its_faces() {
+    // Neighbouring normals along a station point 95° apart: their dot product has the wrong
+    // sign, and orienting by it alone turned the strip of faces between them inside out.
+    let t = build(&network(tube_curves()));
+    assert!(t.diagnostics.is_empty(), "{:?}", t.diagnostics);
+    assert_eq!(t.node_count(), 12, "4 stations × 3 longitudinals");
+    let mut want = Vec::new();
+    for i in 0..3 {
+        for j in 0..TUBE_ANGLES.len() - 1 {
+            let names = [
+                format!("st{i}"),
+                format!("st{}", i + 1),
+                format!("long{j}"),
+                format!("long{}", j + 1),
+            ];
+            want.push(face(
+                4,
+                &names.iter().map(String::as_str).collect::<Vec<_>>(),
+            ));
+        }
+    }
+    want.sort();
+    assert_eq!(face_list(&t), want);
+}
+
 // The frigate, at full scale in metres: x forward from the transom (x = 0), z up from the keel
 // (z = 0), y to port.
 

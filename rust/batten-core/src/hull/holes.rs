@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::warning::{Warning, WarningKind};
-use crate::network::{Network, Role};
+use crate::network::Network;
 use crate::tolerance::Tolerance;
 use crate::topo::Topology;
 
@@ -19,7 +19,7 @@ const CENTREPLANE_SAMPLES: usize = 8;
 fn on_hull_boundary(network: &Network, topology: &Topology, edge: usize, near: f64) -> bool {
     let e = &topology.brep.edges[edge];
     let c = &network.curves()[e.curve];
-    if matches!(c.role, Role::Keel | Role::Stem | Role::Transom | Role::Deck) {
+    if c.role.bounds_hull() {
         return true;
     }
     (0..=CENTREPLANE_SAMPLES).all(|j| {

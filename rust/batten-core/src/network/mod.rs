@@ -73,6 +73,12 @@ impl Role {
         }
     }
 
+    /// Whether a curve of this role is part of the hull's designed boundary (keel, stem,
+    /// transom, deck): the edge of the surface, with faces on one side only.
+    pub fn bounds_hull(self) -> bool {
+        matches!(self, Role::Keel | Role::Stem | Role::Transom | Role::Deck)
+    }
+
     /// The role of a lowercase name (case-insensitive), `None` if there is no such role.
     pub fn from_name(name: &str) -> Option<Role> {
         let lower = name.to_ascii_lowercase();

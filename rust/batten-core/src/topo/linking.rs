@@ -8,7 +8,8 @@ use glam::DVec3;
 
 use super::adjacency::Adjacency;
 use super::brep::{Brep, HalfEdgeId};
-use super::rotation::{ccw_order, confidence, off_plane, orient_normals, raw_normal, RawNormal};
+use super::orientation::{orient_normals, Step};
+use super::rotation::{ccw_order, confidence, off_plane, raw_normal, RawNormal};
 use crate::curve::BezierDecomposition;
 
 /// A node whose unit edge tangents have a tip farther than this from the best plane through
@@ -72,7 +73,12 @@ pub(crate) fn link(
         })
         .collect();
     let neighbours = outgoing.map(|h| brep.destination(h).index());
-    let normals = orient_normals(&raw, &neighbours);
+    let steps = outgoing.map(|h| Step {
+        to: brep.destination(h).index(),
+        leaving: dirs[h.index()],
+        arriving: -dirs[brep.half_edge(h).twin.index()],
+    });
+    let normals = orient_normals(&raw, &steps);
 
     let mut position_in_rotation = vec![0usize; brep.half_edges.len()];
     let (mut keys, mut order, mut hs) = (Vec::new(), Vec::new(), Vec::new());

@@ -3,8 +3,9 @@
 //! automatically (§5.2) with their true corners, plus diagnostics that name curves and places.
 //!
 //! [`Topology::build`] is the pipeline; each step is a module: [`nodes`] → [`edges`] →
-//! [`half_edges`] → [`linking`] (the rotation system) → [`shells`] and [`loops`] (faces and
-//! boundary loops) → [`findings`] (with the B-rep [`checks`]).
+//! [`half_edges`] → [`linking`] (the rotation system, its normals oriented by
+//! [`orientation`]) → [`shells`] and [`loops`] (faces and boundary loops) → [`findings`] (with
+//! the B-rep [`checks`]).
 
 mod adjacency;
 mod brep;
@@ -17,6 +18,7 @@ mod linking;
 mod loops;
 mod node_kind;
 mod nodes;
+mod orientation;
 mod rotation;
 mod shells;
 mod topology;

@@ -3,11 +3,8 @@
 //! the incident edges sorted counter-clockwise about it (H-rep paper §5.2: "the number of edges
 //! bounding a patch … is resolved by the system").
 
-use std::collections::VecDeque;
-
 use glam::DVec3;
 
-use super::adjacency::Adjacency;
 use crate::curve::{BezierDecomposition, PointDerivs};
 
 /// Below this sine of the angle between two tangents they are taken as parallel, so they do
@@ -72,7 +69,8 @@ impl EvalCache {
     }
 }
 
-/// A node's surface normal from its tangents, before orientation ([`orient_normals`]).
+/// A node's surface normal from its tangents, before orientation
+/// ([`orient_normals`](super::orientation::orient_normals)).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RawNormal {
     /// The unit normal, either sign ([`raw_normal`]).
@@ -120,7 +118,8 @@ pub(crate) fn raw_normal(tangents: &[DVec3]) -> Option<DVec3> {
 }
 
 /// How well a set of tangents defines a plane: the largest sine between two of them (the
-/// confidence of a node's [`raw_normal`], which [`orient_normals`] starts from).
+/// confidence of a node's [`raw_normal`], which
+/// [`orient_normals`](super::orientation::orient_normals) starts from).
 pub(crate) fn confidence(tangents: &[DVec3]) -> f64 {
     let mut best: f64 = 0.0;
     for (i, a) in tangents.iter().enumerate() {
@@ -179,51 +178,6 @@ fn plane_normal(points: &[DVec3]) -> Option<DVec3> {
         DVec3::new(xy * yz - xz * yy, xy * xz - yz * xx, det_z)
     };
     n.try_normalize()
-}
-
-/// Orient the raw normals consistently over each connected part of the graph by breadth-first
-/// propagation from the vertex with the best-defined normal: a neighbour's normal is flipped
-/// when it points against the normal it is reached from. Vertices without a normal (all
-/// tangents parallel) take the normal they are reached from. Returns one unit normal per vertex
-/// (zero for vertices without edges).
-pub(crate) fn orient_normals(
-    raw: &[Option<RawNormal>],
-    neighbours: &Adjacency<usize>,
-) -> Vec<DVec3> {
-    let n = raw.len();
-    let mut out = vec![DVec3::ZERO; n];
-    let mut seen = vec![false; n];
-    let mut order: Vec<usize> = (0..n).filter(|&v| !neighbours.row(v).is_empty()).collect();
-    // Start each part at its most confident normal.
-    order.sort_by(|&a, &b| {
-        let ca = raw[a].map_or(0.0, |r| r.confidence);
-        let cb = raw[b].map_or(0.0, |r| r.confidence);
-        cb.total_cmp(&ca).then(a.cmp(&b))
-    });
-    let mut queue = VecDeque::new();
-    for start in order {
-        if seen[start] {
-            continue;
-        }
-        seen[start] = true;
-        out[start] = raw[start].map_or(DVec3::Z, |r| r.normal);
-        queue.push_back(start);
-        while let Some(u) = queue.pop_front() {
-            for &v in neighbours.row(u) {
-                if seen[v] {
-                    continue;
-                }
-                seen[v] = true;
-                out[v] = match raw[v] {
-                    Some(RawNormal { normal: nv, .. }) if nv.dot(out[u]) < 0.0 => -nv,
-                    Some(RawNormal { normal: nv, .. }) => nv,
-                    None => out[u],
-                };
-                queue.push_back(v);
-            }
-        }
-    }
-    out
 }
 
 /// Tangent angles (radians) closer than this are a tie, broken further along the edges.

@@ -14,6 +14,17 @@ use crate::union_find::UnionFind;
 /// rotation system).
 const NODE_CORNER_ANGLE: f64 = 1e-3;
 
+/// A corner of a hull boundary curve ([`Role::bounds_hull`](crate::network::Role::bounds_hull):
+/// keel, stem, transom, deck) where
+/// its tangent turns by more than this (15°, the H-rep paper's minimum angle between tangents,
+/// §3.2.2, as [`CORNER_ANGLE_DEGREES`](crate::topo::CORNER_ANGLE_DEGREES) for a face's corners)
+/// is a node even where no other curve meets it: the surface lies on one side of such a curve
+/// only, so its knuckle is a true corner of the face there (the profile round the aft end of a
+/// shaft boss, whose knuckles are the corners of the boss's end face). A knuckle of a curve
+/// inside the surface may be a crease across it rather than a corner of the faces on either
+/// side, and stays inside their sides.
+pub(crate) const KNUCKLE_NODE_DEGREES: f64 = 15.0;
+
 /// Put an incidence within the tolerance of one of its curve's corners at the corner: the
 /// node is at the knuckle, and the edges on either side leave it along the one-sided tangents
 /// of their own sides. (Found a little off the corner, the parameter would give both edges the
@@ -62,6 +73,18 @@ pub(super) fn cluster(
         }
         let (a, b) = p.curve.domain();
         for t in [a, b] {
+            incs.push(CurvePoint {
+                incidence: Incidence { curve: ci, t },
+                point: p.curve.point(t),
+            });
+        }
+    }
+    // Knuckles of the boundary, after all the ends (ends keep the first node numbers).
+    for (ci, p) in prepared.iter().enumerate() {
+        if excluded[ci] || !curves[ci].role.bounds_hull() {
+            continue;
+        }
+        for t in p.curve.corner_parameters(KNUCKLE_NODE_DEGREES.to_radians()) {
             incs.push(CurvePoint {
                 incidence: Incidence { curve: ci, t },
                 point: p.curve.point(t),
