@@ -42,11 +42,11 @@ pub use hull::{
     KNUCKLE_POINT_ANGLE_DEGREES,
 };
 pub use hydro::{
-    default_datums, float_to, hydrostatics, immersed_section_area, level_draft, sectional_areas,
-    CellDensity, Datums, Flotation, HullGeometry, HydroError, Hydrostatics, OpenChain,
-    PatchHydroModel, SectionArc, SectionSegment, TriangleHull, Waterplane, WetIntegrals,
+    default_datums, float_to, hydrostatics, immersed_section_area, is_port_half, level_draft,
+    sectional_areas, CellDensity, Datums, Flotation, HullGeometry, HydroError, Hydrostatics,
+    OpenChain, PatchHydroModel, SectionArc, SectionSegment, TriangleHull, Waterplane, WetIntegrals,
     CAP_FLATNESS_RELATIVE, CENTREPLANE_RELATIVE, CENTREPLANE_TOLERANCE_RELATIVE,
-    ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
+    ENTRANCE_FIT_FRACTION, HALF_HULL_SLACK, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

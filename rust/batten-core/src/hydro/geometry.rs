@@ -9,6 +9,17 @@ use glam::DVec3;
 use super::integrals::WetIntegrals;
 use super::waterplane::Waterplane;
 
+/// How far to starboard (as a fraction of its greatest `y`) a surface open along the centreplane
+/// may reach and still be a port half: a patch folding a little across the centreplane (a
+/// forefoot's fit hooking back) is a defect the build report names, not a second side.
+pub const HALF_HULL_SLACK: f64 = 0.05;
+
+/// Whether a surface spanning `min_y ..= max_y`, with free edges in the centreplane or not, is a
+/// port half answered for both sides.
+pub fn is_port_half(min_y: f64, max_y: f64, open_on_centreplane: bool) -> bool {
+    open_on_centreplane && max_y > 0.0 && min_y >= -HALF_HULL_SLACK * max_y
+}
+
 /// One oriented piece of a plane section of the hull: from `a` to `b` along `m × n` (`m` the
 /// plane's normal, `n` the hull's outward normal), so a closed section runs counter-clockwise
 /// about `m` round the inside of the hull.

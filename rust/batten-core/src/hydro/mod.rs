@@ -29,7 +29,9 @@ pub use caps::CAP_FLATNESS_RELATIVE;
 pub use cells::CellDensity;
 pub use error::HydroError;
 pub use float::{float_to, level_draft};
-pub use geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
+pub use geometry::{
+    is_port_half, HullGeometry, OpenChain, SectionArc, SectionSegment, HALF_HULL_SLACK,
+};
 pub use hydrostatics::{
     default_datums, hydrostatics, immersed_section_area, sectional_areas, Hydrostatics,
     ENTRANCE_FIT_FRACTION, SECTION_TOLERANCE_RELATIVE,

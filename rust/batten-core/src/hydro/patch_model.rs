@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::cells::{build_cells, Cell, CellDensity, CellMoments};
 use super::clip::{wetness, CellWetness};
 use super::contour::cell_section;
-use super::geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
+use super::geometry::{is_port_half, HullGeometry, OpenChain, SectionArc, SectionSegment};
 use super::integrals::WetIntegrals;
 use super::open_edges::{chains, free_edge_list};
 use super::waterplane::Waterplane;
@@ -94,9 +94,17 @@ impl PatchHydroModel {
         let size = (hi - lo).length();
         let near = CENTREPLANE_RELATIVE * size;
         let (open, on_centreplane) = free_edges(mesh, near);
-        let half = lo.y >= -near && on_centreplane;
+        // The surface's own extent across (the mesh's points lie on it; a cell's net may reach
+        // beyond a folded patch).
+        let (min_y, max_y) = mesh
+            .positions
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[1]), b.max(p[1]))
+            });
+        let half = is_port_half(min_y, max_y, on_centreplane);
         if half {
-            lo.y = -hi.y;
+            lo.y = lo.y.min(-hi.y);
         }
         PatchHydroModel {
             cells,

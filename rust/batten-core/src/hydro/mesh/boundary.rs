@@ -5,7 +5,7 @@
 use glam::DVec3;
 use rustc_hash::FxHashMap;
 
-use crate::hydro::geometry::OpenChain;
+use crate::hydro::geometry::{is_port_half, OpenChain};
 
 /// The free boundary of a mesh, as the hydrostatics read it.
 #[derive(Clone, Debug)]
@@ -120,7 +120,12 @@ pub(super) fn boundary(positions: &[DVec3], triangles: &[[u32; 3]], centre_tol: 
     let free = free_edges(positions.len(), triangles);
     let on_centre = |v: u32| positions[v as usize].y.abs() <= centre_tol;
     let min_y = positions.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);
-    let half = min_y >= -centre_tol && free.iter().any(|e| on_centre(e[0]) && on_centre(e[1]));
+    let max_y = positions
+        .iter()
+        .map(|p| p.y)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let on_centreplane = free.iter().any(|e| on_centre(e[0]) && on_centre(e[1]));
+    let half = is_port_half(min_y, max_y, on_centreplane);
     let open: Vec<[u32; 2]> = free
         .into_iter()
         .filter(|e| !(half && on_centre(e[0]) && on_centre(e[1])))
