@@ -1,0 +1,178 @@
+"""Pictures of the hydrostatics: the sectional area curve and the curves of form, drawn to PNG
+files (:mod:`batten.chart`) and shown as Blender images (``bpy.data.images``, updated in place
+on every re-plot and packed into the .blend, so they stay with the file).
+
+The numbers come from :mod:`batten.api` (:func:`~batten.api.sectional_areas`,
+:func:`~batten.api.hydrostatics`, :func:`~batten.api.curves_of_form`); this module only draws
+them.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from .chart import PALETTE, Axes, Canvas
+
+#: Image sizes, pixels (width, height).
+SAC_SIZE = (1400, 700)
+CURVES_OF_FORM_SIZE = (1800, 1400)
+#: Text size of the charts, pixels.
+TEXT_SIZE = 16
+#: Colour of the area under the sectional area curve (the volume it integrates to).
+SAC_FILL = (0.0, 0.447, 0.698, 0.12)
+
+#: The panels of the curves of form, each against the draft (vertical axis, as naval
+#: architects draw them): a title, the unit of its horizontal axis, and its curves (key,
+#: legend label).
+CURVES_OF_FORM_PANELS: tuple[tuple[str, str, tuple[tuple[str, str], ...]], ...] = (
+    ("Volume ∇", "m³", (("volume", "∇"),)),
+    ("Displacement Δ", "t", (("displacement", "Δ"),)),
+    ("Wetted surface S", "m²", (("wetted_area", "S"),)),
+    ("Waterplane area Awp", "m²", (("waterplane_area", "Awp"),)),
+    ("KB and KMt", "m", (("vcb", "KB"), ("kmt", "KMt"))),
+    ("BMt", "m", (("bmt", "BMt"),)),
+    ("BMl", "m", (("bml", "BMl"),)),
+    ("LCB and LCF (x)", "m", (("lcb", "LCB"), ("lcf", "LCF"))),
+    ("TPC", "t/cm", (("tpc", "TPC"),)),
+    ("MTC (basis Lpp)", "t·m/cm", (("mtc", "MTC"),)),
+    ("Coefficients", "-", (("cb", "Cb"), ("cp", "Cp"), ("cm", "Cm"), ("cwp", "Cwp"))),
+    ("Midship area Am", "m²", (("midship_area", "Am"),)),
+)
+#: Panels per row of the curves of form.
+PANEL_COLUMNS = 4
+
+
+def sac_image_name(hull: str) -> str:
+    """The Blender image of a hull's sectional area curve."""
+    return f"{hull} SAC"
+
+
+def curves_of_form_image_name(hull: str) -> str:
+    """The Blender image of a hull's curves of form."""
+    return f"{hull} curves of form"
+
+
+def sac_png(hull: str, xs, areas, figures: dict, path) -> tuple[Path, Axes]:
+    """Draw the sectional area curve A(x) of ``hull`` (stations ``xs``, immersed areas
+    ``areas``, as from :func:`batten.api.sectional_areas`) with the aft and forward
+    perpendiculars, midships and the largest section Ax (from ``figures``, the hydrostatics
+    at the same flotation) marked, to the PNG ``path``. Returns the path and the axes (their
+    ``to_px`` places data on the image)."""
+    xs, areas = np.asarray(xs, float), np.asarray(areas, float)
+    x_ap, x_fp = figures["x_ap"], figures["x_fp"]
+    x_ax, a_ax = figures["max_section_x"], figures["max_section_area"]
+    canvas = Canvas(*SAC_SIZE)
+    s = TEXT_SIZE
+    axes = Axes.fit(
+        canvas,
+        (6 * s, 5 * s, SAC_SIZE[0] - 2 * s, SAC_SIZE[1] - 5 * s),
+        np.concatenate([xs, [x_ap, x_fp]]),
+        np.concatenate([areas, [0.0, a_ax]]),
+        xcount=10,
+        ycount=6,
+    )
+    axes.frame(
+        xlabel="x (m, forward)",
+        ylabel="A (m²)",
+        title=f"{hull}: sectional areas at {_flotation_text(figures)}; ∇ = {figures['volume']:,.1f} m³",
+        size=s,
+    )
+    curve = axes.to_px(xs, areas)
+    canvas.fill_below(curve, axes.to_px([xs[0]], [0.0])[0, 1], SAC_FILL)
+    axes.plot(xs, areas, PALETTE[0], width=3.0)
+    axes.vline(x_ap, "AP", size=s)
+    axes.vline(x_fp, "FP", size=s)
+    axes.vline(0.5 * (x_ap + x_fp), "midships", size=s)
+    (px, py) = axes.to_px([x_ax], [a_ax])[0]
+    canvas.disc((px, py), 6.0, PALETTE[1])
+    canvas.text(px + 10, py + 10, f"Ax = {a_ax:,.2f} m² at x = {x_ax:.2f} m", size=s, color=PALETTE[1])
+    return canvas.save_png(path), axes
+
+
+def curves_of_form_png(hull: str, rows: list[dict], path) -> tuple[Path, list[Axes]]:
+    """Draw the curves of form of ``hull`` (``rows``: one hydrostatics dict per draft, as from
+    :func:`batten.api.curves_of_form`) to the PNG ``path``: one panel per quantity of
+    :data:`CURVES_OF_FORM_PANELS`, each against the draft at midships with its own axis and
+    unit. Returns the path and the panels' axes (in that order)."""
+    drafts = np.array([r["draft_mid"] for r in rows], dtype=float)
+    w, h = CURVES_OF_FORM_SIZE
+    s = TEXT_SIZE
+    canvas = Canvas(w, h)
+    n_rows = -(-len(CURVES_OF_FORM_PANELS) // PANEL_COLUMNS)
+    cell_w, cell_h = w / PANEL_COLUMNS, (h - 4 * s) / n_rows
+    canvas.text(
+        w / 2,
+        h - 2 * s,
+        f"{hull}: curves of form ({_condition_text(rows[0])})",
+        size=round(1.3 * s),
+        align="center",
+    )
+    all_axes = []
+    for i, (title, unit, curves) in enumerate(CURVES_OF_FORM_PANELS):
+        col, row = i % PANEL_COLUMNS, i // PANEL_COLUMNS
+        left, top = col * cell_w, h - 4 * s - row * cell_h
+        box = (left + 5.5 * s, top - cell_h + 4 * s, left + cell_w - 1.5 * s, top - 3.5 * s)
+        values = np.array([[r[key] for r in rows] for key, _ in curves], dtype=float)
+        axes = Axes.fit(canvas, box, values, drafts, xcount=4, ycount=5)
+        axes.frame(xlabel=f"{title} ({unit})", ylabel="T (m)", size=s)
+        for j, values_j in enumerate(values):
+            axes.plot(values_j, drafts, PALETTE[j], width=2.5)
+        if len(curves) > 1:
+            axes.legend(
+                [(label, PALETTE[j]) for j, (_k, label) in enumerate(curves)], size=s, corner="top left"
+            )
+        all_axes.append(axes)
+    return canvas.save_png(path), all_axes
+
+
+def _flotation_text(figures: dict) -> str:
+    text = f"T = {figures['draft_mid']:.3f} m"
+    if figures.get("trim"):
+        text += f", trim {figures['trim']:.3f} m"
+    if figures.get("heel"):
+        text += f", heel {figures['heel']:.1f}°"
+    return text
+
+
+def _condition_text(figures: dict) -> str:
+    text = f"ρ = {figures['density']:.4f} t/m³, Lpp = {figures['lpp']:.2f} m"
+    return text + (f", trim {figures['trim']:.3f} m" if figures.get("trim") else ", even keel")
+
+
+def show_image(name: str, path):
+    """The Blender image ``name`` holding the picture in the PNG ``path``: made, or updated in
+    place (resized if need be) when it exists, and packed into the .blend. Returns it."""
+    import bpy
+
+    loaded = bpy.data.images.load(str(path), check_existing=False)
+    try:
+        w, h = loaded.size
+        pixels = np.empty(w * h * 4, dtype=np.float32)
+        loaded.pixels.foreach_get(pixels)
+    finally:
+        bpy.data.images.remove(loaded)
+    image = bpy.data.images.get(name)
+    if image is None:
+        image = bpy.data.images.new(name, w, h, alpha=True)
+    elif tuple(image.size) != (w, h):
+        image.scale(w, h)
+    image.pixels.foreach_set(pixels)
+    image.update()
+    image.pack()
+    return image
+
+
+def plot_image(name: str, draw) -> object:
+    """Run ``draw(path)`` (one of the ``*_png`` functions with its data bound) into a temporary
+    PNG and show it as the Blender image ``name`` (:func:`show_image`); returns the image."""
+    fd, tmp = tempfile.mkstemp(suffix=".png", prefix=".batten_plot_")
+    os.close(fd)
+    try:
+        draw(tmp)
+        return show_image(name, tmp)
+    finally:
+        os.unlink(tmp)
