@@ -311,7 +311,7 @@ def deliver(
     _log(
         f"{name}: max gap {b['max_gap']:.2e} m, max normal jump {b['max_normal_angle_deg']:.4f} deg, "
         f"{b['holes']} hole(s), {b['folds']} fold(s), "
-        f"displacement volume {b['displacement_volume']:.2f} m3, {len(b['warnings'])} warning(s)"
+        f"enclosed volume {b['enclosed_volume']:.2f} m3, {len(b['warnings'])} warning(s)"
     )
     for w in b["warnings"]:
         _log(f"{name}: warning ({w['kind']}): {w['message']}")
