@@ -1,0 +1,28 @@
+"""Chart axes: round ticks covering the data, labelled with the decimals their step needs."""
+
+import numpy as np
+import pytest
+from batten.chart import nice_ticks, tick_labels
+
+
+@pytest.mark.parametrize(
+    ("lo", "hi", "ticks"),
+    [
+        (0.0, 8.0, [0, 2, 4, 6, 8]),
+        (-50.0, 50.0, [-50, -25, 0, 25, 50]),
+        (0.03, 0.97, [0, 0.25, 0.5, 0.75, 1.0]),
+        (3.0, 3.0, [2.6, 2.8, 3.0, 3.2, 3.4]),
+        (0.0, 0.0, [-1, -0.5, 0, 0.5, 1]),
+        (1.0, 312_622.0, [0, 100_000, 200_000, 300_000, 400_000]),
+    ],
+)
+def test_ticks_are_round_and_cover_the_range(lo, hi, ticks):
+    got = nice_ticks(lo, hi, 5)
+    assert np.allclose(got, ticks), got
+    assert got[0] <= lo and got[-1] >= hi
+
+
+def test_labels_use_the_step_s_decimals_and_no_minus_zero():
+    assert tick_labels(np.array([-0.5, -1e-17, 0.5, 1.0])) == ["-0.5", "0.0", "0.5", "1.0"]
+    assert tick_labels(np.array([0.0, 2.5, 5.0])) == ["0.0", "2.5", "5.0"]
+    assert tick_labels(np.array([0.0, 100_000.0])) == ["0", "100000"]
