@@ -1,7 +1,10 @@
 """batten demo, headless: draw each example network as Blender curves, then write
 ``<out>/<name>.blend``, a report ``<out>/<name>.json`` and a render ``<out>/<name>.png``; then
 import the real ships' sections (``shared/hulls`` beside the checkout) with every setting at its
-default, build them the same way and render them from the bow, the stern and the side.
+default, build them the same way and render them from the bow, the stern and the side, and
+write their hydrostatics at the design draft (logged beside the reference figures), their
+sectional area curve ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and
+``.csv``).
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
@@ -251,7 +254,11 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
         f"(largest move {max(r['snap_move'] for r in fits) * 1e3:.2f} mm)"
     )
     extra = {"import_s": round(t_load, 3), "fits": fits}
-    return deliver(
+    reference = _reference(path)
+    if reference is not None:
+        # The Hydrostatics panel starts at the design draft.
+        coll[_batten_module(api, "scene_hydro").DESIGN_DRAFT_TAG] = reference["T"]
+    report = deliver(
         api,
         coll,
         path,
@@ -264,6 +271,69 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
         views=("bow", "stern", "side"),
         tube=SHIP_TUBE,
     )
+    if reference is not None:
+        plot_hydrostatics(api, coll, reference, out)
+    return report
+
+
+def _reference(path: Path) -> dict | None:
+    """A real ship's ``reference.json`` beside its network (None for other section files)."""
+    ref = path.parent / "reference.json"
+    return json.loads(ref.read_text()) if path.stem == "network" and ref.is_file() else None
+
+
+#: The curves of form of a real ship span these shares of its design draft.
+CURVES_OF_FORM_SPAN = (0.2, 1.2)
+CURVES_OF_FORM_DRAFTS = 11
+
+
+def _batten_module(api, name: str):
+    """A module of the batten package ``api`` belongs to (installed as an extension, its
+    package is not ``batten``)."""
+    import importlib
+
+    return importlib.import_module(f"{api.__package__}.{name}")
+
+
+#: (figure key, key in a ship's ``reference.json`` "computed") compared in the log.
+REFERENCE_KEYS = (
+    ("volume", "displaced_volume"),
+    ("lcb", "LCB_from_AP"),
+    ("vcb", "VCB_above_baseline_brep"),
+    ("waterplane_area", "waterplane_area"),
+    ("lcf", "LCF_from_AP"),
+    ("wetted_area", "wetted_surface_below_T"),
+)
+
+
+def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
+    """A real ship's hydrostatics at its design draft (Lpp from its reference), beside the
+    reference figures in the log, its sectional area curve ``<name>_sac.png`` and curves of
+    form ``<name>_curves_of_form.png`` (and ``.csv``)."""
+    import numpy as np
+
+    hydro_plot, hydro_table = _batten_module(api, "hydro_plot"), _batten_module(api, "hydro_table")
+    name, draft, lpp = coll.name, reference["T"], reference["Lpp"]
+    t0 = time.perf_counter()
+    fig = api.hydrostatics(coll, draft, lpp=lpp)
+    _log(f"{name}: hydrostatics at T = {draft} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
+    ref = reference["computed"]
+    for key, ref_key in REFERENCE_KEYS:
+        if ref_key in ref:
+            diff = 100 * (fig[key] / ref[ref_key] - 1)
+            _log(f"{name}: {key} {fig[key]:.3f} (reference {ref[ref_key]}, {diff:+.3f} %)")
+    xs, areas = api.sectional_areas(coll, draft, 41, lpp=lpp)
+    sac = out / f"{name}_sac.png"
+    hydro_plot.sac_png(name, xs, areas, fig, sac)
+    _log(f"{name}: sectional area curve {sac}")
+    drafts = draft * np.linspace(*CURVES_OF_FORM_SPAN, CURVES_OF_FORM_DRAFTS)
+    t0 = time.perf_counter()
+    rows = api.curves_of_form(coll, drafts, lpp=lpp)
+    t_cof = time.perf_counter() - t0
+    cof = out / f"{name}_curves_of_form.png"
+    hydro_plot.curves_of_form_png(name, rows, cof)
+    hydro_table.curves_of_form_csv(rows, cof.with_suffix(".csv"))
+    _log(f"{name}: curves of form ({len(rows)} drafts in {t_cof:.2f} s) {cof} and .csv")
 
 
 def deliver(
