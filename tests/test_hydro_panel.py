@@ -251,3 +251,56 @@ def test_the_waterline_overlay_follows_draft_trim_and_heel(stub_api, wigley):
     assert corners[aft, 2] > 5.0 > corners[fwd, 2], "by the stern: deeper aft"
     settings.show_waterline = False
     assert len(overlay.water_surface(bpy.context)) == 0
+
+
+class _Layout:
+    """Records what a panel draws: labels, properties, operators, and alert boxes (headless)."""
+
+    def __init__(self, record=None):
+        self.record = {"labels": [], "props": [], "ops": [], "alerts": []} if record is None else record
+        self.alert = False
+
+    def label(self, text="", icon="NONE"):
+        self.record["labels"].append(text)
+        if self.alert:
+            self.record["alerts"].append(text)
+
+    def prop(self, _data, name, **_kwargs):
+        self.record["props"].append(name)
+
+    def operator(self, idname, **_kwargs):
+        self.record["ops"].append(idname)
+        return type("Op", (), {})()
+
+    def _child(self, **_kwargs):
+        child = _Layout(self.record)
+        child.alert = self.alert
+        return child
+
+    box = column = row = split = _child
+
+
+def _draw_panel() -> dict:
+    from batten.panels import VIEW3D_PT_batten_hydrostatics
+
+    panel = type("Panel", (), {"layout": _Layout()})()
+    VIEW3D_PT_batten_hydrostatics.draw(panel, bpy.context)
+    return panel.layout.record
+
+
+def test_the_panel_shows_the_settings_the_table_with_units_and_the_error(stub_api, wigley):
+    settings = bpy.context.scene.batten
+    settings.draft = 5.0
+    drawn = _draw_panel()
+    assert {"draft", "trim", "heel", "density", "lpp", "show_waterline"} <= set(drawn["props"])
+    assert {"batten.hydrostatics", "batten.sectional_areas", "batten.curves_of_form"} <= set(drawn["ops"])
+    assert {"batten.export_hydrostatics", "batten.float_to"} <= set(drawn["ops"])
+    assert "Volume ∇" not in drawn["labels"], "no table before Compute"
+    bpy.ops.batten.hydrostatics()
+    labels = _draw_panel()["labels"]
+    assert "Volume ∇" in labels and "2,222.22 m³" in labels and "0.4444" in labels
+    assert labels[labels.index("BMt") + 1] == f"{3 * B**2 / 35 / 5.0:.3f} m"
+    settings.draft = -1.0
+    drawn = _draw_panel()
+    assert drawn["alerts"] and "below the keel" in " ".join(drawn["alerts"])
+    assert "Volume ∇" not in drawn["labels"]
