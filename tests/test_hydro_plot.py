@@ -9,18 +9,6 @@ from batten import chart, hydro_plot
 L, B, T = 100.0, 10.0, 6.25
 
 
-def _pixels(path) -> np.ndarray:
-    """The PNG at ``path`` as (h, w, 4) floats, row 0 at the bottom."""
-    image = bpy.data.images.load(str(path), check_existing=False)
-    try:
-        w, h = image.size
-        px = np.empty(w * h * 4, dtype=np.float32)
-        image.pixels.foreach_get(px)
-    finally:
-        bpy.data.images.remove(image)
-    return px.reshape(h, w, 4)
-
-
 def _is_background(rgba) -> np.ndarray:
     return np.all(np.asarray(rgba)[..., :3] > 0.97, axis=-1)
 
@@ -51,7 +39,7 @@ def test_the_sac_image_has_its_curve_marks_and_numbers(tmp_path):
     xs = np.linspace(-L / 2, L / 2, 21)
     areas = 2 / 3 * B * T * (1 - (2 * xs / L) ** 2)
     path, axes = hydro_plot.sac_png("wigley", xs, areas, _figures(T), tmp_path / "sac.png")
-    pixels = _pixels(path)
+    pixels = hydro_plot.png_pixels(path)
     assert pixels.shape[:2] == hydro_plot.SAC_SIZE[::-1]
     # The curve: drawn at every station, in the curve's colour at a quarter length (Ax is marked at midships).
     on = axes.to_px(xs, areas)
@@ -77,7 +65,7 @@ def test_the_curves_of_form_have_every_panel_s_curves(tmp_path):
     for r in rows:
         r.update(density=1.025, lpp=L, trim=0.0)
     path, all_axes = hydro_plot.curves_of_form_png("wigley", rows, tmp_path / "cof.png")
-    pixels = _pixels(path)
+    pixels = hydro_plot.png_pixels(path)
     assert pixels.shape[:2] == hydro_plot.CURVES_OF_FORM_SIZE[::-1]
     assert len(all_axes) == len(hydro_plot.CURVES_OF_FORM_PANELS)
     for axes, (title, _unit, curves) in zip(all_axes, hydro_plot.CURVES_OF_FORM_PANELS, strict=True):

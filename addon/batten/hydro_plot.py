@@ -143,9 +143,9 @@ def _condition_text(figures: dict) -> str:
     return text + (f", trim {figures['trim']:.3f} m" if figures.get("trim") else ", even keel")
 
 
-def show_image(name: str, path):
-    """The Blender image ``name`` holding the picture in the PNG ``path``: made, or updated in
-    place (resized if need be) when it exists, and packed into the .blend. Returns it."""
+def png_pixels(path) -> np.ndarray:
+    """The image file at ``path`` as RGBA floats (h, w, 4), row 0 at the bottom (read by
+    Blender; no image is left behind)."""
     import bpy
 
     loaded = bpy.data.images.load(str(path), check_existing=False)
@@ -155,12 +155,22 @@ def show_image(name: str, path):
         loaded.pixels.foreach_get(pixels)
     finally:
         bpy.data.images.remove(loaded)
+    return pixels.reshape(h, w, 4)
+
+
+def show_image(name: str, path):
+    """The Blender image ``name`` holding the picture in the PNG ``path``: made, or updated in
+    place (resized if need be) when it exists, and packed into the .blend. Returns it."""
+    import bpy
+
+    pixels = png_pixels(path)
+    h, w = pixels.shape[:2]
     image = bpy.data.images.get(name)
     if image is None:
         image = bpy.data.images.new(name, w, h, alpha=True)
     elif tuple(image.size) != (w, h):
         image.scale(w, h)
-    image.pixels.foreach_set(pixels)
+    image.pixels.foreach_set(pixels.ravel())
     image.update()
     image.pack()
     return image
