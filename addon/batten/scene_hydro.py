@@ -12,6 +12,7 @@ from contextlib import contextmanager
 import numpy as np
 
 from . import api
+from .bridge import curves_in
 
 #: Custom property of a hull collection holding its design draft (m), set by scripts (the demo
 #: sets the real ships' from their reference hydrostatics); the Draft starts there.
@@ -81,9 +82,13 @@ def last_figures(settings) -> dict:
 
 def hull_box(source) -> tuple[np.ndarray, np.ndarray]:
     """The world box ``(lo, hi)`` of the control points of the curves of ``source`` (a
-    collection or objects): it holds the curves, so the hull (read from the curves, not from
-    Blender's bound boxes, which lag behind an edit until the depsgraph is evaluated)."""
-    points = np.concatenate([c.control_points.reshape(-1, 3) for c in api.read_curves(source)])
+    collection or objects): it holds the curves, so the hull. Read from the curves' data, as
+    the overlay does on every redraw (not from Blender's bound boxes, which lag behind an edit
+    until the depsgraph is evaluated). InvalidArgumentError when it has no finite points."""
+    points = np.concatenate([curves_in.control_points(obj) for obj in api.curve_objects(source)])
+    points = points[np.isfinite(points).all(axis=1)]
+    if not len(points):
+        raise api.InvalidArgumentError("the hull's curves have no finite control points")
     return points.min(axis=0), points.max(axis=0)
 
 
