@@ -304,3 +304,19 @@ def test_the_panel_shows_the_settings_the_table_with_units_and_the_error(stub_ap
     drawn = _draw_panel()
     assert drawn["alerts"] and "below the keel" in " ".join(drawn["alerts"])
     assert "Volume ∇" not in drawn["labels"]
+
+
+def test_the_hull_box_holds_bezier_handles_and_the_object_transform():
+    from batten.scene_hydro import hull_box
+    from helpers import new_bezier
+    from mathutils import Matrix
+
+    obj = new_bezier(
+        "stem",
+        [(0, 0, 0), (0, 0, 4)],
+        [(0, -1, -1), (0, 2, 3)],
+        [(0, 1, 1), (3, 0, 5)],
+        matrix=Matrix.Translation((10, 0, 1)),
+    )
+    lo, hi = hull_box([obj])
+    assert lo.tolist() == [10, -1, 0] and hi.tolist() == [13, 2, 6]
