@@ -2,9 +2,9 @@
 ``<out>/<name>.blend``, a report ``<out>/<name>.json`` and a render ``<out>/<name>.png``; then
 import the real ships' sections (``shared/hulls`` beside the checkout) with every setting at its
 default, build them the same way and render them from the bow, the stern and the side, and
-write their hydrostatics at the design draft (logged beside the reference figures), their
-sectional area curve ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and
-``.csv``).
+write their hydrostatics at the design draft (logged beside the reference figures, and in
+``<name>_hydrostatics.csv``), their sectional area curve ``<name>_sac.png`` and curves of form
+``<name>_curves_of_form.png`` (and ``.csv``).
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
@@ -308,8 +308,8 @@ REFERENCE_KEYS = (
 
 def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
     """A real ship's hydrostatics at its design draft (Lpp from its reference), beside the
-    reference figures in the log, its sectional area curve ``<name>_sac.png`` and curves of
-    form ``<name>_curves_of_form.png`` (and ``.csv``)."""
+    reference figures in the log and in ``<name>_hydrostatics.csv``, its sectional area curve
+    ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and ``.csv``)."""
     import numpy as np
 
     hydro_plot, hydro_table = _batten_module(api, "hydro_plot"), _batten_module(api, "hydro_table")
@@ -322,6 +322,7 @@ def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
         if ref_key in ref:
             diff = 100 * (fig[key] / ref[ref_key] - 1)
             _log(f"{name}: {key} {fig[key]:.3f} (reference {ref[ref_key]}, {diff:+.3f} %)")
+    hydro_table.hydrostatics_csv(fig, out / f"{name}_hydrostatics.csv")
     xs, areas = api.sectional_areas(coll, draft, 41, lpp=lpp)
     sac = out / f"{name}_sac.png"
     hydro_plot.sac_png(name, xs, areas, fig, sac)
