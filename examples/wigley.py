@@ -9,7 +9,11 @@ waterline of it is a parabola, so each curve is an exact rational-free quadratic
 hydrostatics (both halves, to the design waterline): volume ∇ = (4/9)·L·B·T, waterplane area
 A_wp = (2/3)·L·B, block coefficient C_B = 4/9.
 
-    python examples/wigley.py            # rewrites examples/wigley.json
+It writes two drawings of the same hull: ``wigley.json`` (7 stations, 3 waterlines: the light
+example) and ``wigley_lines.json`` (15 stations at L/16, 6 waterlines at T/6, as a lines plan
+would draw it: its surface is within 0.01 % of the analytic hydrostatics at T and T/2).
+
+    python examples/wigley.py            # rewrites examples/wigley.json and wigley_lines.json
 """
 
 from __future__ import annotations
@@ -58,9 +62,16 @@ def waterline(z: float, name: str, role: str = "free"):
     return curve(name, role, 2, [0, 0, 0, 1, 1, 1], pts)
 
 
-def network() -> dict:
-    curves = [station(x) for x in STATIONS]
-    curves += [waterline(z, f"waterline {z:.3f}") for z in WATERLINES[:-1]]
+#: The lines-plan drawing: 15 stations at L/16 and 6 waterlines at T/6.
+LINES_STATIONS = [L * k / 16.0 for k in range(-7, 8)]
+LINES_WATERLINES = [T * k / 6.0 for k in range(1, 7)]
+
+
+def network(stations=None, waterlines=None, name: str = "wigley") -> dict:
+    stations = STATIONS if stations is None else stations
+    waterlines = WATERLINES if waterlines is None else waterlines
+    curves = [station(x) for x in stations]
+    curves += [waterline(z, f"waterline {z:.3f}") for z in waterlines[:-1]]
     curves.append(waterline(T, "design waterline"))
     curves.append(waterline(DECK, "deck edge", "deck"))
     curves.append(curve("keel", "keel", 1, [0, 0, 1, 1], [(-L / 2, 0.0, 0.0), (L / 2, 0.0, 0.0)]))
@@ -69,7 +80,7 @@ def network() -> dict:
     return {
         "format": "batten-network",
         "version": 1,
-        "name": "wigley",
+        "name": name,
         "curves": curves,
     }
 
@@ -78,7 +89,12 @@ def text() -> str:
     return json.dumps(network(), indent=2) + "\n"
 
 
+def lines_text() -> str:
+    return json.dumps(network(LINES_STATIONS, LINES_WATERLINES, "wigley lines"), indent=2) + "\n"
+
+
 if __name__ == "__main__":
-    out = Path(__file__).with_name("wigley.json")
-    out.write_text(text())
-    print(f"wrote {out}")
+    for file, body in (("wigley.json", text()), ("wigley_lines.json", lines_text())):
+        out = Path(__file__).with_name(file)
+        out.write_text(body)
+        print(f"wrote {out}")

@@ -31,16 +31,18 @@ from batten_native import (
     DEFAULT_SECTION_TOLERANCE,
     DEFAULT_TOLERANCE,
     ROLES,
+    SEA_WATER_DENSITY,
     SECTION_CAPTURE_FACTOR,
     BattenError,
     Curve,
     CurveError,
     FairError,
+    HydrostaticsError,
     InternalError,
     InvalidArgumentError,
     NetworkFileError,
     NoSurfaceError,
-    build_surface,
+    build_hull_model,
     check_lengths,
     chines_from_knuckles,
     fair_points,
@@ -51,6 +53,7 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
+from . import hull_models
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
@@ -59,6 +62,12 @@ from .object_names import blender_name, errors_named_by_object, objects_of, with
 
 __all__ = [
     "BuildResult",
+    "HydrostaticsError",
+    "SEA_WATER_DENSITY",
+    "curves_of_form",
+    "float_to",
+    "hydrostatics",
+    "sectional_areas",
     "build",
     "read_network",
     "DEFAULT_TOLERANCE",
@@ -513,7 +522,9 @@ def build(
     curves, object_of = _read_source(source)
     name = _source_name(source)
     with errors_named_by_object(object_of):
-        (positions, corners, sizes, patch), report = build_surface(curves, tolerance, resolution, name)
+        arrays, report, model = build_hull_model(curves, tolerance, resolution, name)
+    positions, corners, sizes, patch = arrays
+    hull_models.keep(name, curves, tolerance, resolution, model)
     obj = mesh_out.write_surface(
         f"{name} surface", positions, corners, sizes, patch, obj=_surface_object(name), mirror=mirror
     )
@@ -527,3 +538,163 @@ def build(
         {**k, "objects": objects_of([k["curve"]], object_of)} for k in report["knuckle_edges"]
     ]
     return BuildResult(obj, report)
+
+
+# --- Hydrostatics -------------------------------------------------------------------------------
+
+#: Custom properties of a hull collection that give its perpendiculars and design draft (set by
+#: :func:`import_sections` from a file's ``Lpp`` and ``T``, or by hand): ``batten_lpp`` (m),
+#: ``batten_fp`` (x of the forward perpendicular, m) and ``batten_design_draft`` (m).
+LPP_PROPERTY = "batten_lpp"
+FP_PROPERTY = "batten_fp"
+DESIGN_DRAFT_PROPERTY = "batten_design_draft"
+
+
+def _hull_model(source):
+    """The exact surface of the hull in ``source`` (a collection or its name), built if its
+    curves changed since the last build, with errors naming the curve objects."""
+    curves, object_of = _read_source(source)
+    with errors_named_by_object(object_of):
+        return hull_models.model_for(_source_name(source), curves)
+
+
+def _datums(source, lpp, fp):
+    """``(lpp, fp)``: as given, else the collection's ``batten_lpp`` / ``batten_fp``."""
+    coll = source if isinstance(source, bpy.types.Collection) else bpy.data.collections.get(str(source))
+    if coll is not None:
+        if lpp is None and coll.get(LPP_PROPERTY) is not None:
+            lpp = float(coll[LPP_PROPERTY])
+        if fp is None and lpp is not None and coll.get(FP_PROPERTY) is not None:
+            fp = float(coll[FP_PROPERTY])
+    return lpp, fp
+
+
+def design_draft(source) -> float | None:
+    """The design draft the hull collection carries (``batten_design_draft``), or None."""
+    coll = source if isinstance(source, bpy.types.Collection) else bpy.data.collections.get(str(source))
+    if coll is None or coll.get(DESIGN_DRAFT_PROPERTY) is None:
+        return None
+    return float(coll[DESIGN_DRAFT_PROPERTY])
+
+
+def hydrostatics(
+    source,
+    draft: float,
+    *,
+    trim: float = 0.0,
+    heel: float = 0.0,
+    density: float = SEA_WATER_DENSITY,
+    lpp: float | None = None,
+    fp: float | None = None,
+    live: bool = False,
+) -> dict:
+    """The hydrostatics of the hull in ``source`` (a collection or its name), integrated on its
+    patches themselves (both sides of a half hull), floating at ``draft`` (m above the baseline,
+    at midships), ``trim`` (m, T_AP − T_FP, by the stern positive), ``heel`` (degrees, to
+    starboard positive) in water of ``density`` (t/m³).
+
+    Returns a dict of floats, SI units, x forward, z up from the baseline: ``volume`` (m³),
+    ``displacement`` (t), ``density``, ``draft_ap``, ``draft_fp``, ``draft_mid``, ``draft_lcf``,
+    ``trim``, ``heel``, ``x_ap``, ``x_fp``, ``lpp``, ``lwl``, ``bwl``, ``los`` (length of the
+    submerged hull), ``wetted_area`` (the hull's patches under water; an open transom's plane is
+    not plating), ``waterplane_area``, ``midship_area`` (at midships), ``max_section_area`` and
+    ``max_section_x``, ``cb``, ``cp``, ``cm``, ``cwp``, ``cvp`` (on Lpp, Bwl and the midship
+    draft), ``lcb``, ``tcb``, ``vcb`` (= KB), ``lcf``, ``it``, ``il`` (m⁴, about the waterplane's
+    centroid), ``bmt``, ``bml``, ``kmt``, ``kml``, ``tpc`` (t/cm), ``mtc`` (t·m/cm, Δ·BMl/(100·Lpp)),
+    ``transom_area`` (the immersed transom) and ``entrance_half_angle`` (degrees).
+
+    Perpendiculars: ``fp`` (x of FP) with ``lpp``; else the collection's ``batten_lpp`` /
+    ``batten_fp``; else FP at the fore end of the level waterline at ``draft`` and AP ``lpp`` aft
+    of it, or at its aft end (Lpp = Lwl). ``live`` uses coarser cells (about 1e-8 relative) for
+    figures updated while dragging.
+
+    Raises HydrostaticsError when the draft is below the keel or floods the open top, or the
+    surface has a hole under water (the message says where); an open transom in a steep plane is
+    closed by that plane. InvalidArgumentError for NaN, a density ≤ 0, a heel of 90° or more.
+    """
+    model = _hull_model(source)
+    lpp, fp = _datums(source, lpp, fp)
+    return model.hydrostatics(draft, trim, heel, density, lpp, fp, live)
+
+
+def _stations(model, draft, stations, lpp, fp) -> np.ndarray:
+    if isinstance(stations, int | np.integer):
+        if stations < 2:
+            raise InvalidArgumentError(f"stations {stations} must be at least 2 (AP and FP)")
+        x_ap, x_fp = model.datums(draft, lpp, fp)
+        return np.linspace(x_ap, x_fp, int(stations))
+    xs = np.asarray(stations, dtype=np.float64).ravel()
+    if xs.size == 0 or not np.all(np.isfinite(xs)):
+        raise InvalidArgumentError("stations must be a count or a non-empty list of finite x values")
+    return xs
+
+
+def sectional_areas(
+    source,
+    draft: float,
+    stations=21,
+    *,
+    trim: float = 0.0,
+    heel: float = 0.0,
+    lpp: float | None = None,
+    fp: float | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The sectional area curve of the hull in ``source`` at ``draft`` (and ``trim``, ``heel``):
+    ``(xs, areas)``, the immersed area (m², both sides) of each station plane ``x = xs[k]``.
+    ``stations``: a count of stations equally spaced from AP to FP inclusive (21: stations 0 to
+    20), or the x values themselves. Perpendiculars as in :func:`hydrostatics`."""
+    model = _hull_model(source)
+    lpp, fp = _datums(source, lpp, fp)
+    xs = _stations(model, draft, stations, lpp, fp)
+    return xs, model.sectional_areas(draft, xs.tolist(), trim, heel, lpp, fp)
+
+
+def curves_of_form(
+    source,
+    drafts,
+    *,
+    density: float = SEA_WATER_DENSITY,
+    lpp: float | None = None,
+    fp: float | None = None,
+    design: float | None = None,
+) -> list[dict]:
+    """The curves of form of the hull in ``source``: one :func:`hydrostatics` dict per draft of
+    ``drafts`` (upright, level), all about the same perpendiculars — those given, the
+    collection's, or those of the level waterline at ``design`` (default: the collection's
+    design draft, else the deepest of ``drafts``)."""
+    drafts = [float(d) for d in drafts]
+    if not drafts:
+        raise InvalidArgumentError("drafts must hold at least one draft")
+    model = _hull_model(source)
+    lpp, fp = _datums(source, lpp, fp)
+    if fp is None:
+        at = design if design is not None else design_draft(source)
+        x_ap, x_fp = model.datums(at if at is not None else max(drafts), lpp, None)
+        lpp, fp = x_fp - x_ap, x_fp
+    return [model.hydrostatics(d, 0.0, 0.0, density, lpp, fp, False) for d in drafts]
+
+
+def float_to(
+    source,
+    displacement: float,
+    lcg: float,
+    *,
+    vcg: float | None = None,
+    density: float = SEA_WATER_DENSITY,
+    lpp: float | None = None,
+    fp: float | None = None,
+) -> dict:
+    """Float the hull in ``source`` at ``displacement`` (t) with its centre of gravity at
+    x = ``lcg`` (m): the draft and trim (upright) at which it displaces that much with the centre
+    of buoyancy under G — on the true vertical through G when ``vcg`` (m above the baseline) is
+    given, else LCB = LCG as hydrostatic tables take it. Returns the :func:`hydrostatics` dict
+    there (``draft_mid`` and ``trim`` are the answer). Perpendiculars as in :func:`hydrostatics`,
+    found at the level draft of the displacement when not given.
+
+    Raises InvalidArgumentError for a displacement that is not positive or more than the hull
+    holds below its open top; HydrostaticsError when no equilibrium is found or the water reaches
+    a hole."""
+    model = _hull_model(source)
+    lpp, fp = _datums(source, lpp, fp)
+    level = model.level_draft(displacement, density)
+    return model.float_to(displacement, lcg, level, vcg, density, lpp, fp)

@@ -41,9 +41,10 @@ pub use hull::{
     KNUCKLE_POINT_ANGLE_DEGREES,
 };
 pub use hydro::{
-    default_datums, hydrostatics, immersed_section_area, sectional_areas, Datums, Flotation,
-    HullGeometry, HydroError, Hydrostatics, OpenEdgePoint, SectionSegment, Waterplane,
-    WetIntegrals, ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
+    default_datums, float_to, hydrostatics, immersed_section_area, level_draft, sectional_areas,
+    CellDensity, Datums, Flotation, HullGeometry, HydroError, Hydrostatics, OpenChain,
+    PatchHydroModel, SectionArc, SectionSegment, Waterplane, WetIntegrals, CAP_FLATNESS_RELATIVE,
+    CENTREPLANE_RELATIVE, ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

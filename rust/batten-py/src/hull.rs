@@ -1,7 +1,7 @@
 //! The hull surface: network → topology → patches → one welded mesh, as numpy arrays.
 
 use batten_core::{
-    build_hull, HullOptions, Network, Warning, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
+    build_hull, HullOptions, HullSurface, Network, Warning, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
 };
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
@@ -10,6 +10,7 @@ use pyo3::types::PyDict;
 use crate::args::{optional_whole, text};
 use crate::curve::Curve;
 use crate::errors::{core_err, guard, NoSurfaceError};
+use crate::hull_model::HullModel;
 
 /// A warning (or a topology diagnostic) as a dict: `kind`, `message`, `curves` (names),
 /// `location` ([x, y, z] or None) and `error` (`{"kind", "message"}` of the underlying face or
@@ -77,6 +78,33 @@ pub(crate) fn build_surface<'py>(
     resolution: Option<&Bound<'py, PyAny>>,
     name: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
+    let (arrays, report, _) = build(py, curves, tolerance, resolution, name)?;
+    Ok((arrays, report))
+}
+
+/// As [`build_surface`], with a third result: the [`HullModel`] of the surface's patches, for
+/// hydrostatics and sections on the exact surface. The GIL is released.
+#[pyfunction]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None))]
+pub(crate) fn build_hull_model<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    tolerance: f64,
+    resolution: Option<&Bound<'py, PyAny>>,
+    name: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+    let (arrays, report, hull) = build(py, curves, tolerance, resolution, name)?;
+    Ok((arrays, report, HullModel::new(hull)))
+}
+
+/// The build behind both: arrays, report and the surface.
+fn build<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    tolerance: f64,
+    resolution: Option<&Bound<'py, PyAny>>,
+    name: Option<&Bound<'py, PyAny>>,
+) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullSurface)> {
     let resolution =
         optional_whole(resolution, || "resolution".to_owned())?.unwrap_or(DEFAULT_RESOLUTION);
     let options = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
@@ -151,5 +179,5 @@ pub(crate) fn build_surface<'py>(
     d.set_item("warnings", warnings)?;
     d.set_item("mesh_vertices", rows)?;
     d.set_item("mesh_faces", mesh.face_sizes.len())?;
-    Ok((arrays, d))
+    Ok((arrays, d, hull))
 }

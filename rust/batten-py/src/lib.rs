@@ -13,6 +13,7 @@ mod curve;
 mod errors;
 mod fair;
 mod hull;
+mod hull_model;
 mod network;
 mod topology;
 
@@ -60,5 +61,8 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
+    m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
+    m.add_class::<hull_model::HullModel>()?;
+    m.add("SEA_WATER_DENSITY", batten_core::SEA_WATER_DENSITY)?;
     Ok(())
 }

@@ -281,7 +281,8 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
             skipped += 1;
         }
     };
-    if report::area_vector(&mesh).y < 0.0 {
+    let patches_outward = report::area_vector(&mesh).y >= 0.0;
+    if !patches_outward {
         flip(&mut mesh);
     }
     let findings = Findings {
@@ -302,7 +303,15 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
     for p in &mut mesh.face_patch {
         *p = patched[*p as usize].face as u32;
     }
-    Ok(HullSurface { mesh, report })
+    let patch_faces = patched.iter().map(|p| p.face).collect();
+    let patches = patched.into_iter().map(|p| p.patch).collect();
+    Ok(HullSurface {
+        mesh,
+        report,
+        patches,
+        patch_faces,
+        patches_outward,
+    })
 }
 
 /// The warnings' messages, joined for an error message.

@@ -33,7 +33,7 @@ mod warning;
 use crate::defaults::{DEFAULT_RESOLUTION, MAX_RESOLUTION};
 use crate::error::Error;
 use crate::network::Network;
-use crate::patch::SurfaceMesh;
+use crate::patch::{Patch, SurfaceMesh};
 use crate::tolerance::Tolerance;
 
 pub use folds::{BOX_SLACK, FOLD_ANGLE_DEGREES};
@@ -89,7 +89,10 @@ impl Default for HullOptions {
 }
 
 /// The hull surface: the welded mesh of all patches and its report (H-rep paper §3).
-#[derive(Clone, Debug, PartialEq)]
+///
+/// Two surfaces compare equal when their meshes and reports do (the patches are what made
+/// them).
+#[derive(Clone, Debug)]
 pub struct HullSurface {
     /// One welded mesh; `face_patch` holds, for every polygon, the index of its face in the
     /// topology (`Topology::faces`, §3.1; a skipped face has no polygons). Consistently
@@ -97,6 +100,21 @@ pub struct HullSurface {
     pub mesh: SurfaceMesh,
     /// What was built and how well.
     pub report: HullReport,
+    /// The patches themselves, one per face that was patched, in topology face order
+    /// (`patch_faces[k]` is the face of `patches[k]`): the exact surface the mesh samples, for
+    /// hydrostatics and sections.
+    pub patches: Vec<Patch>,
+    /// The topology face of each patch.
+    pub patch_faces: Vec<usize>,
+    /// Whether `∂P/∂u × ∂P/∂v` of the patches points out of the hull (false when the mesh was
+    /// flipped to face away from the centreplane).
+    pub patches_outward: bool,
+}
+
+impl PartialEq for HullSurface {
+    fn eq(&self, other: &HullSurface) -> bool {
+        self.mesh == other.mesh && self.report == other.report
+    }
 }
 
 /// Build the hull surface of a curve network (the H-rep paper's pipeline, §3 and §5.2).

@@ -19,7 +19,7 @@ pub enum HydroError {
     },
     /// The waterplane is above the top of the surface somewhere: the hull would fill over its
     /// open top (the deck edge) and no volume is bounded.
-    #[error("the water at draft {draft} m covers the top of the surface near ({x:.3}, {y:.3}, {z:.3}) m: the hull is open above and floods there")]
+    #[error("the water at draft {draft} m is over the open top of the surface near ({x:.3}, {y:.3}, {z:.3}) m (its deck edge): the hull floods there")]
     DraftAboveTop {
         /// The draft asked for (at midships).
         draft: f64,

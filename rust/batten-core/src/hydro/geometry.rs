@@ -14,16 +14,23 @@ use super::waterplane::Waterplane;
 /// about `m` round the inside of the hull.
 pub type SectionSegment = [DVec3; 2];
 
-/// Where a free edge of the surface (or of its mirror image) lies relative to the water.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OpenEdgePoint {
-    /// A point of the free edge.
-    pub point: DVec3,
+/// A plane section's piece as an arc: its start, the section's point halfway along it, and its
+/// end (oriented as [`SectionSegment`]); the parabola through them follows the section to
+/// fourth order, so areas by Simpson's rule on arcs converge much faster than on chords.
+pub type SectionArc = [DVec3; 3];
+
+/// A chain of the surface's free edges that its mirror image does not close (for a half hull,
+/// every free edge off the centreplane): the deck edge, an open transom's outline, a hole's rim.
+/// Under water, a chain lying in one steep plane is closed by that plane (an open transom, as
+/// section-based hydrostatics close it); any other is a hole.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OpenChain {
+    /// The chain's points in order along it.
+    pub points: Vec<DVec3>,
+    /// Whether the last point joins the first (a loop).
+    pub closed: bool,
     /// The curves around it, where known.
     pub curves: Vec<String>,
-    /// Whether the edge is the hull's designed open boundary (the deck edge, a transom or top
-    /// outline) rather than a hole: under water it means the draft is above the top.
-    pub designed: bool,
 }
 
 /// A hull surface whose hydrostatics can be computed. A half hull (port side, `y ≥ 0`, open
@@ -36,13 +43,22 @@ pub trait HullGeometry: Sync {
     /// `{p : m·p = c}`, `m` a unit normal; accurate to within `tolerance` (m) of the surface.
     fn plane_section(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionSegment>;
 
+    /// The pieces of the same section as arcs (the default: each segment with its chord's
+    /// middle, exact for a mesh).
+    fn section_arcs(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionArc> {
+        self.plane_section(m, c, tolerance)
+            .into_iter()
+            .map(|[a, b]| [a, 0.5 * (a + b), b])
+            .collect()
+    }
+
     /// The smallest box holding the surface, both halves.
     fn bounds(&self) -> (DVec3, DVec3);
 
-    /// Points of the surface's free edges that are not closed by the mirror image (for a half
-    /// hull, every free edge off the centreplane), sampled densely enough to find where they are
-    /// below a waterplane: the open top (deck edge), a dry transom outline, holes.
-    fn open_edges(&self) -> &[OpenEdgePoint];
+    /// The chains of free edges not closed by the mirror image (for a half hull, every free
+    /// edge off the centreplane), their points dense enough to follow the edge: the open top
+    /// (deck edge), a transom outline, holes.
+    fn open_chains(&self) -> &[OpenChain];
 
     /// Whether this is a half hull answered for both sides.
     fn is_half(&self) -> bool;

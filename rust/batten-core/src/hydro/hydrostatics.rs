@@ -5,18 +5,17 @@
 use glam::DVec3;
 use serde::Serialize;
 
+use super::caps::cap_integrals;
 use super::error::HydroError;
 use super::geometry::{HullGeometry, SectionSegment};
 use super::integrals::WetIntegrals;
+use super::patch_model::CENTREPLANE_RELATIVE;
 use super::waterplane::{Datums, Flotation, Waterplane};
 
 /// How closely plane sections follow the surface, relative to the hull's size (the diagonal of
-/// its box): section areas are then good to about 1e-8 relative.
-pub const SECTION_TOLERANCE_RELATIVE: f64 = 1e-7;
-
-/// How far below the water (relative to the hull's size) a free edge may reach before it counts
-/// as under water: its points are exact, so this only absorbs rounding.
-const OPEN_EDGE_SLACK_RELATIVE: f64 = 1e-9;
+/// its box): the arcs' middles are on the surface, so section areas by Simpson's rule on the
+/// arcs are good to far better than this (the error goes as its square).
+pub const SECTION_TOLERANCE_RELATIVE: f64 = 1e-4;
 
 /// The foremost part of the waterline, as a fraction of `Lwl`, whose least-squares parabola
 /// gives the half angle of entrance at its fore end (leaves out a stem rounding much smaller
@@ -25,7 +24,11 @@ pub const ENTRANCE_FIT_FRACTION: f64 = 0.025;
 
 /// Stations sampled along the submerged length to find the largest section before refining
 /// its place by golden-section search.
-const MAX_SECTION_SAMPLES: usize = 41;
+const MAX_SECTION_SAMPLES: usize = 11;
+
+/// Rounds of parabolic refinement of the largest section's place, each a quarter of the last
+/// spacing: the place to 1/4³ of the station spacing, the area far closer (flat at the top).
+const MAX_SECTION_REFINEMENTS: usize = 3;
 
 /// The hydrostatics of a hull at one flotation (all lengths m, areas m², volumes m³, masses t,
 /// moments t·m; `x` forward, `z` up from the baseline, in the ship's axes).
@@ -177,7 +180,9 @@ fn range(segments: &[SectionSegment], dir: DVec3) -> Option<(f64, f64)> {
 /// The immersed area of the section of `geom` by the plane `m·p = c` (`m` unit), below the
 /// water surface `plane`: Green's theorem on the closed section, `A = −∮ ζ da / (e3·b)` with `b`
 /// the upward direction in the section plane and `a = b × m` (zero along the waterline, so only
-/// the hull's own segments count, each clipped at `ζ = 0`).
+/// the hull's own pieces count). Each piece is an arc; `ζ` and `a` are quadratic along it and
+/// `ζ·a'` cubic, so Simpson's rule on the arc — or on its part under water, cut at the root of
+/// the quadratic `ζ` — is exact for the parabola.
 pub fn immersed_section_area(
     geom: &dyn HullGeometry,
     plane: &Waterplane,
@@ -192,27 +197,63 @@ pub fn immersed_section_area(
     }
     let b = up / up_len;
     let a = b.cross(m);
-    let mut sum = 0.0;
-    for [p, q] in geom.plane_section(m, c, tolerance) {
-        let (zp, zq) = (plane.zeta(p), plane.zeta(q));
-        let (ap, aq) = (a.dot(p), a.dot(q));
-        let (z0, a0, z1, a1) = if zp <= 0.0 && zq <= 0.0 {
-            (zp, ap, zq, aq)
-        } else if zp > 0.0 && zq > 0.0 {
-            continue;
-        } else {
-            // Clip at ζ = 0 (ζ is linear along the chord).
-            let t = zp / (zp - zq);
-            let am = ap + (aq - ap) * t;
-            if zp <= 0.0 {
-                (zp, ap, 0.0, am)
-            } else {
-                (0.0, am, zq, aq)
-            }
-        };
-        sum += 0.5 * (z0 + z1) * (a1 - a0);
-    }
+    let sum: f64 = geom
+        .section_arcs(m, c, tolerance)
+        .iter()
+        .map(|arc| arc_integral(arc.map(|p| plane.zeta(p)), arc.map(|p| a.dot(p))))
+        .sum();
     -sum / up_len
+}
+
+/// `∫ min(ζ, 0)·da` along the parabolic arc with values `z`, `a` at its start, middle and end.
+fn arc_integral(z: [f64; 3], a: [f64; 3]) -> f64 {
+    if z.iter().all(|&v| v >= 0.0) {
+        return 0.0;
+    }
+    // Quadratic coefficients in λ ∈ [0, 1]: f(λ) = f0 + f1 λ + f2 λ².
+    let quad = |v: [f64; 3]| {
+        [
+            v[0],
+            -3.0 * v[0] + 4.0 * v[1] - v[2],
+            2.0 * v[0] - 4.0 * v[1] + 2.0 * v[2],
+        ]
+    };
+    let (zq, aq) = (quad(z), quad(a));
+    let at = |q: [f64; 3], l: f64| q[0] + l * (q[1] + l * q[2]);
+    let slope = |q: [f64; 3], l: f64| q[1] + 2.0 * l * q[2];
+    let simpson = |l0: f64, l1: f64| {
+        let lm = 0.5 * (l0 + l1);
+        (l1 - l0) / 6.0
+            * (at(zq, l0) * slope(aq, l0)
+                + 4.0 * at(zq, lm) * slope(aq, lm)
+                + at(zq, l1) * slope(aq, l1))
+    };
+    // Roots of ζ(λ) in (0, 1) split the arc.
+    let mut cuts = vec![0.0];
+    let (c0, c1, c2) = (zq[0], zq[1], zq[2]);
+    if c2.abs() > 1e-14 * (c0.abs() + c1.abs()) {
+        let disc = c1 * c1 - 4.0 * c2 * c0;
+        if disc > 0.0 {
+            let sq = disc.sqrt();
+            let q = -0.5 * (c1 + c1.signum() * sq);
+            for r in [q / c2, if q != 0.0 { c0 / q } else { f64::NAN }] {
+                if r > 0.0 && r < 1.0 {
+                    cuts.push(r);
+                }
+            }
+        }
+    } else if c1 != 0.0 {
+        let r = -c0 / c1;
+        if r > 0.0 && r < 1.0 {
+            cuts.push(r);
+        }
+    }
+    cuts.push(1.0);
+    cuts.sort_by(f64::total_cmp);
+    cuts.windows(2)
+        .filter(|w| at(zq, 0.5 * (w[0] + w[1])) < 0.0)
+        .map(|w| simpson(w[0], w[1]))
+        .sum()
 }
 
 /// The sectional area curve: immersed areas of the stations `x = xs[k]` (planes normal to the
@@ -237,39 +278,6 @@ pub fn sectional_areas(
             Ok(immersed_section_area(geom, &plane, DVec3::X, x, tol))
         })
         .collect()
-}
-
-/// Check that the water at `plane` stays below the surface's open edges (other than a half
-/// hull's centreplane edges, closed by its mirror image).
-fn check_open_edges(
-    geom: &dyn HullGeometry,
-    plane: &Waterplane,
-    draft: f64,
-) -> Result<(), HydroError> {
-    let slack = OPEN_EDGE_SLACK_RELATIVE * size(geom);
-    let mut worst: Option<(f64, usize)> = None;
-    for (k, e) in geom.open_edges().iter().enumerate() {
-        let z = plane.zeta(e.point);
-        if z < -slack && worst.is_none_or(|(w, _)| z < w) {
-            worst = Some((z, k));
-        }
-    }
-    match worst {
-        None => Ok(()),
-        Some((_, k)) => {
-            let e = &geom.open_edges()[k];
-            // A hole anywhere under water is named first; only then the flooded top.
-            if let Some(h) = geom
-                .open_edges()
-                .iter()
-                .filter(|e| !e.designed && plane.zeta(e.point) < -slack)
-                .min_by(|a, b| plane.zeta(a.point).total_cmp(&plane.zeta(b.point)))
-            {
-                return Err(HydroError::hole(h.point, &h.curves));
-            }
-            Err(HydroError::above_top(draft, e.point))
-        }
-    }
 }
 
 /// The half angle of entrance (degrees): the slope at the fore end of the least-squares parabola
@@ -319,7 +327,7 @@ fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
             + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
     };
     let d = det(m);
-    if !(d.abs() > 1e-300) {
+    if d.is_nan() || d.abs() <= 1e-300 {
         return None;
     }
     let mut out = [0.0; 3];
@@ -333,8 +341,9 @@ fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
     Some(out)
 }
 
-/// The largest immersed section between `lo` and `hi` (stations normal to `x`): sampled, then
-/// refined by golden-section search around the largest sample.
+/// The largest immersed section between `lo` and `hi` (stations normal to `x`): sampled at
+/// [`MAX_SECTION_SAMPLES`] stations, then refined by successive parabolic interpolation through
+/// the best station and its neighbours (the sectional area curve is smooth at its maximum).
 fn max_section(
     geom: &dyn HullGeometry,
     plane: &Waterplane,
@@ -344,39 +353,38 @@ fn max_section(
 ) -> (f64, f64) {
     let area = |x: f64| immersed_section_area(geom, plane, DVec3::X, x, tol);
     let n = MAX_SECTION_SAMPLES;
-    let step = (hi - lo) / (n - 1) as f64;
-    let (mut best_x, mut best_a) = (lo, f64::NEG_INFINITY);
-    for k in 0..n {
-        let x = lo + step * k as f64;
-        let a = area(x);
-        if a > best_a {
-            (best_x, best_a) = (x, a);
+    let mut step = (hi - lo) / (n - 1) as f64;
+    let samples: Vec<(f64, f64)> = (0..n)
+        .map(|k| {
+            let x = lo + step * k as f64;
+            (x, area(x))
+        })
+        .collect();
+    let (mut best_x, mut best_a) = samples
+        .iter()
+        .copied()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((lo, 0.0));
+    for _ in 0..MAX_SECTION_REFINEMENTS {
+        let (x0, x2) = ((best_x - step).max(lo), (best_x + step).min(hi));
+        let (f0, f2) = (area(x0), area(x2));
+        let (h0, h2) = (best_x - x0, x2 - best_x);
+        // The vertex of the parabola through (x0, f0), (best_x, best_a), (x2, f2).
+        let num = h0 * h0 * (best_a - f2) - h2 * h2 * (best_a - f0);
+        let den = h0 * (best_a - f2) + h2 * (best_a - f0);
+        for (x, f) in [(x0, f0), (x2, f2)] {
+            if f > best_a {
+                (best_x, best_a) = (x, f);
+            }
         }
-    }
-    let (mut a, mut b) = ((best_x - step).max(lo), (best_x + step).min(hi));
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut x1, mut x2) = (b - g * (b - a), a + g * (b - a));
-    let (mut f1, mut f2) = (area(x1), area(x2));
-    for _ in 0..40 {
-        if (b - a) < 1e-6 * (hi - lo) {
-            break;
+        if den > 0.0 {
+            let x = (best_x + 0.5 * num / den).clamp(lo, hi);
+            let f = area(x);
+            if f > best_a {
+                (best_x, best_a) = (x, f);
+            }
         }
-        if f1 < f2 {
-            a = x1;
-            (x1, f1) = (x2, f2);
-            x2 = a + g * (b - a);
-            f2 = area(x2);
-        } else {
-            b = x2;
-            (x2, f2) = (x1, f1);
-            x1 = b - g * (b - a);
-            f1 = area(x1);
-        }
-    }
-    for (x, f) in [(x1, f1), (x2, f2)] {
-        if f > best_a {
-            (best_x, best_a) = (x, f);
-        }
+        step *= 0.25;
     }
     (best_x, best_a)
 }
@@ -385,8 +393,9 @@ fn max_section(
 ///
 /// Errors: invalid flotation or datums ([`HydroError::InvalidInput`]); the water below the keel
 /// ([`HydroError::DraftBelowKeel`]) or over the open top ([`HydroError::DraftAboveTop`]); a free
-/// edge under water off the centreplane ([`HydroError::HoleBelowWater`], naming where); no volume
-/// or waterplane ([`HydroError::Degenerate`]).
+/// edge under water off the centreplane that no steep plane closes
+/// ([`HydroError::HoleBelowWater`], naming where — an open transom is closed by its plane, see
+/// [`caps`](super::caps)); no volume or waterplane ([`HydroError::Degenerate`]).
 pub fn hydrostatics(
     geom: &dyn HullGeometry,
     flotation: &Flotation,
@@ -401,15 +410,16 @@ pub fn hydrostatics(
     let Some((xi_lo, xi_hi)) = geom.wet_range(&plane, plane.e1) else {
         return Err(below_keel(geom, &plane, draft));
     };
-    check_open_edges(geom, &plane, draft)?;
-    let w: WetIntegrals = geom.wet_integrals(&plane);
+    let caps = cap_integrals(geom, &plane, draft, scale, CENTREPLANE_RELATIVE * scale)?;
+    let w: WetIntegrals = geom.wet_integrals(&plane) + caps;
     if !w.is_finite() {
         return Err(HydroError::Degenerate(
             "the wet surface's integrals are not finite".into(),
         ));
     }
     let v = w.volume;
-    if !(v > 1e-12 * scale.powi(3)) || !(w.wp_area > 1e-12 * scale * scale) {
+    let floats = v > 1e-12 * scale.powi(3) && w.wp_area > 1e-12 * scale * scale;
+    if !floats {
         return Err(HydroError::Degenerate(format!(
             "at draft {draft} m the hull displaces {v:.3e} m³ with a waterplane of {:.3e} m²: nothing floats",
             w.wp_area

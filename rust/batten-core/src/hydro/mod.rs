@@ -9,17 +9,30 @@
 //! its patches themselves ([`PatchHydroModel`]); any triangle mesh can be given too, so the
 //! numbers can be set beside other tools' on identical input.
 
+mod bernstein;
+mod caps;
+mod cells;
+mod clip;
+mod contour;
 mod error;
+mod float;
 mod geometry;
 mod hydrostatics;
 mod integrals;
+mod open_edges;
+mod patch_model;
+mod roots;
 mod waterplane;
 
+pub use caps::CAP_FLATNESS_RELATIVE;
+pub use cells::CellDensity;
 pub use error::HydroError;
-pub use geometry::{HullGeometry, OpenEdgePoint, SectionSegment};
+pub use float::{float_to, level_draft};
+pub use geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
 pub use hydrostatics::{
     default_datums, hydrostatics, immersed_section_area, sectional_areas, Hydrostatics,
     ENTRANCE_FIT_FRACTION, SECTION_TOLERANCE_RELATIVE,
 };
 pub use integrals::WetIntegrals;
+pub use patch_model::{PatchHydroModel, CENTREPLANE_RELATIVE};
 pub use waterplane::{Datums, Flotation, Waterplane, SEA_WATER_DENSITY};

@@ -146,6 +146,19 @@ impl Waterplane {
         }
     }
 
+    /// The frame in which a half hull, integrated, gives the integrals of its mirror image
+    /// `y → −y` in this plane: every vector and the origin mirrored (a left-handed frame; the
+    /// integrals use only its dot products).
+    pub fn mirrored(&self) -> Waterplane {
+        let m = |v: DVec3| DVec3::new(v.x, -v.y, v.z);
+        Waterplane {
+            e1: m(self.e1),
+            e2: m(self.e2),
+            e3: m(self.e3),
+            origin: m(self.origin),
+        }
+    }
+
     /// Whether the plane is the ship's own `z = const` (no trim, no heel): a half hull's mirror
     /// image then contributes exactly what the half does, its transverse moments cancelling.
     pub fn is_level(&self) -> bool {

@@ -20,6 +20,9 @@ __all__ = [
     "__version__",
     "_panic_for_tests",
     "build_surface",
+    "build_hull_model",
+    "HullModel",
+    "SEA_WATER_DENSITY",
     "check_lengths",
     "chines_from_knuckles",
     "fair_points",
@@ -139,6 +142,53 @@ def fair_points(
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
+SEA_WATER_DENSITY: float
+
+class HullModel:
+    @property
+    def cells(self) -> int: ...
+    @property
+    def is_half(self) -> bool: ...
+    def datums(self, draft: float, lpp: float | None = None, fp: float | None = None) -> tuple[float, float]: ...
+    def hydrostatics(
+        self,
+        draft: float,
+        trim: float = 0.0,
+        heel: float = 0.0,
+        density: float = ...,
+        lpp: float | None = None,
+        fp: float | None = None,
+        live: bool = False,
+    ) -> dict[str, float]: ...
+    def sectional_areas(
+        self,
+        draft: float,
+        xs: list[float],
+        trim: float = 0.0,
+        heel: float = 0.0,
+        lpp: float | None = None,
+        fp: float | None = None,
+    ) -> _F64: ...
+    def level_draft(self, displacement: float, density: float = ...) -> float: ...
+    def float_to(
+        self,
+        displacement: float,
+        lcg: float,
+        design_draft: float,
+        vcg: float | None = None,
+        density: float = ...,
+        lpp: float | None = None,
+        fp: float | None = None,
+    ) -> dict[str, float]: ...
+
+def build_hull_model(
+    curves: list[Curve],
+    tolerance: float = ...,  # DEFAULT_TOLERANCE
+    resolution: int | None = None,  # None: DEFAULT_RESOLUTION
+    name: str | None = None,
+) -> tuple[
+    tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict, HullModel
+]: ...
 def build_surface(
     curves: list[Curve],
     tolerance: float = ...,  # DEFAULT_TOLERANCE

@@ -1,0 +1,389 @@
+//! batten's own patch surface as a [`HullGeometry`]: its patches as cells of Bernstein
+//! polynomials ([`cells`](super::cells)), integrated exactly below the water
+//! ([`clip`](super::clip)) and cut by planes ([`contour`](super::contour)); its free edges from
+//! the welded mesh.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::cells::{build_cells, Cell, CellDensity, CellMoments};
+use super::clip::{wetness, CellWetness};
+use super::contour::cell_section;
+use super::geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
+use super::integrals::WetIntegrals;
+use super::open_edges::{chains, free_edge_list};
+use super::waterplane::Waterplane;
+use crate::hull::HullSurface;
+
+/// How near the water (relative to the hull's size) a cell may reach and still count as wholly
+/// wet or dry: the rounding of a waterplane along a network curve.
+const WETNESS_SLACK_RELATIVE: f64 = 1e-11;
+
+/// How far (relative to the hull's size) a section's plane is moved off the one asked for, so a
+/// plane along a network curve — a station where a station was drawn — cuts the cells on one
+/// side of it, not both (its pieces would count twice); the areas move by as little.
+const SECTION_NUDGE_RELATIVE: f64 = 1e-10;
+
+/// How close to the centreplane (relative to the hull's size) a free edge must lie to be a half
+/// hull's profile, closed by its mirror image.
+pub const CENTREPLANE_RELATIVE: f64 = 1e-5;
+
+/// Samples per cell side when looking for the extent of the wet surface (about a centimetre on a
+/// ship, where a cell is a few metres).
+const RANGE_SAMPLES: usize = 8;
+/// How closely (relative to the hull's size) the waterline is followed when it starts the
+/// search for the wet surface's extent.
+const RANGE_WATERLINE_RELATIVE: f64 = 1e-4;
+
+/// The mirror image `y → −y`.
+#[inline]
+fn mirror(p: DVec3) -> DVec3 {
+    DVec3::new(p.x, -p.y, p.z)
+}
+
+/// A hull's patch surface ready for hydrostatics: its cells with their boxes, whether it is a
+/// half hull, and its free edges off the centreplane.
+#[derive(Clone, Debug)]
+pub struct PatchHydroModel {
+    cells: Vec<Cell>,
+    boxes: Vec<(DVec3, DVec3)>,
+    half: bool,
+    open: Vec<OpenChain>,
+    bounds: (DVec3, DVec3),
+}
+
+/// The box of a cell's net (it holds the polynomial).
+fn net_box(cell: &Cell) -> (DVec3, DVec3) {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for p in cell.net.iter().flatten() {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    (lo, hi)
+}
+
+/// The range of `m·p` over a box.
+#[inline]
+fn box_range(b: &(DVec3, DVec3), m: DVec3) -> (f64, f64) {
+    let lo = DVec3::new(
+        if m.x >= 0.0 { b.0.x } else { b.1.x },
+        if m.y >= 0.0 { b.0.y } else { b.1.y },
+        if m.z >= 0.0 { b.0.z } else { b.1.z },
+    );
+    let hi = b.0 + b.1 - lo;
+    (m.dot(lo), m.dot(hi))
+}
+
+impl PatchHydroModel {
+    /// The model of a built hull surface (cells of all its patches, built in parallel).
+    pub fn new(surface: &HullSurface) -> PatchHydroModel {
+        PatchHydroModel::with_density(surface, CellDensity::DEFAULT)
+    }
+
+    /// The model with cells of `density` (to check that the integration has converged).
+    pub fn with_density(surface: &HullSurface, density: CellDensity) -> PatchHydroModel {
+        let cells = build_cells(&surface.patches, surface.patches_outward, density);
+        let boxes: Vec<(DVec3, DVec3)> = cells.iter().map(net_box).collect();
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for b in &boxes {
+            lo = lo.min(b.0);
+            hi = hi.max(b.1);
+        }
+        let size = (hi - lo).length();
+        let near = CENTREPLANE_RELATIVE * size;
+        let (open, on_centreplane) = free_edges(surface, near);
+        let half = lo.y >= -near && on_centreplane;
+        if half {
+            lo.y = -hi.y;
+        }
+        PatchHydroModel {
+            cells,
+            boxes,
+            half,
+            open,
+            bounds: (lo, hi),
+        }
+    }
+
+    /// The diagonal of the surface's box.
+    fn size(&self) -> f64 {
+        (self.bounds.1 - self.bounds.0).length()
+    }
+
+    /// Number of cells (for benchmarks and reports).
+    pub fn cell_count(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// The integrals of the drawn half (or whole) in `plane`.
+    fn own_integrals(&self, plane: &Waterplane) -> WetIntegrals {
+        let c = plane.e3.dot(plane.origin);
+        let slack = WETNESS_SLACK_RELATIVE * self.size();
+        let (moments, cut) = self
+            .cells
+            .par_iter()
+            .zip(&self.boxes)
+            .fold(
+                || (CellMoments::default(), WetIntegrals::default()),
+                |(mut m, mut w), (cell, b)| {
+                    let (lo, hi) = box_range(b, plane.e3);
+                    if lo - c >= -slack {
+                        return (m, w);
+                    }
+                    if hi - c <= slack {
+                        m.add(&cell.moments);
+                        return (m, w);
+                    }
+                    match wetness(cell, plane, slack) {
+                        CellWetness::Dry => {}
+                        CellWetness::Wet => m.add(&cell.moments),
+                        CellWetness::Cut(x) => w += x,
+                    }
+                    (m, w)
+                },
+            )
+            .reduce(
+                || (CellMoments::default(), WetIntegrals::default()),
+                |(mut m1, w1), (m2, w2)| {
+                    m1.add(&m2);
+                    (m1, w1 + w2)
+                },
+            );
+        moments.in_frame(plane) + cut
+    }
+
+    /// The section of the drawn half by `m·p = c`.
+    fn own_section(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionArc> {
+        let c = c + SECTION_NUDGE_RELATIVE * self.size();
+        self.cells
+            .par_iter()
+            .zip(&self.boxes)
+            .filter(|(_, b)| {
+                let (lo, hi) = box_range(b, m);
+                lo <= c && hi >= c
+            })
+            .flat_map_iter(|(cell, _)| {
+                let mut out = Vec::new();
+                cell_section(cell, m, c, tolerance, &mut out);
+                out
+            })
+            .collect()
+    }
+
+    /// The range of `dir·p` over the wet part of the drawn half: the ends of the waterline's
+    /// pieces, then samples of the cells under water whose boxes reach beyond that range.
+    fn own_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
+        let c = plane.e3.dot(plane.origin);
+        let size = (self.bounds.1 - self.bounds.0).length();
+        let waterline = self.own_section(plane.e3, c, RANGE_WATERLINE_RELATIVE * size);
+        let mut range = waterline
+            .iter()
+            .flatten()
+            .map(|p| Some((dir.dot(*p), dir.dot(*p))))
+            .fold(None, merge);
+        // Cells under water whose box pokes out of the range so far, furthest first.
+        let mut candidates: Vec<(f64, usize)> = self
+            .boxes
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| box_range(b, plane.e3).0 < c)
+            .filter_map(|(k, b)| {
+                let (lo, hi) = box_range(b, dir);
+                let reach = match range {
+                    Some((a, z)) => (a - lo).max(hi - z),
+                    None => f64::INFINITY,
+                };
+                (reach > 0.0).then_some((reach, k))
+            })
+            .collect();
+        candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
+        for (_, k) in candidates {
+            let (lo, hi) = box_range(&self.boxes[k], dir);
+            if let Some((a, z)) = range {
+                if lo >= a && hi <= z {
+                    continue;
+                }
+            }
+            let cell = &self.cells[k];
+            for a in 0..=RANGE_SAMPLES {
+                for b in 0..=RANGE_SAMPLES {
+                    let h = 1.0 / RANGE_SAMPLES as f64;
+                    let (p, _, _) = cell.eval(a as f64 * h, b as f64 * h);
+                    if plane.zeta(p) <= 0.0 {
+                        let v = dir.dot(p);
+                        range = merge(range, Some((v, v)));
+                    }
+                }
+            }
+        }
+        range
+    }
+}
+
+fn merge(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> Option<(f64, f64)> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some((x.0.min(y.0), x.1.max(y.1))),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}
+
+/// The chains of the mesh's free edges off the centreplane (within `near`), and whether any free
+/// edge lies in the centreplane.
+fn free_edges(surface: &HullSurface, near: f64) -> (Vec<OpenChain>, bool) {
+    let mesh = &surface.mesh;
+    let positions: Vec<DVec3> = mesh.positions.iter().map(|p| DVec3::from(*p)).collect();
+    let mut on_centreplane = false;
+    let edges: Vec<(u32, u32)> = free_edge_list(mesh.faces())
+        .into_iter()
+        .filter(|&(a, b)| {
+            let inside =
+                positions[a as usize].y.abs() <= near && positions[b as usize].y.abs() <= near;
+            on_centreplane |= inside;
+            !inside
+        })
+        .collect();
+    (chains(&positions, &edges), on_centreplane)
+}
+
+impl HullGeometry for PatchHydroModel {
+    fn wet_integrals(&self, plane: &Waterplane) -> WetIntegrals {
+        let own = self.own_integrals(plane);
+        if !self.half {
+            own
+        } else if plane.is_upright() {
+            own.with_mirror_upright()
+        } else {
+            own + self.own_integrals(&plane.mirrored())
+        }
+    }
+
+    fn plane_section(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionSegment> {
+        self.section_arcs(m, c, tolerance)
+            .into_iter()
+            .map(|[a, _, b]| [a, b])
+            .collect()
+    }
+
+    fn section_arcs(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionArc> {
+        let mut out = self.own_section(m, c, tolerance);
+        if self.half {
+            // The image's section is the mirrored section of the half by the mirrored plane,
+            // its direction reversed (a reflection turns m × n round).
+            let image = self.own_section(mirror(m), c, tolerance);
+            out.extend(
+                image
+                    .into_iter()
+                    .map(|[a, p, b]| [mirror(b), mirror(p), mirror(a)]),
+            );
+        }
+        out
+    }
+
+    fn bounds(&self) -> (DVec3, DVec3) {
+        self.bounds
+    }
+
+    fn open_chains(&self) -> &[OpenChain] {
+        &self.open
+    }
+
+    fn is_half(&self) -> bool {
+        self.half
+    }
+
+    fn wet_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
+        let own = self.own_range(plane, dir);
+        // Upright, the image's range along a direction in the centreplane is the half's own.
+        if self.half && !(plane.is_upright() && dir.y == 0.0) {
+            merge(own, self.own_range(&plane.mirrored(), mirror(dir)))
+        } else {
+            own
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hydro::bernstein::{split1, N};
+    use crate::hydro::cells::moments_of;
+    use crate::{build_hull, HullOptions, Network};
+
+    /// The four quarter nets of `net` (exact de Casteljau halving in both parameters).
+    fn quarters(net: &[[DVec3; N]; N]) -> [[[DVec3; N]; N]; 4] {
+        let mut l = [[DVec3::ZERO; N]; N];
+        let mut r = [[DVec3::ZERO; N]; N];
+        for j in 0..N {
+            let col: [DVec3; N] = std::array::from_fn(|i| net[i][j]);
+            let (a, b) = split1(&col, 0.5);
+            for i in 0..N {
+                l[i][j] = a[i];
+                r[i][j] = b[i];
+            }
+        }
+        let split_t = |z: &[[DVec3; N]; N]| {
+            let mut a = [[DVec3::ZERO; N]; N];
+            let mut b = [[DVec3::ZERO; N]; N];
+            for i in 0..N {
+                (a[i], b[i]) = split1(&z[i], 0.5);
+            }
+            (a, b)
+        };
+        let (ll, lr) = split_t(&l);
+        let (rl, rr) = split_t(&r);
+        [ll, lr, rl, rr]
+    }
+
+    /// Every cell the water cuts integrates as its four quarters do: the clipping (Saye's
+    /// graphs, their roots and breaks) is exact for the polynomial, whatever way it goes.
+    #[test]
+    fn cut_cells_integrate_as_their_quarters() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/wigley_lines.json"
+        );
+        let net =
+            Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network");
+        let hull = build_hull(&net, &HullOptions::default()).expect("builds");
+        let model = PatchHydroModel::new(&hull);
+        let mut cut = 0;
+        for z in [3.1, 4.0, 5.9] {
+            let plane = Waterplane::level(z);
+            for cell in &model.cells {
+                let CellWetness::Cut(whole) = wetness(cell, &plane, 0.0) else {
+                    continue;
+                };
+                cut += 1;
+                let mut sum = WetIntegrals::default();
+                for net in quarters(&cell.net) {
+                    let mut kid = Cell {
+                        net,
+                        sign: cell.sign,
+                        moments: CellMoments::default(),
+                    };
+                    kid.moments = moments_of(&kid);
+                    match wetness(&kid, &plane, 0.0) {
+                        CellWetness::Cut(w) => sum += w,
+                        CellWetness::Wet => sum += kid.moments.in_frame(&plane),
+                        CellWetness::Dry => {}
+                    }
+                }
+                let scale = cell.moments.area;
+                for (what, a, b) in [
+                    ("area", whole.wetted, sum.wetted),
+                    ("volume", whole.volume, sum.volume),
+                    ("waterplane", whole.wp_area, sum.wp_area),
+                ] {
+                    assert!(
+                        (a - b).abs() <= 1e-11 * scale.max(scale * z),
+                        "{what} at z {z}: {a} vs quarters {b}"
+                    );
+                }
+            }
+        }
+        assert!(cut > 50, "the water cuts many cells ({cut})");
+    }
+}

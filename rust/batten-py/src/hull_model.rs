@@ -1,0 +1,222 @@
+//! `HullModel`: a built hull's exact patch surface kept for hydrostatics (the core's
+//! `PatchHydroModel`, made on first use), and the conversion of hydrostatic figures to dicts.
+
+use std::sync::OnceLock;
+
+use batten_core::{
+    default_datums, float_to, hydrostatics, level_draft, sectional_areas, CellDensity, Datums,
+    Error, Flotation, HullGeometry, HullSurface, HydroError, Hydrostatics, PatchHydroModel,
+};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::{arg_err, core_err, guard};
+
+/// A dict of the figures, keyed by the core's field names (serde), all floats.
+pub(crate) fn hydrostatics_dict<'py>(
+    py: Python<'py>,
+    h: &Hydrostatics,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let value = serde_json::to_value(h).map_err(|e| arg_err(format!("hydrostatics: {e}")))?;
+    if let serde_json::Value::Object(map) = value {
+        for (k, v) in map {
+            d.set_item(k, v.as_f64().unwrap_or(f64::NAN))?;
+        }
+    }
+    Ok(d)
+}
+
+/// The perpendiculars from the arguments: `fp` with `lpp` as given, else FP at the fore end of
+/// the level waterline at `draft` and AP `lpp` aft of it (or at the waterline's aft end).
+pub(crate) fn datums_for(
+    geom: &dyn HullGeometry,
+    draft: f64,
+    lpp: Option<f64>,
+    fp: Option<f64>,
+) -> Result<Datums, Error> {
+    Ok(match (fp, lpp) {
+        (Some(x_fp), Some(l)) => {
+            let d = Datums {
+                x_ap: x_fp - l,
+                x_fp,
+            };
+            d.check()?;
+            d
+        }
+        (Some(_), None) => {
+            return Err(Error::Hydro(HydroError::InvalidInput(
+                "fp (the forward perpendicular) needs lpp too".into(),
+            )))
+        }
+        (None, lpp) => default_datums(geom, draft, lpp)?,
+    })
+}
+
+/// A hull's exact surface for hydrostatics, from [`build_hull_model`](crate::hull::build_hull_model).
+/// Its cells are made on the first call that needs them (tens of milliseconds for a ship) and
+/// kept. Every method releases the GIL and raises `HydrostaticsError` or `InvalidArgumentError`.
+#[pyclass(frozen, module = "batten_native")]
+pub(crate) struct HullModel {
+    surface: HullSurface,
+    model: OnceLock<PatchHydroModel>,
+    live: OnceLock<PatchHydroModel>,
+}
+
+impl HullModel {
+    /// Keep `surface`.
+    pub(crate) fn new(surface: HullSurface) -> HullModel {
+        HullModel {
+            surface,
+            model: OnceLock::new(),
+            live: OnceLock::new(),
+        }
+    }
+
+    fn geometry(&self, live: bool) -> &PatchHydroModel {
+        if live {
+            self.live
+                .get_or_init(|| PatchHydroModel::with_density(&self.surface, CellDensity::LIVE))
+        } else {
+            self.model
+                .get_or_init(|| PatchHydroModel::new(&self.surface))
+        }
+    }
+}
+
+#[pymethods]
+impl HullModel {
+    /// Number of cells of the exact model (made now if not yet).
+    #[getter]
+    fn cells(&self, py: Python<'_>) -> usize {
+        py.detach(|| self.geometry(false).cell_count())
+    }
+
+    /// Whether the surface is a half hull (port side) answered for both sides.
+    #[getter]
+    fn is_half(&self, py: Python<'_>) -> bool {
+        py.detach(|| self.geometry(false).is_half())
+    }
+
+    /// `(x_ap, x_fp)`: the perpendiculars at `draft` (see `hydrostatics`).
+    #[pyo3(signature = (draft, lpp=None, fp=None))]
+    fn datums(
+        &self,
+        py: Python<'_>,
+        draft: f64,
+        lpp: Option<f64>,
+        fp: Option<f64>,
+    ) -> PyResult<(f64, f64)> {
+        py.detach(|| {
+            guard("finding the perpendiculars", || {
+                let d = datums_for(self.geometry(false), draft, lpp, fp).map_err(core_err)?;
+                Ok((d.x_ap, d.x_fp))
+            })
+        })
+    }
+
+    /// The hydrostatics at `draft` (m, at midships), `trim` (m, `T_AP − T_FP`), `heel` (degrees,
+    /// to starboard), `density` (t/m³): a dict of floats (volume, displacement, drafts, Lwl,
+    /// Bwl, LOS, wetted_area, waterplane_area, midship and largest section, Cb, Cp, Cm, Cwp, Cvp,
+    /// LCB, TCB, VCB, LCF, It, Il, BMt, BMl, KMt, KMl, TPC, MTC, transom_area,
+    /// entrance_half_angle …). Perpendiculars: `fp` and `lpp` as given, else FP at the fore end
+    /// of the level waterline at `draft`, AP `lpp` aft of it (or at its aft end). `live` uses
+    /// the coarser cells (about 1e-8 relative) for figures updated while dragging.
+    #[pyo3(signature = (draft, trim=0.0, heel=0.0, density=batten_core::SEA_WATER_DENSITY, lpp=None, fp=None, live=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn hydrostatics<'py>(
+        &self,
+        py: Python<'py>,
+        draft: f64,
+        trim: f64,
+        heel: f64,
+        density: f64,
+        lpp: Option<f64>,
+        fp: Option<f64>,
+        live: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let h = py.detach(|| {
+            guard("computing hydrostatics", || {
+                let geom = self.geometry(live);
+                let d = datums_for(geom, draft, lpp, fp).map_err(core_err)?;
+                let f = Flotation {
+                    draft,
+                    trim,
+                    heel_deg: heel,
+                    density,
+                };
+                hydrostatics(geom, &f, &d).map_err(core_err)
+            })
+        })?;
+        hydrostatics_dict(py, &h)
+    }
+
+    /// Immersed section areas (m², both sides) at the stations `xs` (m) at `draft`, `trim`,
+    /// `heel`; perpendiculars as in `hydrostatics`.
+    #[pyo3(signature = (draft, xs, trim=0.0, heel=0.0, lpp=None, fp=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn sectional_areas<'py>(
+        &self,
+        py: Python<'py>,
+        draft: f64,
+        xs: Vec<f64>,
+        trim: f64,
+        heel: f64,
+        lpp: Option<f64>,
+        fp: Option<f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let areas = py.detach(|| {
+            guard("computing sectional areas", || {
+                let geom = self.geometry(false);
+                let d = datums_for(geom, draft, lpp, fp).map_err(core_err)?;
+                let f = Flotation {
+                    draft,
+                    trim,
+                    heel_deg: heel,
+                    density: batten_core::SEA_WATER_DENSITY,
+                };
+                sectional_areas(geom, &f, &d, &xs).map_err(core_err)
+            })
+        })?;
+        Ok(PyArray1::from_vec(py, areas))
+    }
+
+    /// The level, upright draft (m) at which the hull displaces `displacement` t.
+    #[pyo3(signature = (displacement, density=batten_core::SEA_WATER_DENSITY))]
+    fn level_draft(&self, py: Python<'_>, displacement: f64, density: f64) -> PyResult<f64> {
+        py.detach(|| {
+            guard("finding the draft", || {
+                level_draft(self.geometry(false), displacement, density).map_err(core_err)
+            })
+        })
+    }
+
+    /// The upright flotation with displacement `displacement` (t) and the centre of buoyancy
+    /// under `lcg` (m; with `vcg` the true vertical through G, else LCB = LCG): the hydrostatics
+    /// dict there (its draft_mid and trim are the answer). Perpendiculars as in `hydrostatics`,
+    /// found at the level draft `design_draft` when `fp` is not given.
+    #[pyo3(signature = (displacement, lcg, design_draft, vcg=None, density=batten_core::SEA_WATER_DENSITY, lpp=None, fp=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn float_to<'py>(
+        &self,
+        py: Python<'py>,
+        displacement: f64,
+        lcg: f64,
+        design_draft: f64,
+        vcg: Option<f64>,
+        density: f64,
+        lpp: Option<f64>,
+        fp: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let h = py.detach(|| {
+            guard("floating the hull", || {
+                let geom = self.geometry(false);
+                let d = datums_for(geom, design_draft, lpp, fp).map_err(core_err)?;
+                let f = float_to(geom, &d, displacement, lcg, vcg, density).map_err(core_err)?;
+                hydrostatics(geom, &f, &d).map_err(core_err)
+            })
+        })?;
+        hydrostatics_dict(py, &h)
+    }
+}
