@@ -256,8 +256,10 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
     extra = {"import_s": round(t_load, 3), "fits": fits}
     reference = _reference(path)
     if reference is not None:
-        # The Hydrostatics panel starts at the design draft.
-        coll[_batten_module(api, "scene_hydro").DESIGN_DRAFT_TAG] = reference["T"]
+        # The ship's own perpendiculars (its x runs forward from the AP) and design draft, for
+        # the API and the Hydrostatics panel (which starts at that draft).
+        coll[api.LPP_PROPERTY] = coll[api.FP_PROPERTY] = reference["Lpp"]
+        coll[api.DESIGN_DRAFT_PROPERTY] = reference["T"]
     report = deliver(
         api,
         coll,
@@ -307,15 +309,15 @@ REFERENCE_KEYS = (
 
 
 def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
-    """A real ship's hydrostatics at its design draft (Lpp from its reference), beside the
+    """A real ship's hydrostatics at its design draft (about its perpendiculars), beside the
     reference figures in the log and in ``<name>_hydrostatics.csv``, its sectional area curve
     ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and ``.csv``)."""
     import numpy as np
 
     hydro_plot, hydro_table = _batten_module(api, "hydro_plot"), _batten_module(api, "hydro_table")
-    name, draft, lpp = coll.name, reference["T"], reference["Lpp"]
+    name, draft = coll.name, reference["T"]
     t0 = time.perf_counter()
-    fig = api.hydrostatics(coll, draft, lpp=lpp)
+    fig = api.hydrostatics(coll, draft)
     _log(f"{name}: hydrostatics at T = {draft} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
     ref = reference["computed"]
     for key, ref_key in REFERENCE_KEYS:
@@ -323,13 +325,13 @@ def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
             diff = 100 * (fig[key] / ref[ref_key] - 1)
             _log(f"{name}: {key} {fig[key]:.3f} (reference {ref[ref_key]}, {diff:+.3f} %)")
     hydro_table.hydrostatics_csv(fig, out / f"{name}_hydrostatics.csv")
-    xs, areas = api.sectional_areas(coll, draft, 41, lpp=lpp)
+    xs, areas = api.sectional_areas(coll, draft, 41)
     sac = out / f"{name}_sac.png"
     hydro_plot.sac_png(name, xs, areas, fig, sac)
     _log(f"{name}: sectional area curve {sac}")
     drafts = draft * np.linspace(*CURVES_OF_FORM_SPAN, CURVES_OF_FORM_DRAFTS)
     t0 = time.perf_counter()
-    rows = api.curves_of_form(coll, drafts, lpp=lpp)
+    rows = api.curves_of_form(coll, drafts)
     t_cof = time.perf_counter() - t0
     cof = out / f"{name}_curves_of_form.png"
     hydro_plot.curves_of_form_png(name, rows, cof)

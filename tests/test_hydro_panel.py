@@ -14,7 +14,6 @@ import bpy
 import numpy as np
 import pytest
 from batten import hydro_operators, hydro_plot, live, overlay
-from batten.scene_hydro import DESIGN_DRAFT_TAG
 from operator_runs import execute
 
 L, B, DEPTH = 100.0, 10.0, 8.75  # examples/wigley.json: length, beam, keel to deck
@@ -77,8 +76,8 @@ def stub_api(monkeypatch):
     """batten.api's hydrostatics stood in for by :func:`_figures`; the calls are recorded."""
     calls = []
 
-    def hydrostatics(source, draft, *, trim=0.0, heel=0.0, density=1.025, lpp=None, fp=None):
-        calls.append(("hydrostatics", source.name, draft, trim, heel, density, lpp))
+    def hydrostatics(source, draft, *, trim=0.0, heel=0.0, density=1.025, lpp=None, fp=None, live=False):
+        calls.append(("hydrostatics", source.name, draft, trim, heel, density, lpp, live))
         return _figures(draft, trim, heel, density, lpp)
 
     def sectional_areas(source, draft, stations=21, *, trim=0.0, heel=0.0, lpp=None, fp=None):
@@ -121,7 +120,7 @@ def test_a_new_hull_starts_at_half_its_depth_or_its_design_draft():
     assert settings.draft == pytest.approx(DEPTH / 2, abs=1e-4), "half of keel (0) to deck (8.75)"
     assert (settings.curves_draft_min, settings.curves_draft_max) == pytest.approx((0.875, 7.875), abs=1e-4)
     settings.source = None
-    coll[DESIGN_DRAFT_TAG] = 6.25
+    coll[api.DESIGN_DRAFT_PROPERTY] = 6.25
     settings.source = coll
     assert settings.draft == pytest.approx(6.25)
 
@@ -132,13 +131,14 @@ def test_compute_keeps_the_figures_and_a_draft_below_the_keel_keeps_the_error(st
     assert bpy.ops.batten.hydrostatics() == {"FINISHED"}
     figures = _figures_in_scene()
     assert figures["volume"] == pytest.approx(4 / 9 * L * B * 5.0)
-    _, source, draft, trim, heel, density, lpp = stub_api[-1]
+    _, source, draft, trim, heel, density, lpp, live = stub_api[-1]
+    assert not live, "Compute gives the full-accuracy figures"
     # As typed, not as Blender's float32 keeps them (0.2 is 0.200000003 there).
     assert (source, draft, trim, density, lpp) == ("wigley", 5.0, 0.2, 1.025, 98.0)
     assert heel == pytest.approx(3.0), "the panel's angle goes to the API in degrees"
     settings.lpp = 0.0
     bpy.ops.batten.hydrostatics()
-    assert stub_api[-1][-1] is None, "Lpp 0 means: from the waterline"
+    assert stub_api[-1][-2] is None, "Lpp 0 means: from the waterline (or the hull's own)"
     # A draft below the keel: CANCELLED with the API's message, and the panel shows it.
     settings.draft = -1.0
     result, reports = execute(hydro_operators.BATTEN_OT_hydrostatics, bpy.context)
@@ -154,6 +154,7 @@ def test_changing_the_draft_recomputes_shown_figures(stub_api, wigley):
     bpy.ops.batten.hydrostatics()
     settings.draft = 4.0
     assert _figures_in_scene()["draft_mid"] == pytest.approx(4.0)
+    assert stub_api[-1][-1], "figures that follow an edit are the API's live ones"
     settings.draft = -2.0
     assert "error" in _figures_in_scene()
     settings.draft = 2.0
@@ -233,7 +234,7 @@ def test_live_rebuild_recomputes_the_figures_once_computed(stub_api, wigley, mon
     n = len(stub_api)
     settings.last_hydrostatics = json.dumps({"volume": 0.0})  # a stale figure
     live.rebuild_scene(bpy.context.scene.name)
-    assert len(stub_api) == n + 1
+    assert len(stub_api) == n + 1 and stub_api[-1][-1], "live figures"
     assert _figures_in_scene()["volume"] == pytest.approx(_figures(settings.draft)["volume"])
 
 

@@ -42,7 +42,7 @@ def rebuild_scene(scene_name: str):
     try:
         build_into_scene(scene)
         if scene.batten.last_hydrostatics:
-            hydrostatics_into_scene(scene)
+            hydrostatics_into_scene(scene, live=True)
     except api.BattenError:
         pass  # kept in the scene's report or figures; the previous mesh stays
     finally:

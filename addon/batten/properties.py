@@ -64,7 +64,7 @@ def _flotation_changed(settings, _context):
     from .scene_hydro import hydrostatics_into_scene
 
     try:
-        hydrostatics_into_scene(settings.id_data)  # the scene that owns these settings
+        hydrostatics_into_scene(settings.id_data, live=True)  # the scene owning these settings
     except api.BattenError:
         pass  # kept as the figures' error, shown in the panel
 

@@ -14,9 +14,6 @@ import numpy as np
 from . import api
 from .bridge import curves_in
 
-#: Custom property of a hull collection holding its design draft (m), set by scripts (the demo
-#: sets the real ships' from their reference hydrostatics); the Draft starts there.
-DESIGN_DRAFT_TAG = "batten_design_draft"
 #: Without a design draft the Draft starts at this share of the hull's depth above its keel:
 #: a waterline always inside the hull, so the first Compute gives figures, not an error.
 DEFAULT_DRAFT_SHARE = 0.5
@@ -59,12 +56,13 @@ def figures_kept_in(settings):
         raise
 
 
-def hydrostatics_into_scene(scene) -> dict:
+def hydrostatics_into_scene(scene, *, live: bool = False) -> dict:
     """The hydrostatics of the scene's hull at its draft, trim, heel and density, kept in the
-    scene (JSON) for the panel, and returned; a failure is kept as the error and raised."""
+    scene (JSON) for the panel, and returned; a failure is kept as the error and raised.
+    ``live``: the API's quicker figures for updates while editing."""
     settings = scene.batten
     with figures_kept_in(settings):
-        figures = api.hydrostatics(settings.source, draft_of(settings), **flotation(settings))
+        figures = api.hydrostatics(settings.source, draft_of(settings), **flotation(settings), live=live)
     keep_figures(settings, figures)
     return figures
 
@@ -93,7 +91,8 @@ def hull_box(source) -> tuple[np.ndarray, np.ndarray]:
 
 
 def set_default_drafts(settings) -> None:
-    """Start a newly chosen hull's Draft at its design draft (:data:`DESIGN_DRAFT_TAG`) or at
+    """Start a newly chosen hull's Draft at its design draft (:func:`batten.api.design_draft`,
+    the collection's ``batten_design_draft``) or at
     :data:`DEFAULT_DRAFT_SHARE` of its depth, and the curves of form over
     :data:`CURVES_OF_FORM_SHARE` of its depth; forget the last figures (another hull's)."""
     source = settings.source
@@ -105,6 +104,6 @@ def set_default_drafts(settings) -> None:
     except api.BattenError:
         return  # an empty or broken hull: the drafts stay; building it will say what is wrong
     keel, depth = float(lo[2]), float(hi[2] - lo[2])
-    design = source.get(DESIGN_DRAFT_TAG)
-    settings.draft = float(design) if design is not None else keel + DEFAULT_DRAFT_SHARE * depth
+    design = api.design_draft(source)
+    settings.draft = design if design is not None else keel + DEFAULT_DRAFT_SHARE * depth
     settings.curves_draft_min, settings.curves_draft_max = (keel + s * depth for s in CURVES_OF_FORM_SHARE)
