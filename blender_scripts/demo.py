@@ -311,27 +311,39 @@ REFERENCE_KEYS = (
 def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
     """A real ship's hydrostatics at its design draft (about its perpendiculars), beside the
     reference figures in the log and in ``<name>_hydrostatics.csv``, its sectional area curve
-    ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and ``.csv``)."""
+    ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and ``.csv``). A
+    hydrostatics error (a hole under water) is logged, and written on the sectional area curve,
+    whose plane sections need no closed surface."""
     import numpy as np
 
     hydro_plot, hydro_table = _batten_module(api, "hydro_plot"), _batten_module(api, "hydro_table")
     name, draft = coll.name, reference["T"]
     t0 = time.perf_counter()
-    fig = api.hydrostatics(coll, draft)
-    _log(f"{name}: hydrostatics at T = {draft} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
-    ref = reference["computed"]
-    for key, ref_key in REFERENCE_KEYS:
-        if ref_key in ref:
-            diff = 100 * (fig[key] / ref[ref_key] - 1)
-            _log(f"{name}: {key} {fig[key]:.3f} (reference {ref[ref_key]}, {diff:+.3f} %)")
-    hydro_table.hydrostatics_csv(fig, out / f"{name}_hydrostatics.csv")
+    try:
+        fig, note = api.hydrostatics(coll, draft), ""
+    except api.BattenError as e:
+        fig, note = None, str(e)
+        _log(f"{name}: no figures ({e})")
+    else:
+        _log(f"{name}: hydrostatics at T = {draft} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
+        ref = reference["computed"]
+        for key, ref_key in REFERENCE_KEYS:
+            if ref_key in ref:
+                diff = 100 * (fig[key] / ref[ref_key] - 1)
+                _log(f"{name}: {key} {fig[key]:.3f} (reference {ref[ref_key]}, {diff:+.3f} %)")
+        hydro_table.hydrostatics_csv(fig, out / f"{name}_hydrostatics.csv")
     xs, areas = api.sectional_areas(coll, draft, 41)
     sac = out / f"{name}_sac.png"
-    hydro_plot.sac_png(name, xs, areas, fig, sac)
+    marks = fig or {"x_ap": xs[0], "x_fp": xs[-1], "draft_mid": draft}
+    hydro_plot.sac_png(name, xs, areas, marks, sac, note=note)
     _log(f"{name}: sectional area curve {sac}")
     drafts = draft * np.linspace(*CURVES_OF_FORM_SPAN, CURVES_OF_FORM_DRAFTS)
     t0 = time.perf_counter()
-    rows = api.curves_of_form(coll, drafts)
+    try:
+        rows = api.curves_of_form(coll, drafts)
+    except api.BattenError as e:
+        _log(f"{name}: no curves of form: {e}")
+        return
     t_cof = time.perf_counter() - t0
     cof = out / f"{name}_curves_of_form.png"
     hydro_plot.curves_of_form_png(name, rows, cof)

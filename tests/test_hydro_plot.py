@@ -57,7 +57,10 @@ def test_the_sac_image_has_its_curve_marks_and_numbers(tmp_path):
 
 def test_the_curves_of_form_have_every_panel_s_curves(tmp_path):
     drafts = np.linspace(1.0, 8.0, 8)
-    keys = {k for _t, _u, curves in hydro_plot.CURVES_OF_FORM_PANELS for k, _ in curves} | {"density", "lpp"}
+    keys = {k for _t, _u, curves, _s in hydro_plot.CURVES_OF_FORM_PANELS for k, _ in curves} | {
+        "density",
+        "lpp",
+    }
     rows = [
         {k: (i + 1.0) * d ** (1 + i % 3) for i, k in enumerate(sorted(keys))} | {"draft_mid": d}
         for d in drafts
@@ -68,7 +71,7 @@ def test_the_curves_of_form_have_every_panel_s_curves(tmp_path):
     pixels = hydro_plot.png_pixels(path)
     assert pixels.shape[:2] == hydro_plot.CURVES_OF_FORM_SIZE[::-1]
     assert len(all_axes) == len(hydro_plot.CURVES_OF_FORM_PANELS)
-    for axes, (title, _unit, curves) in zip(all_axes, hydro_plot.CURVES_OF_FORM_PANELS, strict=True):
+    for axes, (title, _unit, curves, _scale) in zip(all_axes, hydro_plot.CURVES_OF_FORM_PANELS, strict=True):
         for key, _label in curves:
             values = [r[key] for r in rows]
             assert _near(pixels, axes.to_px(values, drafts)).all(), f"{title}: {key}"

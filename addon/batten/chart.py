@@ -36,22 +36,30 @@ PALETTE = (
 NICE_STEPS = (1.0, 2.0, 2.5, 5.0, 10.0)
 #: Squared length (pixels²) below which a segment is a dot: keeps the projection finite.
 MIN_SEGMENT_LENGTH2 = 1e-12
+#: A range narrower than this share of its values' size (or than this, about 0) is one value.
+FLAT_RANGE_RELATIVE = 1e-12
+#: Slack, in steps, for a range end that is a tick up to rounding (it stays the end tick).
+TICK_SLACK = 1e-9
 #: Share of a flat range's size (or 1 when it is 0) a constant curve's axis is widened by.
 FLAT_RANGE_PAD = 0.1
 
 
-def nice_ticks(lo: float, hi: float, count: int = 5) -> np.ndarray:
+def nice_ticks(lo: float, hi: float, count: int = 5, *, min_span: float = 0.0) -> np.ndarray:
     """About ``count`` evenly spaced round values (1, 2, 2.5 or 5 × 10^k apart) covering
-    ``lo``–``hi``: the first at or below ``lo``, the last at or above ``hi``. A range of zero
-    width is widened around its value first."""
+    ``lo``–``hi``: the first at or below ``lo``, the last at or above ``hi``. A range narrower
+    than ``min_span`` (say, the rounding noise of a figure that is in truth constant) is
+    widened to it about its middle; a range of no width around its value."""
     lo, hi = float(min(lo, hi)), float(max(lo, hi))
-    if hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1.0):
+    if hi - lo < min_span:
+        mid = 0.5 * (lo + hi)
+        lo, hi = mid - 0.5 * min_span, mid + 0.5 * min_span
+    if hi - lo <= FLAT_RANGE_RELATIVE * max(abs(lo), abs(hi), 1.0):
         pad = FLAT_RANGE_PAD * abs(lo) if lo else 1.0
         lo, hi = lo - pad, hi + pad
     raw = (hi - lo) / max(count - 1, 1)
     decade = 10.0 ** math.floor(math.log10(raw))
-    step = decade * next(s for s in NICE_STEPS if s * decade >= raw * (1 - 1e-9))
-    first, last = math.floor(lo / step + 1e-9), math.ceil(hi / step - 1e-9)
+    step = decade * next(s for s in NICE_STEPS if s * decade >= raw * (1 - TICK_SLACK))
+    first, last = math.floor(lo / step + TICK_SLACK), math.ceil(hi / step - TICK_SLACK)
     return np.arange(first, last + 1) * step
 
 
@@ -240,12 +248,14 @@ class Axes:
     yticks: np.ndarray
 
     @classmethod
-    def fit(cls, canvas: Canvas, box, xs, ys, *, xcount: int = 7, ycount: int = 5) -> Axes:
-        """Axes in ``box`` whose ranges cover the finite values of ``xs`` and ``ys``."""
+    def fit(
+        cls, canvas: Canvas, box, xs, ys, *, xcount: int = 7, ycount: int = 5, xmin_span: float = 0.0
+    ) -> Axes:
+        """Axes in ``box`` whose ranges cover the finite values of ``xs`` and ``ys``, the
+        horizontal one at least ``xmin_span`` wide (see :func:`nice_ticks`)."""
         xs, ys = _finite(xs), _finite(ys)
-        return cls(
-            canvas, box, nice_ticks(xs.min(), xs.max(), xcount), nice_ticks(ys.min(), ys.max(), ycount)
-        )
+        xticks = nice_ticks(xs.min(), xs.max(), xcount, min_span=xmin_span)
+        return cls(canvas, box, xticks, nice_ticks(ys.min(), ys.max(), ycount))
 
     def to_px(self, x, y) -> np.ndarray:
         """Data points ``(x, y)`` (arrays) as pixels, (n, 2)."""

@@ -26,3 +26,11 @@ def test_labels_use_the_step_s_decimals_and_no_minus_zero():
     assert tick_labels(np.array([-0.5, -1e-17, 0.5, 1.0])) == ["-0.5", "0.0", "0.5", "1.0"]
     assert tick_labels(np.array([0.0, 2.5, 5.0])) == ["0.0", "2.5", "5.0"]
     assert tick_labels(np.array([0.0, 100_000.0])) == ["0", "100000"]
+
+
+def test_a_range_narrower_than_the_least_span_is_widened_about_its_middle():
+    """An LCB at midships that wanders by rounding (1e-10 m) is drawn on a 0.1 m axis, not
+    blown up to fill the panel."""
+    got = nice_ticks(-1e-10, 2e-10, 4, min_span=0.1)
+    assert got[0] <= -0.05 and got[-1] >= 0.05 and got[-1] - got[0] < 0.5, got
+    assert np.allclose(nice_ticks(0.0, 8.0, 5, min_span=0.1), [0, 2, 4, 6, 8]), "wide ranges keep theirs"
