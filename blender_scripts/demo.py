@@ -4,7 +4,8 @@ import the real ships' sections (``shared/hulls`` beside the checkout) with ever
 default, build them the same way and render them from the bow, the stern and the side, and
 write their hydrostatics at the design draft (logged beside the reference figures, and in
 ``<name>_hydrostatics.csv``), their sectional area curve ``<name>_sac.png`` and curves of form
-``<name>_curves_of_form.png`` (and ``.csv``).
+``<name>_curves_of_form.png`` (and ``.csv``); the examples' too, at the draft the panel
+starts at.
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
@@ -234,7 +235,11 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
     coll = api.load_network(path)
     t_load = time.perf_counter() - t0
     _log(f"{coll.name}: drew {len(coll.objects)} curves from {path.name} in {t_load * 1e3:.1f} ms")
-    return deliver(api, coll, path, {"load_ms": round(t_load * 1e3, 3)}, out, engine, size, resolution, zebra)
+    report = deliver(
+        api, coll, path, {"load_ms": round(t_load * 1e3, 3)}, out, engine, size, resolution, zebra
+    )
+    plot_hydrostatics(api, coll, out)
+    return report
 
 
 def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
@@ -274,7 +279,7 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
         tube=SHIP_TUBE,
     )
     if reference is not None:
-        plot_hydrostatics(api, coll, reference, out)
+        plot_hydrostatics(api, coll, out, reference)
     return report
 
 
@@ -284,7 +289,7 @@ def _reference(path: Path) -> dict | None:
     return json.loads(ref.read_text()) if path.stem == "network" and ref.is_file() else None
 
 
-#: The curves of form of a real ship span these shares of its design draft.
+#: The curves of form of a hull span these shares of its design draft.
 CURVES_OF_FORM_SPAN = (0.2, 1.2)
 CURVES_OF_FORM_DRAFTS = 11
 
@@ -308,16 +313,18 @@ REFERENCE_KEYS = (
 )
 
 
-def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
-    """A real ship's hydrostatics at its design draft (about its perpendiculars), beside the
-    reference figures in the log and in ``<name>_hydrostatics.csv``, its sectional area curve
+def plot_hydrostatics(api, coll, out: Path, reference: dict | None = None) -> None:
+    """A hull's hydrostatics at its design draft (a real ship's, about its perpendiculars,
+    beside its ``reference`` figures in the log; an example's at the draft the Hydrostatics
+    panel starts at), in ``<name>_hydrostatics.csv``, its sectional area curve
     ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and ``.csv``). A
     hydrostatics error (a hole under water) is logged, and written on the sectional area curve,
     whose plane sections need no closed surface."""
     import numpy as np
 
     hydro_plot, hydro_table = _batten_module(api, "hydro_plot"), _batten_module(api, "hydro_table")
-    name, draft = coll.name, reference["T"]
+    name = coll.name
+    draft = reference["T"] if reference else bpy.context.scene.batten.draft
     t0 = time.perf_counter()
     try:
         fig, note = api.hydrostatics(coll, draft), ""
@@ -325,8 +332,8 @@ def plot_hydrostatics(api, coll, reference: dict, out: Path) -> None:
         fig, note = None, str(e)
         _log(f"{name}: no figures ({e})")
     else:
-        _log(f"{name}: hydrostatics at T = {draft} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
-        ref = reference["computed"]
+        _log(f"{name}: hydrostatics at T = {draft:.3f} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
+        ref = reference["computed"] if reference else {}
         for key, ref_key in REFERENCE_KEYS:
             if ref_key in ref:
                 diff = 100 * (fig[key] / ref[ref_key] - 1)

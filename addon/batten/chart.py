@@ -22,6 +22,14 @@ import numpy as np
 WHITE = (1.0, 1.0, 1.0, 1.0)
 BLACK = (0.0, 0.0, 0.0, 1.0)
 GRID = (0.88, 0.88, 0.88, 1.0)
+#: A legend's box (white, letting a little of what is under it show).
+LEGEND_BOX = (1.0, 1.0, 1.0, 0.85)
+#: Width of a legend character, as a share of the text size (the default font's digits and
+#: letters average about half; a little more leaves room).
+LEGEND_CHAR_WIDTH = 0.6
+#: A pixel darker than this in some channel is ink (a curve, a mark): the background and the
+#: grid lines are lighter.
+INK_LEVEL = 0.8
 #: Curve colours, told apart in print and by colour-blind readers (the Okabe–Ito palette).
 PALETTE = (
     (0.0, 0.447, 0.698, 1.0),
@@ -153,6 +161,24 @@ class Canvas:
         coverage = np.zeros((self.height, self.width), dtype=np.float32)
         coverage[:, x0 : x1 + 1] = (rows >= lo) & (rows <= hi)
         self._paint(coverage, color)
+
+    def _block(self, x0, y0, x1, y1) -> tuple[slice, slice]:
+        """The rows and columns of the pixels inside ``x0``–``x1`` × ``y0``–``y1``."""
+        cols = slice(max(int(x0), 0), min(int(math.ceil(x1)), self.width))
+        rows = slice(max(int(y0), 0), min(int(math.ceil(y1)), self.height))
+        return rows, cols
+
+    def drawn_pixels(self, x0, y0, x1, y1) -> int:
+        """How many pixels inside the box are inked (darker than the background and grid)."""
+        rows, cols = self._block(x0, y0, x1, y1)
+        return int((self.pixels[rows, cols, :3] < INK_LEVEL).any(axis=-1).sum())
+
+    def fill_rect(self, x0, y0, x1, y1, color) -> None:
+        """Fill the box ``x0``–``x1`` × ``y0``–``y1`` (pixels) with ``color``."""
+        rows, cols = self._block(x0, y0, x1, y1)
+        coverage = np.ones((rows.stop - rows.start, cols.stop - cols.start), dtype=np.float32)
+        if coverage.size:
+            self._paint(coverage, color, (cols.start, rows.start))
 
     def text(self, x, y, text: str, *, size: int = 14, color=BLACK, align="left", valign="baseline"):
         """Put ``text`` at ``(x, y)`` (pixels) when the image is saved."""
@@ -299,15 +325,22 @@ class Axes:
         self.canvas.line([(px, bottom), (px, top)], color, 1.5, dash=(8.0, 5.0))
         self.canvas.text(px + 4, top - 0.5 * size, label, size=size, color=color, valign="top")
 
-    def legend(self, entries: list[tuple[str, tuple]], *, size: int = 14, corner: str = "top left") -> None:
-        """A key of (label, colour) pairs, a short line each, in a corner inside the box."""
+    def legend(self, entries: list[tuple[str, tuple]], *, size: int = 14) -> None:
+        """A key of (label, colour) pairs, a short line each, on a white box in the corner of
+        the frame where the curves drawn so far leave the most room."""
         left, bottom, right, top = self.box
-        row = 1.4 * size
-        y = top - row if corner.startswith("top") else bottom + row * len(entries)
-        x = left + size if corner.endswith("left") else right - 10 * size
+        row, pad = 1.4 * size, 0.5 * size
+        width = 3.0 * size + LEGEND_CHAR_WIDTH * size * max(len(label) for label, _ in entries)
+        height = row * len(entries) + pad
+        corners = [
+            (x, y) for y in (top - pad - height, bottom + pad) for x in (left + pad, right - pad - width)
+        ]
+        x0, y0 = min(corners, key=lambda c: self.canvas.drawn_pixels(c[0], c[1], c[0] + width, c[1] + height))
+        self.canvas.fill_rect(x0, y0, x0 + width, y0 + height, LEGEND_BOX)
+        y = y0 + height - 0.5 * pad - 0.5 * row
         for label, color in entries:
-            self.canvas.line([(x, y), (x + 2 * size, y)], color, 3.0)
-            self.canvas.text(x + 2.5 * size, y, label, size=size, valign="center")
+            self.canvas.line([(x0 + pad, y), (x0 + pad + 2 * size, y)], color, 3.0)
+            self.canvas.text(x0 + pad + 2.5 * size, y, label, size=size, valign="center")
             y -= row
 
 

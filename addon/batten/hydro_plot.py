@@ -142,9 +142,7 @@ def curves_of_form_png(hull: str, rows: list[dict], path) -> tuple[Path, list[Ax
         for j, values_j in enumerate(values):
             axes.plot(values_j, drafts, PALETTE[j], width=2.5)
         if len(curves) > 1:
-            axes.legend(
-                [(label, PALETTE[j]) for j, (_k, label) in enumerate(curves)], size=s, corner="top left"
-            )
+            axes.legend([(label, PALETTE[j]) for j, (_k, label) in enumerate(curves)], size=s)
         all_axes.append(axes)
     return canvas.save_png(path), all_axes
 
