@@ -34,3 +34,15 @@ def test_a_range_narrower_than_the_least_span_is_widened_about_its_middle():
     got = nice_ticks(-1e-10, 2e-10, 4, min_span=0.1)
     assert got[0] <= -0.05 and got[-1] >= 0.05 and got[-1] - got[0] < 0.5, got
     assert np.allclose(nice_ticks(0.0, 8.0, 5, min_span=0.1), [0, 2, 4, 6, 8]), "wide ranges keep theirs"
+
+
+def test_a_legend_goes_where_the_curves_leave_room():
+    from batten.chart import PALETTE, Axes, Canvas
+
+    canvas = Canvas(400, 300)
+    axes = Axes.fit(canvas, (40, 40, 380, 280), [0, 10], [0, 10])
+    axes.plot([0, 5], [10, 5], PALETTE[0], width=6.0)  # through the top left corner
+    axes.legend([("KB", PALETTE[1]), ("KMt", PALETTE[2])], size=14)
+    swatch = np.all(np.abs(canvas.pixels[..., :3] - PALETTE[1][:3]) < 0.05, axis=-1)
+    rows, cols = np.nonzero(swatch)
+    assert len(cols) and cols.min() > 200 and rows.min() > 150, "top right, clear of the curve"
