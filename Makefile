@@ -88,13 +88,17 @@ fmt: venv
 	$(VPY) -m ruff check --fix --quiet addon tests blender_scripts examples rust/batten-py/python
 	$(VPY) -m ruff format --quiet addon tests blender_scripts examples rust/batten-py/python
 
-## Speed figures: criterion in the core, and the Python-side benchmark beside scipy.
+## Speed figures: criterion in the core, and the Python-side benchmarks beside their peers
+## (scipy; navaltoolbox when NAVALTOOLBOX names a folder it was pip-installed into with
+## --target: AGPL, so never into the venv).
 bench: venv sysdeps
 	cargo bench -p batten-core
 	$(MAKE) --no-print-directory native PROFILE=release
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_curves.py
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_fairing.py
 	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_import.py
+	PYTHONPATH=build/native/release:addon $(VPY) blender_scripts/bench_hydro_surface.py
+	PYTHONPATH=build/native/release:addon$(if $(NAVALTOOLBOX),:$(NAVALTOOLBOX)) $(VPY) blender_scripts/bench_hydrostatics.py
 
 clean:
 	rm -rf build $(OUT) target

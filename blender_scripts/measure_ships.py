@@ -1,7 +1,8 @@
 """Measure the real ships as a new user gets them (real-ships issue acceptance figures):
 import ``shared/hulls/<ship>/network.json`` and build with every setting at its default, then
 compare with ``reference.json``: displaced volume, LCB and wetted surface below the design
-draught T (from the mesh, until the hydrostatics issue lands), the surface's holes, folds and
+draught T (from the mesh, and from ``api.hydrostatics`` on the patches with the references'
+Lpp, AP at x = 0), the surface's holes, folds and
 normal jumps, how far the input points are from the surface, and the time taken.
 
     PYTHONPATH=build/native/release:addon .venv/bin/python blender_scripts/measure_ships.py
@@ -156,8 +157,27 @@ def measure(api, ship: Path, resolution: int) -> dict:
     warnings = {}
     for w in r["warnings"]:
         warnings[w["kind"]] = warnings.get(w["kind"], 0) + 1
+    try:
+        h = api.hydrostatics(coll, T, lpp=lpp, fp=lpp)
+        hydro = {
+            "volume_diff_pct": 100 * (h["volume"] / c["displaced_volume"] - 1),
+            "lcb_diff_pct_lpp": 100 * (h["lcb"] - c["LCB_from_AP"]) / lpp,
+            "vcb_diff_pct": 100 * (h["vcb"] / c["VCB_above_baseline_brep"] - 1),
+            "waterplane_area_diff_pct": 100 * (h["waterplane_area"] / c["waterplane_area"] - 1),
+            "lcf_diff_pct_lpp": 100 * (h["lcf"] - c["LCF_from_AP"]) / lpp,
+            "wetted_area_diff_pct": 100 * (h["wetted_area"] / c["wetted_surface_below_T"] - 1),
+            "cb": h["cb"],
+            "cb_reference": c["Cb"],
+            "cm": h["cm"],
+            "cm_reference": c["Cm"],
+            "lwl": h["lwl"],
+            "lwl_reference": c["Lwl_at_T"],
+        }
+    except api.BattenError as e:
+        hydro = {"error": str(e)}
     return {
         "ship": ship.name,
+        "hydrostatics": hydro,
         "import_s": round(t1 - t0, 3),
         "build_s": round(t2 - t1, 3),
         "faces": r["faces"],

@@ -14,6 +14,13 @@ def test_example_json_matches_its_generator(examples_dir, name):
     assert (examples_dir / f"{name}.json").read_text() == module.text()
 
 
+def test_wigley_lines_plan_matches_its_generator(examples_dir):
+    spec = importlib.util.spec_from_file_location("wigley", examples_dir / "wigley.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert (examples_dir / "wigley_lines.json").read_text() == module.lines_text()
+
+
 def test_wigley_sections_are_exact(examples_dir):
     import numpy as np
 

@@ -2,13 +2,14 @@
 
 import json
 import math
+import sys
 from pathlib import Path
 
 import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from batten_native import DEFAULT_SECTION_TOLERANCE, SECTION_CAPTURE_FACTOR
+from batten_native import DEFAULT_SECTION_TOLERANCE, SECTION_CAPTURE_FACTOR, build_surface
 from helpers import new_curve, noisy_arc
 
 HULLS = Path(__file__).resolve().parents[2] / "shared" / "hulls"
@@ -165,10 +166,10 @@ def test_fair_operator_reports_through_bpy_ops():
 # At the defaults, before curves were moved through their nodes, KCS built 4 faces with 144
 # near misses: each section faired on its own no longer met its neighbours.
 # The transom's side edge is a knuckle in the upper waterlines and the deck: joined, it is a chine
-# (one per ship). KCS keeps one near miss: wl_z12.50 cannot meet the profile at the stem within
-# 5 mm of its points.
+# (one per ship). KCS kept one near miss (wl_z12.50 could not meet the profile at the stem within
+# 5 mm of its points) until the nodes were found in the data and the curves fitted through them.
 @pytest.mark.parametrize(
-    ("ship", "faces", "near_misses", "chines"), [("kcs", 280, 1, 1), ("kvlcc2", 280, 0, 1)]
+    ("ship", "faces", "near_misses", "chines"), [("kcs", 280, 0, 1), ("kvlcc2", 300, 0, 1)]
 )
 def test_real_ship_curves_meet_at_their_nodes_and_build_at_the_defaults(ship, faces, near_misses, chines):
     coll, reports = api.import_sections(HULLS / ship / "network.json")
@@ -183,3 +184,32 @@ def test_real_ship_curves_meet_at_their_nodes_and_build_at_the_defaults(ship, fa
     misses = [w for w in report["warnings"] if w["kind"] == "near_miss"]
     assert report["faces"] >= faces, report["faces"]
     assert len(misses) <= near_misses, [w["message"] for w in misses]
+
+
+def test_kvlcc2_builds_closed_at_the_defaults_with_its_volume():
+    """KVLCC2 imported and built with every setting at its default (real-ships issue): the
+    curves that meet in the data meet (nodes from the data), so no region is left open but the
+    two named below, and the volume below T is the reference's within 0.1 % (LCB within 0.05 %
+    Lpp). Before the nodes from the data: 8 holes, 6 dangling ends, ∇ 3.96 % short."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "blender_scripts"))
+    from measure_ships import clipped_triangles, mesh_figures
+
+    ship = HULLS / "kvlcc2"
+    ref = json.loads((ship / "reference.json").read_text())
+    coll, _ = api.import_sections(ship / "network.json")
+    report = api.build(coll).report
+    kinds = [w["kind"] for w in report["warnings"]]
+    assert kinds.count("dangling_end") == 0 and kinds.count("unclosed_region") == 0, kinds
+    # Left (not real; see the issue note): the skeg side over the boss, bounded by st0.50_part1of2
+    # (the boss's section), wl_z5.00, st01, wl_z8.00 and the profile's aperture edge, is traced
+    # into the boundary loop; and under wl_z0.30 from st18.50 to st19.75, where st19's fit swings
+    # ±5 cm about its flat data (samples 0.72 m apart) and leaves the profile pointing down.
+    holes = [w for w in report["warnings"] if w["kind"] == "hole"]
+    assert len(holes) <= 2, [w["message"] for w in holes]
+    (positions, corners, sizes, _), _ = build_surface(api.read_curves(coll))
+    fig = mesh_figures(clipped_triangles(positions, corners, sizes, ref["T"]))
+    c = ref["computed"]
+    volume = 100 * (fig["volume"] / c["displaced_volume"] - 1)
+    lcb = 100 * (fig["lcb"] - c["LCB_from_AP"]) / ref["Lpp"]
+    assert abs(volume) <= 0.1, f"volume below T {volume:+.3f} % of the reference"
+    assert abs(lcb) <= 0.05, f"LCB {lcb:+.4f} % Lpp from the reference"

@@ -40,6 +40,7 @@ from batten_native import (
     HydrostaticsError,
     InternalError,
     InvalidArgumentError,
+    MeshHull,
     NetworkFileError,
     NoSurfaceError,
     build_hull_model,
@@ -49,6 +50,7 @@ from batten_native import (
     fairness,
     network_from_json,
     network_to_json,
+    nodes_from_data,
     snap_to_nodes,
 )
 from batten_native import topology as _topology
@@ -349,20 +351,23 @@ def import_sections(
     model_tolerance: float = DEFAULT_SECTION_MODEL_TOLERANCE,
     collection: str | None = None,
 ):
-    """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets
-    table ``name, x, y, z``), fair every curve within ``tolerance`` (m) keeping its end points
-    and corners, join the corners (knuckles) of consecutive sections into chines (role
-    ``knuckle``), then move the curves, as little as possible, through the nodes where they
-    meet (where two curves come within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each
-    other they are one node, and both pass exactly through it), and draw them as NURBS curve
-    objects in a new collection, with roles from the curve kinds. So curves that cross in the
-    data meet exactly, and the network builds at the default model tolerance. All curves are
-    fitted before anything is created. A file that cannot be read, or holds no curves, raises
-    NetworkFileError naming it.
+    """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets table
+    ``name, x, y, z``), find where the point curves cross or end on each other
+    (``nodes_from_data``: within twice ``tolerance`` plus what their chords may miss the true
+    curve by) and give each such node one point that every curve through it takes among its
+    points, fair every curve within ``tolerance`` (m) keeping its end points and corners, join
+    the corners (knuckles) of consecutive sections into chines (role ``knuckle``), then move the
+    curves, as little as possible, through the nodes where they meet (where two curves come
+    within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each other they are one node, and both
+    pass exactly through it), and draw them as NURBS curve objects in a new collection, with
+    roles from the curve kinds. So curves that cross in the data meet exactly, and the network
+    builds at the default model tolerance. All curves are fitted before anything is created. A
+    file that cannot be read, or holds no curves, raises NetworkFileError naming it.
 
     Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`; a
     chine's report has ``kind`` ``"chine"`` and ``points``, the knuckles it joins), with
-    ``points`` (how many the data had), ``nodes`` (nodes the curve was moved through),
+    ``points`` (how many the data had), ``data_nodes`` (nodes of the data it was fitted
+    through), ``nodes`` (nodes the curve was moved through),
     ``skipped_nodes`` (nodes it leaves out because meeting them would take one of its points
     past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
     distance to a node before the move), ``max_deviation`` and ``max_deviation_index``
@@ -373,6 +378,15 @@ def import_sections(
     name, sections = sections_in.read_sections(path)
     if not sections:
         raise NetworkFileError(f"section file '{path}': no curves")
+    # Nodes from the data: where the point curves meet, one point each curve is fitted through.
+    noded, sources, nodes = nodes_from_data(
+        [sec.name for sec in sections],
+        [sec.points for sec in sections],
+        tolerance,
+        corner_angle_deg,
+        model_tolerance,
+    )
+    data = [sections_in.PointCurve(sec.name, sec.role, pts) for sec, pts in zip(sections, noded, strict=True)]
 
     def fit(sec, within: float):
         curve, report = fair_points(
@@ -385,17 +399,16 @@ def import_sections(
             role=sec.role,
         )
         report["curve"] = sec.name
-        report["points"] = len(sec.points)
         return curve, report
 
-    fits = [fit(sec, tolerance) for sec in sections]
+    fits = [fit(sec, tolerance) for sec in data]
     within = [tolerance] * len(sections)
     for round_ in range(SNAP_ROUNDS + 1):
         curves = [c for c, _ in fits]
         knuckles = [_corner_points(c, r) for c, r in fits]
         chines = chines_from_knuckles(curves, knuckles, tolerance)
         # A chine's own data are the knuckles it joins.
-        points = [sec.points for sec in sections] + [
+        points = [sec.points for sec in data] + [
             _chain_points(ch, knuckles, model_tolerance) for ch in chines
         ]
         snapped, snaps = snap_to_nodes(
@@ -407,7 +420,7 @@ def import_sections(
         # These curves would leave their data to meet some nodes: fit them closer and try again.
         for i in short:
             within[i] *= SNAP_TIGHTEN
-            fits[i] = fit(sections[i], within[i])
+            fits[i] = fit(data[i], within[i])
     reports = [report for _, report in fits]
     reports += [
         {"curve": ch.name, "kind": "chine", "points": len(p), "corners": [], "fit_tolerance": None}
@@ -420,7 +433,19 @@ def import_sections(
         report["fit_tolerance"] = w
         report["max_deviation"] = snap["max_deviation"]
         report["max_deviation_index"] = snap["max_deviation_index"]
+    # Point indices in the reports are the file's: a node between two points is the nearer.
+    for i, (report, sec, source) in enumerate(zip(reports[: len(sections)], sections, sources, strict=True)):
+        report["points"] = len(sec.points)
+        report["data_nodes"] = sum(1 for n in nodes if i in n["curves"])
+        report["max_deviation_index"] = _file_index(report["max_deviation_index"], source)
+        report["corners"] = [_file_index(k, source) for k in report["corners"]]
     return _draw_collection(collection or name, snapped), reports
+
+
+def _file_index(k: int, source: list[int | None]) -> int:
+    """The index in the file of point ``k`` of a curve's points with its data nodes
+    (``source`` from ``nodes_from_data``): its own, or for an inserted node the point before."""
+    return max((i for i in source[: k + 1] if i is not None), default=0)
 
 
 def _corner_points(curve: Curve, report: dict) -> np.ndarray:
@@ -550,6 +575,39 @@ FP_PROPERTY = "batten_fp"
 DESIGN_DRAFT_PROPERTY = "batten_design_draft"
 
 
+#: Vertices of a mesh object closer than this (relative to its size) are one vertex.
+MESH_WELD_RELATIVE = 1e-9
+
+
+def _is_mesh(source) -> bool:
+    return isinstance(source, bpy.types.Object) and source.type == "MESH"
+
+
+def _mesh_hull(obj) -> MeshHull:
+    """A Blender mesh object (as evaluated: modifiers such as Mirror applied, in world
+    coordinates) as a triangle hull."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        mesh.calc_loop_triangles()
+        n = len(mesh.vertices)
+        positions = np.empty(n * 3, dtype=np.float64)
+        mesh.vertices.foreach_get("co", positions)
+        positions = positions.reshape(n, 3)
+        tris = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int32)
+        mesh.loop_triangles.foreach_get("vertices", tris)
+    finally:
+        evaluated.to_mesh_clear()
+    m = np.array(obj.matrix_world, dtype=np.float64)
+    positions = positions @ m[:3, :3].T + m[:3, 3]
+    # Weld coincident vertices (a Mirror modifier's seam, split edges): within 1e-9 of the size.
+    size = float(np.ptp(positions, axis=0).max()) if n else 1.0
+    key = np.round(positions / (MESH_WELD_RELATIVE * max(size, 1e-300))).astype(np.int64)
+    _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return MeshHull(positions[first], inverse.reshape(-1)[tris].reshape(-1, 3))
+
+
 def _hull_model(source):
     """The exact surface of the hull in ``source`` (a collection or its name), built if its
     curves changed since the last build, with errors naming the curve objects."""
@@ -611,7 +669,13 @@ def hydrostatics(
     Raises HydrostaticsError when the draft is below the keel or floods the open top, or the
     surface has a hole under water (the message says where); an open transom in a steep plane is
     closed by that plane. InvalidArgumentError for NaN, a density ≤ 0, a heel of 90° or more.
+
+    ``source`` may also be a Blender mesh object: its triangles (as evaluated, in world
+    coordinates) are integrated exactly, so its figures can be set beside another tool's on the
+    same mesh.
     """
+    if _is_mesh(source):
+        return _mesh_hull(source).hydrostatics(draft, trim=trim, heel=heel, density=density, lpp=lpp, fp=fp)
     model = _hull_model(source)
     lpp, fp = _datums(source, lpp, fp)
     return model.hydrostatics(draft, trim, heel, density, lpp, fp, live)
@@ -642,7 +706,12 @@ def sectional_areas(
     """The sectional area curve of the hull in ``source`` at ``draft`` (and ``trim``, ``heel``):
     ``(xs, areas)``, the immersed area (m², both sides) of each station plane ``x = xs[k]``.
     ``stations``: a count of stations equally spaced from AP to FP inclusive (21: stations 0 to
-    20), or the x values themselves. Perpendiculars as in :func:`hydrostatics`."""
+    20), or the x values themselves. Perpendiculars as in :func:`hydrostatics`. A mesh object
+    takes a count only."""
+    if _is_mesh(source):
+        if not isinstance(stations, int | np.integer):
+            raise InvalidArgumentError("a mesh's sectional areas take a count of stations")
+        return _mesh_hull(source).sectional_areas(draft, int(stations), trim=trim, heel=heel, lpp=lpp, fp=fp)
     model = _hull_model(source)
     lpp, fp = _datums(source, lpp, fp)
     xs = _stations(model, draft, stations, lpp, fp)

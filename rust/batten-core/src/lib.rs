@@ -18,6 +18,7 @@ mod network;
 mod patch;
 mod tolerance;
 mod topo;
+mod union_find;
 mod wireframe;
 
 pub use curve::{
@@ -43,8 +44,9 @@ pub use hull::{
 pub use hydro::{
     default_datums, float_to, hydrostatics, immersed_section_area, level_draft, sectional_areas,
     CellDensity, Datums, Flotation, HullGeometry, HydroError, Hydrostatics, OpenChain,
-    PatchHydroModel, SectionArc, SectionSegment, Waterplane, WetIntegrals, CAP_FLATNESS_RELATIVE,
-    CENTREPLANE_RELATIVE, ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
+    PatchHydroModel, SectionArc, SectionSegment, TriangleHull, Waterplane, WetIntegrals,
+    CAP_FLATNESS_RELATIVE, CENTREPLANE_RELATIVE, CENTREPLANE_TOLERANCE_RELATIVE,
+    ENTRANCE_FIT_FRACTION, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,
@@ -61,4 +63,7 @@ pub use topo::{
     Topology, TwinError, ValidationError, Vertex, VertexId, BRANCHING_TIP_DISTANCE,
     CORNER_ANGLE_DEGREES, MAX_NORMAL_CORNERS, MIN_CORNERS,
 };
-pub use wireframe::{chines_from_knuckles, snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};
+pub use wireframe::{
+    chines_from_knuckles, nodes_from_data, snap_to_nodes, CurveSnap, DataNode, NodedPoints,
+    SnapData, SnappedNetwork,
+};

@@ -90,7 +90,11 @@ fn to_array2<'py>(
     PyArray1::from_vec(py, flat).reshape([rows, cols])
 }
 
-fn points_array<'py>(py: Python<'py>, pts: &[DVec3]) -> PyResult<Bound<'py, PyArray2<f64>>> {
+/// The points as an (n, 3) float array.
+pub(crate) fn points_array<'py>(
+    py: Python<'py>,
+    pts: &[DVec3],
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
     to_array2(py, pts.iter().flat_map(|p| p.to_array()).collect(), 3)
 }
 

@@ -1,58 +1,18 @@
 //! `HullModel`: a built hull's exact patch surface kept for hydrostatics (the core's
-//! `PatchHydroModel`, made on first use), and the conversion of hydrostatic figures to dicts.
+//! `PatchHydroModel`, made on first use).
 
 use std::sync::OnceLock;
 
 use batten_core::{
-    default_datums, float_to, hydrostatics, level_draft, sectional_areas, CellDensity, Datums,
-    Error, Flotation, HullGeometry, HullSurface, HydroError, Hydrostatics, PatchHydroModel,
+    float_to, hydrostatics, level_draft, sectional_areas, CellDensity, HullGeometry, HullSurface,
+    PatchHydroModel, SEA_WATER_DENSITY,
 };
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{arg_err, core_err, guard};
-
-/// A dict of the figures, keyed by the core's field names (serde), all floats.
-pub(crate) fn hydrostatics_dict<'py>(
-    py: Python<'py>,
-    h: &Hydrostatics,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    let value = serde_json::to_value(h).map_err(|e| arg_err(format!("hydrostatics: {e}")))?;
-    if let serde_json::Value::Object(map) = value {
-        for (k, v) in map {
-            d.set_item(k, v.as_f64().unwrap_or(f64::NAN))?;
-        }
-    }
-    Ok(d)
-}
-
-/// The perpendiculars from the arguments: `fp` with `lpp` as given, else FP at the fore end of
-/// the level waterline at `draft` and AP `lpp` aft of it (or at the waterline's aft end).
-pub(crate) fn datums_for(
-    geom: &dyn HullGeometry,
-    draft: f64,
-    lpp: Option<f64>,
-    fp: Option<f64>,
-) -> Result<Datums, Error> {
-    Ok(match (fp, lpp) {
-        (Some(x_fp), Some(l)) => {
-            let d = Datums {
-                x_ap: x_fp - l,
-                x_fp,
-            };
-            d.check()?;
-            d
-        }
-        (Some(_), None) => {
-            return Err(Error::Hydro(HydroError::InvalidInput(
-                "fp (the forward perpendicular) needs lpp too".into(),
-            )))
-        }
-        (None, lpp) => default_datums(geom, draft, lpp)?,
-    })
-}
+use crate::errors::{core_err, guard};
+use crate::hydro::{datums, flotation, hydrostatics_dict};
 
 /// A hull's exact surface for hydrostatics, from [`build_hull_model`](crate::hull::build_hull_model).
 /// Its cells are made on the first call that needs them (tens of milliseconds for a ship) and
@@ -77,10 +37,10 @@ impl HullModel {
     fn geometry(&self, live: bool) -> &PatchHydroModel {
         if live {
             self.live
-                .get_or_init(|| PatchHydroModel::with_density(&self.surface, CellDensity::LIVE))
+                .get_or_init(|| self.surface.hydro_model(CellDensity::LIVE))
         } else {
             self.model
-                .get_or_init(|| PatchHydroModel::new(&self.surface))
+                .get_or_init(|| self.surface.hydro_model(CellDensity::DEFAULT))
         }
     }
 }
@@ -110,7 +70,7 @@ impl HullModel {
     ) -> PyResult<(f64, f64)> {
         py.detach(|| {
             guard("finding the perpendiculars", || {
-                let d = datums_for(self.geometry(false), draft, lpp, fp).map_err(core_err)?;
+                let d = datums(self.geometry(false), draft, lpp, fp)?;
                 Ok((d.x_ap, d.x_fp))
             })
         })
@@ -123,7 +83,7 @@ impl HullModel {
     /// entrance_half_angle …). Perpendiculars: `fp` and `lpp` as given, else FP at the fore end
     /// of the level waterline at `draft`, AP `lpp` aft of it (or at its aft end). `live` uses
     /// the coarser cells (about 1e-8 relative) for figures updated while dragging.
-    #[pyo3(signature = (draft, trim=0.0, heel=0.0, density=batten_core::SEA_WATER_DENSITY, lpp=None, fp=None, live=false))]
+    #[pyo3(signature = (draft, trim=0.0, heel=0.0, density=SEA_WATER_DENSITY, lpp=None, fp=None, live=false))]
     #[allow(clippy::too_many_arguments)]
     fn hydrostatics<'py>(
         &self,
@@ -139,13 +99,8 @@ impl HullModel {
         let h = py.detach(|| {
             guard("computing hydrostatics", || {
                 let geom = self.geometry(live);
-                let d = datums_for(geom, draft, lpp, fp).map_err(core_err)?;
-                let f = Flotation {
-                    draft,
-                    trim,
-                    heel_deg: heel,
-                    density,
-                };
+                let d = datums(geom, draft, lpp, fp)?;
+                let f = flotation(draft, trim, heel, density);
                 hydrostatics(geom, &f, &d).map_err(core_err)
             })
         })?;
@@ -169,13 +124,8 @@ impl HullModel {
         let areas = py.detach(|| {
             guard("computing sectional areas", || {
                 let geom = self.geometry(false);
-                let d = datums_for(geom, draft, lpp, fp).map_err(core_err)?;
-                let f = Flotation {
-                    draft,
-                    trim,
-                    heel_deg: heel,
-                    density: batten_core::SEA_WATER_DENSITY,
-                };
+                let d = datums(geom, draft, lpp, fp)?;
+                let f = flotation(draft, trim, heel, SEA_WATER_DENSITY);
                 sectional_areas(geom, &f, &d, &xs).map_err(core_err)
             })
         })?;
@@ -183,7 +133,7 @@ impl HullModel {
     }
 
     /// The level, upright draft (m) at which the hull displaces `displacement` t.
-    #[pyo3(signature = (displacement, density=batten_core::SEA_WATER_DENSITY))]
+    #[pyo3(signature = (displacement, density=SEA_WATER_DENSITY))]
     fn level_draft(&self, py: Python<'_>, displacement: f64, density: f64) -> PyResult<f64> {
         py.detach(|| {
             guard("finding the draft", || {
@@ -196,7 +146,7 @@ impl HullModel {
     /// under `lcg` (m; with `vcg` the true vertical through G, else LCB = LCG): the hydrostatics
     /// dict there (its draft_mid and trim are the answer). Perpendiculars as in `hydrostatics`,
     /// found at the level draft `design_draft` when `fp` is not given.
-    #[pyo3(signature = (displacement, lcg, design_draft, vcg=None, density=batten_core::SEA_WATER_DENSITY, lpp=None, fp=None))]
+    #[pyo3(signature = (displacement, lcg, design_draft, vcg=None, density=SEA_WATER_DENSITY, lpp=None, fp=None))]
     #[allow(clippy::too_many_arguments)]
     fn float_to<'py>(
         &self,
@@ -212,7 +162,7 @@ impl HullModel {
         let h = py.detach(|| {
             guard("floating the hull", || {
                 let geom = self.geometry(false);
-                let d = datums_for(geom, design_draft, lpp, fp).map_err(core_err)?;
+                let d = datums(geom, design_draft, lpp, fp)?;
                 let f = float_to(geom, &d, displacement, lcg, vcg, density).map_err(core_err)?;
                 hydrostatics(geom, &f, &d).map_err(core_err)
             })

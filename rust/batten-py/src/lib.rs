@@ -14,6 +14,7 @@ mod errors;
 mod fair;
 mod hull;
 mod hull_model;
+mod hydro;
 mod network;
 mod topology;
 
@@ -55,6 +56,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
     m.add_function(wrap_pyfunction!(network::snap_to_nodes, m)?)?;
     m.add_function(wrap_pyfunction!(network::chines_from_knuckles, m)?)?;
+    m.add_function(wrap_pyfunction!(network::nodes_from_data, m)?)?;
     #[cfg(feature = "test-hooks")]
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
@@ -64,5 +66,8 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
     m.add_class::<hull_model::HullModel>()?;
     m.add("SEA_WATER_DENSITY", batten_core::SEA_WATER_DENSITY)?;
+    m.add_class::<hydro::MeshHull>()?;
+    m.add_function(wrap_pyfunction!(hydro::mesh_hydrostatics, m)?)?;
+    m.add_function(wrap_pyfunction!(hydro::mesh_sectional_areas, m)?)?;
     Ok(())
 }

@@ -2,12 +2,12 @@
 
 use batten_core::{Network, NetworkCurve, SnapData, Tolerance};
 use glam::DVec3;
-use numpy::PyUntypedArrayMethods;
+use numpy::{PyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{self, text};
-use crate::curve::Curve;
+use crate::curve::{points_array, Curve};
 use crate::errors::{arg_err, core_err, guard};
 
 fn to_network(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
@@ -181,3 +181,66 @@ pub(crate) fn chines_from_knuckles<'py>(
     })?;
     Ok(chines.into_iter().map(|inner| Curve { inner }).collect())
 }
+
+/// Nodes from the data (`batten_core::nodes_from_data`): where the point curves `points` (per
+/// curve an (n, 3) array-like; `names` name them in errors) cross or end on each other, one
+/// point per node, put among the points of every curve through it. `tolerance` (m) is the
+/// data's, `corner_angle_deg` the turn above which a polyline has a knuckle (None: none),
+/// `model_tolerance` (m) how close a node must be to a sample to take its place. Returns
+/// `(points, sources, nodes)`: per curve its new (m, 3) points and, per point, the index of
+/// the input point it is or replaces (None for an inserted node); each node a dict `position`,
+/// `curves` (indices) and `gap` (m). The GIL is released.
+#[pyfunction]
+#[pyo3(signature = (names, points, tolerance, corner_angle_deg, model_tolerance))]
+pub(crate) fn nodes_from_data<'py>(
+    py: Python<'py>,
+    names: Vec<String>,
+    points: Vec<Bound<'py, PyAny>>,
+    tolerance: f64,
+    corner_angle_deg: Option<f64>,
+    model_tolerance: f64,
+) -> PyResult<NodesFromData<'py>> {
+    if names.len() != points.len() {
+        return Err(arg_err(format!(
+            "nodes_from_data: {} names for {} curves",
+            names.len(),
+            points.len()
+        )));
+    }
+    let model = Tolerance::try_new(model_tolerance).map_err(core_err)?;
+    let data = points
+        .iter()
+        .zip(&names)
+        .map(|(p, n)| points3(p, n, "points"))
+        .collect::<PyResult<Vec<_>>>()?;
+    let corner = corner_angle_deg.map(f64::to_radians);
+    let noded = py.detach(|| {
+        guard("finding the nodes of the data", || {
+            batten_core::nodes_from_data(&data, tolerance, corner, model).map_err(core_err)
+        })
+    })?;
+    let arrays = noded
+        .points
+        .iter()
+        .map(|pts| points_array(py, pts))
+        .collect::<PyResult<Vec<_>>>()?;
+    let nodes = noded
+        .nodes
+        .iter()
+        .map(|n| {
+            let d = PyDict::new(py);
+            d.set_item("position", n.position.to_array())?;
+            d.set_item("curves", &n.curves)?;
+            d.set_item("gap", n.gap)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((arrays, noded.source, nodes))
+}
+
+/// What [`nodes_from_data`] returns: per curve its points and their sources, and the nodes.
+type NodesFromData<'py> = (
+    Vec<Bound<'py, PyArray2<f64>>>,
+    Vec<Vec<Option<usize>>>,
+    Vec<Bound<'py, PyDict>>,
+);

@@ -32,6 +32,7 @@ mod warning;
 
 use crate::defaults::{DEFAULT_RESOLUTION, MAX_RESOLUTION};
 use crate::error::Error;
+use crate::hydro::{CellDensity, PatchHydroModel};
 use crate::network::Network;
 use crate::patch::{Patch, SurfaceMesh};
 use crate::tolerance::Tolerance;
@@ -109,6 +110,15 @@ pub struct HullSurface {
     /// Whether `∂P/∂u × ∂P/∂v` of the patches points out of the hull (false when the mesh was
     /// flipped to face away from the centreplane).
     pub patches_outward: bool,
+}
+
+impl HullSurface {
+    /// The surface's patches as cells for hydrostatics and sections (see
+    /// [`PatchHydroModel`]), cut at `density` ([`CellDensity::DEFAULT`] for the figures,
+    /// [`CellDensity::LIVE`] while dragging).
+    pub fn hydro_model(&self, density: CellDensity) -> PatchHydroModel {
+        PatchHydroModel::new(&self.patches, self.patches_outward, &self.mesh, density)
+    }
 }
 
 impl PartialEq for HullSurface {

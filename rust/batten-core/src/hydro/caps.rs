@@ -103,6 +103,17 @@ fn centreplane_waterline_point(n: DVec3, d1: f64, e3: DVec3, d2: f64) -> Option<
     ))
 }
 
+/// Whether `pts` lie in one steep plane (a transom, which a cap closes).
+fn steep_and_flat(pts: &[DVec3], plane: &Waterplane, size: f64) -> bool {
+    polygon_normal(pts).is_some_and(|n| {
+        let c0 = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
+        n.dot(plane.e3).abs() <= STEEP_CAP_COSINE
+            && pts
+                .iter()
+                .all(|p| n.dot(*p - c0).abs() <= CAP_FLATNESS_RELATIVE * size)
+    })
+}
+
 /// The lowest point of `pts` in `plane`.
 fn lowest(pts: &[DVec3], plane: &Waterplane) -> DVec3 {
     pts.iter()
@@ -123,15 +134,23 @@ fn own_caps(
     let (lo, hi) = geom.bounds();
     let centre = 0.5 * (lo + hi);
     let slack = 1e-9 * size;
-    // The top of the open edges: a run under water that reaches it is the deck edge flooded.
-    let top = geom
+    // The open top: the chain holding the highest free-edge point, when that point is at the
+    // top of the hull (a deck edge left open); a run of it under water floods the hull.
+    let chain_top = |c: &OpenChain| {
+        c.points
+            .iter()
+            .map(|p| p.z)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let open_top = geom
         .open_chains()
         .iter()
-        .flat_map(|c| c.points.iter())
-        .map(|p| p.z)
-        .fold(f64::NEG_INFINITY, f64::max);
+        .enumerate()
+        .max_by(|a, b| chain_top(a.1).total_cmp(&chain_top(b.1)))
+        .filter(|(_, c)| chain_top(c) >= hi.z - slack)
+        .map(|(k, _)| k);
     let mut out = WetIntegrals::default();
-    for chain in geom.open_chains() {
+    for (k, chain) in geom.open_chains().iter().enumerate() {
         if chain.points.iter().all(|p| plane.zeta(*p) >= -slack) {
             continue;
         }
@@ -139,8 +158,15 @@ fn own_caps(
             if pts.len() < 2 {
                 continue;
             }
-            if pts.iter().any(|p| p.z >= top - slack) {
-                return Err(HydroError::above_top(draft, lowest(&pts, plane)));
+            if Some(k) == open_top
+                && pts
+                    .iter()
+                    .any(|p| p.z >= chain_top(chain) - 0.5 * (hi.z - lo.z))
+            {
+                // The deck edge's own run (not a transom below it): the water is over the top.
+                if !steep_and_flat(&pts, plane, size) {
+                    return Err(HydroError::above_top(draft, lowest(&pts, plane)));
+                }
             }
             // A chain end off the centreplane of a half hull is a hole's.
             for e in [start, end] {

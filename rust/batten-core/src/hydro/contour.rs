@@ -12,7 +12,7 @@ use super::roots::bracketed;
 
 /// Grid squares per cell side for marching squares (a cell's polynomial is of degree 7; a plane
 /// meets it at most a few times along a grid line, and refinement follows the curve between).
-const GRID: usize = 4;
+const GRID: usize = 3;
 /// Halvings of a piece at most (a piece is then `2⁻¹⁴` of the cell's grid square).
 const MAX_REFINE_DEPTH: usize = 14;
 /// Newton steps projecting a point onto the curve.
@@ -117,33 +117,32 @@ pub(crate) fn cell_section(
                 _ => Vec::new(),
             };
             for (x0, x1) in pairs {
-                refine(cell, &g, m, x0, x1, tolerance, 0, out);
+                let (p0, p1) = (cell.eval(x0.x, x0.y).0, cell.eval(x1.x, x1.y).0);
+                refine(cell, &g, m, (x0, p0), (x1, p1), tolerance, 0, out);
             }
         }
     }
 }
 
-/// Emit the piece from `x0` to `x1` (parameters on the curve), halved while its chord is
-/// further than `tolerance` from the curve's point between.
+/// Emit the piece from `x0` to `x1` (parameters on the curve, surface points `p0`, `p1`), halved
+/// while its chord is further than `tolerance` from the curve's point between.
 #[allow(clippy::too_many_arguments)]
 fn refine(
     cell: &Cell,
     g: &[[f64; N]; N],
     m: DVec3,
-    x0: DVec2,
-    x1: DVec2,
+    (x0, p0): (DVec2, DVec3),
+    (x1, p1): (DVec2, DVec3),
     tolerance: f64,
     depth: usize,
     out: &mut Vec<SectionArc>,
 ) {
-    let (p0, _, _) = cell.eval(x0.x, x0.y);
-    let (p1, _, _) = cell.eval(x1.x, x1.y);
     let xm = project(g, 0.5 * (x0 + x1));
     let (pm, ps, pt) = cell.eval(xm.x, xm.y);
     let off = (pm - 0.5 * (p0 + p1)).length();
     if off > tolerance && depth < MAX_REFINE_DEPTH {
-        refine(cell, g, m, x0, xm, tolerance, depth + 1, out);
-        refine(cell, g, m, xm, x1, tolerance, depth + 1, out);
+        refine(cell, g, m, (x0, p0), (xm, pm), tolerance, depth + 1, out);
+        refine(cell, g, m, (xm, pm), (x1, p1), tolerance, depth + 1, out);
         return;
     }
     let n = ps.cross(pt) * cell.sign;

@@ -64,6 +64,13 @@ pub trait HullGeometry: Sync {
     fn is_half(&self) -> bool;
 
     /// The range of `dir·p` over the surface below `plane` (both halves), `dir` a unit vector:
-    /// along `e1` its extent is the length of the submerged hull. `None` when nothing is below.
-    fn wet_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)>;
+    /// along `e1` its extent is the length of the submerged hull. `waterline` is the section of
+    /// the surface by `plane` (from [`HullGeometry::plane_section`]), which bounds the wet part.
+    /// `None` when nothing is below.
+    fn wet_range(
+        &self,
+        plane: &Waterplane,
+        dir: DVec3,
+        waterline: &[SectionSegment],
+    ) -> Option<(f64, f64)>;
 }

@@ -17,6 +17,10 @@ use super::waterplane::{Datums, Flotation, Waterplane};
 /// arcs are good to far better than this (the error goes as its square).
 pub const SECTION_TOLERANCE_RELATIVE: f64 = 1e-4;
 
+/// How far below the water (relative to the hull's size) the highest wet point must be for a
+/// closed hull to count as sunk: a waterline's points are exact, so this only absorbs rounding.
+const SUNK_SLACK_RELATIVE: f64 = 1e-9;
+
 /// The foremost part of the waterline, as a fraction of `Lwl`, whose least-squares parabola
 /// gives the half angle of entrance at its fore end (leaves out a stem rounding much smaller
 /// than that, as the lines of a design are read).
@@ -280,6 +284,18 @@ pub fn sectional_areas(
         .collect()
 }
 
+/// Whether the whole of a closed hull is under the water surface `plane` (no waterplane: the
+/// water is over its top), its highest wet point below the water by more than rounding.
+fn sunk(
+    geom: &dyn HullGeometry,
+    plane: &Waterplane,
+    scale: f64,
+    waterline: &[SectionSegment],
+) -> bool {
+    geom.wet_range(plane, plane.e3, waterline)
+        .is_some_and(|(_, top)| top - plane.e3.dot(plane.origin) < -SUNK_SLACK_RELATIVE * scale)
+}
+
 /// The half angle of entrance (degrees): the slope at the fore end of the least-squares parabola
 /// `y(x)` through the waterline points (port side, `y ≥ 0`) within the foremost `fraction·Lwl`.
 fn entrance_half_angle(waterline: &[SectionSegment], plane: &Waterplane, lwl: f64) -> f64 {
@@ -365,9 +381,16 @@ fn max_section(
         .copied()
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap_or((lo, 0.0));
+    let sampled = |x: f64| {
+        samples
+            .iter()
+            .find(|s| (s.0 - x).abs() <= 1e-12 * (hi - lo))
+            .map(|s| s.1)
+    };
     for _ in 0..MAX_SECTION_REFINEMENTS {
         let (x0, x2) = ((best_x - step).max(lo), (best_x + step).min(hi));
-        let (f0, f2) = (area(x0), area(x2));
+        let f0 = sampled(x0).unwrap_or_else(|| area(x0));
+        let f2 = sampled(x2).unwrap_or_else(|| area(x2));
         let (h0, h2) = (best_x - x0, x2 - best_x);
         // The vertex of the parabola through (x0, f0), (best_x, best_a), (x2, f2).
         let num = h0 * h0 * (best_a - f2) - h2 * h2 * (best_a - f0);
@@ -407,7 +430,8 @@ pub fn hydrostatics(
     let scale = size(geom);
     let tol = SECTION_TOLERANCE_RELATIVE * scale;
     let draft = flotation.draft;
-    let Some((xi_lo, xi_hi)) = geom.wet_range(&plane, plane.e1) else {
+    let waterline = geom.plane_section(plane.e3, plane.e3.dot(plane.origin), tol);
+    let Some((xi_lo, xi_hi)) = geom.wet_range(&plane, plane.e1, &waterline) else {
         return Err(below_keel(geom, &plane, draft));
     };
     let caps = cap_integrals(geom, &plane, draft, scale, CENTREPLANE_RELATIVE * scale)?;
@@ -420,6 +444,13 @@ pub fn hydrostatics(
     let v = w.volume;
     let floats = v > 1e-12 * scale.powi(3) && w.wp_area > 1e-12 * scale * scale;
     if !floats {
+        if sunk(geom, &plane, scale, &waterline) {
+            let (lo, hi) = geom.bounds();
+            return Err(HydroError::above_top(
+                draft,
+                DVec3::new(0.5 * (lo.x + hi.x), 0.0, hi.z),
+            ));
+        }
         return Err(HydroError::Degenerate(format!(
             "at draft {draft} m the hull displaces {v:.3e} m³ with a waterplane of {:.3e} m²: nothing floats",
             w.wp_area
@@ -432,7 +463,6 @@ pub fn hydrostatics(
     let il = w.wp_xixi - a * xi_f * xi_f;
     let it = w.wp_etaeta - a * eta_f * eta_f;
 
-    let waterline = geom.plane_section(plane.e3, plane.e3.dot(plane.origin), tol);
     let (lwl, bwl) = match (range(&waterline, plane.e1), range(&waterline, plane.e2)) {
         (Some((a0, a1)), Some((b0, b1))) => (a1 - a0, b1 - b0),
         _ => (0.0, 0.0),
@@ -442,7 +472,7 @@ pub fn hydrostatics(
     let draft_at = |x: f64| draft + (datums.x_mid() - x) * tan_trim;
     let midship_area = immersed_section_area(geom, &plane, DVec3::X, datums.x_mid(), tol);
     let (x_lo, x_hi) = geom
-        .wet_range(&plane, DVec3::X)
+        .wet_range(&plane, DVec3::X, &waterline)
         .unwrap_or((datums.x_ap, datums.x_fp));
     let (max_section_x, max_section_area) = max_section(geom, &plane, x_lo, x_hi, tol);
     let transom_area =

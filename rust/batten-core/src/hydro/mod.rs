@@ -19,6 +19,7 @@ mod float;
 mod geometry;
 mod hydrostatics;
 mod integrals;
+mod mesh;
 mod open_edges;
 mod patch_model;
 mod roots;
@@ -34,5 +35,6 @@ pub use hydrostatics::{
     ENTRANCE_FIT_FRACTION, SECTION_TOLERANCE_RELATIVE,
 };
 pub use integrals::WetIntegrals;
+pub use mesh::{TriangleHull, CENTREPLANE_TOLERANCE_RELATIVE};
 pub use patch_model::{PatchHydroModel, CENTREPLANE_RELATIVE};
 pub use waterplane::{Datums, Flotation, Waterplane, SEA_WATER_DENSITY};

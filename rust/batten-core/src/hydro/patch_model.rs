@@ -13,7 +13,7 @@ use super::geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
 use super::integrals::WetIntegrals;
 use super::open_edges::{chains, free_edge_list};
 use super::waterplane::Waterplane;
-use crate::hull::HullSurface;
+use crate::patch::{Patch, SurfaceMesh};
 
 /// How near the water (relative to the hull's size) a cell may reach and still count as wholly
 /// wet or dry: the rounding of a waterplane along a network curve.
@@ -31,9 +31,6 @@ pub const CENTREPLANE_RELATIVE: f64 = 1e-5;
 /// Samples per cell side when looking for the extent of the wet surface (about a centimetre on a
 /// ship, where a cell is a few metres).
 const RANGE_SAMPLES: usize = 8;
-/// How closely (relative to the hull's size) the waterline is followed when it starts the
-/// search for the wet surface's extent.
-const RANGE_WATERLINE_RELATIVE: f64 = 1e-4;
 
 /// The mirror image `y → −y`.
 #[inline]
@@ -76,14 +73,17 @@ fn box_range(b: &(DVec3, DVec3), m: DVec3) -> (f64, f64) {
 }
 
 impl PatchHydroModel {
-    /// The model of a built hull surface (cells of all its patches, built in parallel).
-    pub fn new(surface: &HullSurface) -> PatchHydroModel {
-        PatchHydroModel::with_density(surface, CellDensity::DEFAULT)
-    }
-
-    /// The model with cells of `density` (to check that the integration has converged).
-    pub fn with_density(surface: &HullSurface, density: CellDensity) -> PatchHydroModel {
-        let cells = build_cells(&surface.patches, surface.patches_outward, density);
+    /// The model of a hull surface from its patches (`outward`: whether their `∂P/∂u × ∂P/∂v`
+    /// points out of the hull) and its welded mesh (for the free edges), with cells of
+    /// `density`, built in parallel. [`HullSurface::hydro_model`](crate::HullSurface::hydro_model)
+    /// gives it for a built hull.
+    pub fn new(
+        patches: &[Patch],
+        outward: bool,
+        mesh: &SurfaceMesh,
+        density: CellDensity,
+    ) -> PatchHydroModel {
+        let cells = build_cells(patches, outward, density);
         let boxes: Vec<(DVec3, DVec3)> = cells.iter().map(net_box).collect();
         let mut lo = DVec3::splat(f64::INFINITY);
         let mut hi = DVec3::splat(f64::NEG_INFINITY);
@@ -93,7 +93,7 @@ impl PatchHydroModel {
         }
         let size = (hi - lo).length();
         let near = CENTREPLANE_RELATIVE * size;
-        let (open, on_centreplane) = free_edges(surface, near);
+        let (open, on_centreplane) = free_edges(mesh, near);
         let half = lo.y >= -near && on_centreplane;
         if half {
             lo.y = -hi.y;
@@ -174,10 +174,13 @@ impl PatchHydroModel {
 
     /// The range of `dir·p` over the wet part of the drawn half: the ends of the waterline's
     /// pieces, then samples of the cells under water whose boxes reach beyond that range.
-    fn own_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
+    fn own_range(
+        &self,
+        plane: &Waterplane,
+        dir: DVec3,
+        waterline: &[SectionSegment],
+    ) -> Option<(f64, f64)> {
         let c = plane.e3.dot(plane.origin);
-        let size = (self.bounds.1 - self.bounds.0).length();
-        let waterline = self.own_section(plane.e3, c, RANGE_WATERLINE_RELATIVE * size);
         let mut range = waterline
             .iter()
             .flatten()
@@ -232,8 +235,7 @@ fn merge(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> Option<(f64, f64)> {
 
 /// The chains of the mesh's free edges off the centreplane (within `near`), and whether any free
 /// edge lies in the centreplane.
-fn free_edges(surface: &HullSurface, near: f64) -> (Vec<OpenChain>, bool) {
-    let mesh = &surface.mesh;
+fn free_edges(mesh: &SurfaceMesh, near: f64) -> (Vec<OpenChain>, bool) {
     let positions: Vec<DVec3> = mesh.positions.iter().map(|p| DVec3::from(*p)).collect();
     let mut on_centreplane = false;
     let edges: Vec<(u32, u32)> = free_edge_list(mesh.faces())
@@ -294,11 +296,17 @@ impl HullGeometry for PatchHydroModel {
         self.half
     }
 
-    fn wet_range(&self, plane: &Waterplane, dir: DVec3) -> Option<(f64, f64)> {
-        let own = self.own_range(plane, dir);
+    fn wet_range(
+        &self,
+        plane: &Waterplane,
+        dir: DVec3,
+        waterline: &[SectionSegment],
+    ) -> Option<(f64, f64)> {
+        // The waterline holds both halves, so its ends bound the image's range too.
+        let own = self.own_range(plane, dir, waterline);
         // Upright, the image's range along a direction in the centreplane is the half's own.
         if self.half && !(plane.is_upright() && dir.y == 0.0) {
-            merge(own, self.own_range(&plane.mirrored(), mirror(dir)))
+            merge(own, self.own_range(&plane.mirrored(), mirror(dir), &[]))
         } else {
             own
         }
@@ -348,7 +356,7 @@ mod tests {
         let net =
             Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network");
         let hull = build_hull(&net, &HullOptions::default()).expect("builds");
-        let model = PatchHydroModel::new(&hull);
+        let model = hull.hydro_model(CellDensity::DEFAULT);
         let mut cut = 0;
         for z in [3.1, 4.0, 5.9] {
             let plane = Waterplane::level(z);

@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use super::data_nodes::axis_planes;
 use crate::curve::NurbsCurve;
 use crate::error::Error;
 use crate::network::{Network, NetworkCurve, Role};
@@ -17,15 +18,10 @@ const MAX_RISE: f64 = 3.0;
 
 /// The axis-aligned plane a curve lies in (within the tolerance), as `(axis, value)`.
 fn plane_of(curve: &NurbsCurve, tolerance: f64) -> Option<(usize, f64)> {
-    let pts = curve.control_points();
-    (0..3).find_map(|axis| {
-        let (lo, hi) = pts
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(p[axis]), hi.max(p[axis]))
-            });
-        (hi - lo <= tolerance).then_some((axis, 0.5 * (lo + hi)))
-    })
+    axis_planes(curve.control_points().iter().copied(), tolerance)
+        .into_iter()
+        .enumerate()
+        .find_map(|(axis, v)| v.map(|v| (axis, v)))
 }
 
 /// A chain of knuckle points: the curve index and the point, in order along the axis.

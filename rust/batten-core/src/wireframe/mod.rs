@@ -2,12 +2,16 @@
 //! one by one to measured or digitised points, to one consistent network whose curves meet
 //! exactly where they cross (Ye & Nowacki 1995: curve compatibility at the nodes).
 //!
+//! - [`data_nodes`]: where the point curves meet, found on the data before the fit, one point
+//!   per node that every curve through it takes among its points.
 //! - [`chines`]: knuckle curves joining the knuckles of consecutive sections.
 //! - [`snap`]: find the nodes of the network at the data's capture distance and move every
 //!   curve, as little as possible, through the nodes its data allow.
 
 mod chines;
+mod data_nodes;
 mod snap;
 
 pub use chines::chines_from_knuckles;
+pub use data_nodes::{nodes_from_data, DataNode, NodedPoints};
 pub use snap::{snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};

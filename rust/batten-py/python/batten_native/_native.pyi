@@ -7,6 +7,7 @@ import numpy.typing as npt
 
 __all__ = [
     "Curve",
+    "MeshHull",
     "DEFAULT_CORNER_ANGLE_DEG",
     "DEFAULT_FAIR_DEGREE",
     "DEFAULT_FAIR_TOLERANCE",
@@ -27,8 +28,11 @@ __all__ = [
     "chines_from_knuckles",
     "fair_points",
     "fairness",
+    "mesh_hydrostatics",
+    "mesh_sectional_areas",
     "network_from_json",
     "network_to_json",
+    "nodes_from_data",
     "snap_to_nodes",
     "topology",
 ]
@@ -117,6 +121,13 @@ def check_lengths(curves: list[Curve], tolerance: float) -> None: ...
 def chines_from_knuckles(
     curves: list[Curve], knuckles: list[_ArrayLike], tolerance: float
 ) -> list[Curve]: ...
+def nodes_from_data(
+    names: list[str],
+    points: list[_ArrayLike],
+    tolerance: float,
+    corner_angle_deg: float | None,
+    model_tolerance: float,
+) -> tuple[list[_F64], list[list[int | None]], list[dict]]: ...
 def snap_to_nodes(
     curves: list[Curve],
     capture: float,
@@ -144,12 +155,15 @@ def fairness(curve: Curve) -> dict: ...
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
 SEA_WATER_DENSITY: float
 
+@final
 class HullModel:
     @property
     def cells(self) -> int: ...
     @property
     def is_half(self) -> bool: ...
-    def datums(self, draft: float, lpp: float | None = None, fp: float | None = None) -> tuple[float, float]: ...
+    def datums(
+        self, draft: float, lpp: float | None = None, fp: float | None = None
+    ) -> tuple[float, float]: ...
     def hydrostatics(
         self,
         draft: float,
@@ -195,3 +209,54 @@ def build_surface(
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
     name: str | None = None,
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
+def mesh_hydrostatics(
+    positions: _ArrayLike,
+    triangles: _ArrayLike,
+    draft: float,
+    *,
+    trim: float = 0.0,
+    heel: float = 0.0,
+    density: float = ...,  # 1.025 t/m³, sea water
+    lpp: float | None = None,
+    fp: float | None = None,
+) -> dict[str, float]: ...
+def mesh_sectional_areas(
+    positions: _ArrayLike,
+    triangles: _ArrayLike,
+    draft: float,
+    stations: int,
+    *,
+    trim: float = 0.0,
+    heel: float = 0.0,
+    lpp: float | None = None,
+    fp: float | None = None,
+) -> tuple[_F64, _F64]: ...
+@final
+class MeshHull:
+    """A triangle mesh built once as a hull, for its hydrostatics at many flotations."""
+
+    def __new__(cls, positions: _ArrayLike, triangles: _ArrayLike) -> MeshHull: ...
+    @property
+    def is_half(self) -> bool: ...
+    @property
+    def triangle_count(self) -> int: ...
+    def hydrostatics(
+        self,
+        draft: float,
+        *,
+        trim: float = 0.0,
+        heel: float = 0.0,
+        density: float = ...,  # 1.025 t/m³, sea water
+        lpp: float | None = None,
+        fp: float | None = None,
+    ) -> dict[str, float]: ...
+    def sectional_areas(
+        self,
+        draft: float,
+        stations: int,
+        *,
+        trim: float = 0.0,
+        heel: float = 0.0,
+        lpp: float | None = None,
+        fp: float | None = None,
+    ) -> tuple[_F64, _F64]: ...

@@ -7,25 +7,7 @@ use super::{Hit, Incidence, Junction, Junctions, Prepared};
 use crate::curve::NurbsCurve;
 use crate::diagnostic::Diagnostic;
 use crate::network::Network;
-
-/// Disjoint sets of incidences (path halving; the smaller root wins a union).
-struct UnionFind(Vec<usize>);
-
-impl UnionFind {
-    fn find(&mut self, mut x: usize) -> usize {
-        while self.0[x] != x {
-            self.0[x] = self.0[self.0[x]];
-            x = self.0[x];
-        }
-        x
-    }
-    fn union(&mut self, a: usize, b: usize) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            self.0[ra.max(rb)] = ra.min(rb);
-        }
-    }
-}
+use crate::union_find::UnionFind;
 
 /// A tangent jump (radians) above which a curve's knot is a corner that a node within the
 /// tolerance of it sits at (about 0.06°, where two tangents stop being parallel for the
@@ -86,7 +68,7 @@ pub(super) fn cluster(
             });
         }
     }
-    let mut uf = UnionFind((0..incs.len() + 2 * hits.len()).collect());
+    let mut uf = UnionFind::new(incs.len() + 2 * hits.len());
     for h in hits {
         let ia = incs.len();
         incs.push(CurvePoint {
