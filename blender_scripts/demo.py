@@ -1,7 +1,11 @@
 """batten demo, headless: draw each example network as Blender curves, then write
 ``<out>/<name>.blend``, a report ``<out>/<name>.json`` and a render ``<out>/<name>.png``; then
 import the real ships' sections (``shared/hulls`` beside the checkout) with every setting at its
-default, build them the same way and render them from the bow, the stern and the side.
+default, build them the same way and render them from the bow, the stern and the side, and
+write their hydrostatics at the design draft (logged beside the reference figures, and in
+``<name>_hydrostatics.csv``), their sectional area curve ``<name>_sac.png`` and curves of form
+``<name>_curves_of_form.png`` (and ``.csv``); the examples' too, at the draft the panel
+starts at.
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
@@ -231,7 +235,11 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
     coll = api.load_network(path)
     t_load = time.perf_counter() - t0
     _log(f"{coll.name}: drew {len(coll.objects)} curves from {path.name} in {t_load * 1e3:.1f} ms")
-    return deliver(api, coll, path, {"load_ms": round(t_load * 1e3, 3)}, out, engine, size, resolution, zebra)
+    report = deliver(
+        api, coll, path, {"load_ms": round(t_load * 1e3, 3)}, out, engine, size, resolution, zebra
+    )
+    plot_hydrostatics(api, coll, out)
+    return report
 
 
 def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
@@ -251,7 +259,13 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
         f"(largest move {max(r['snap_move'] for r in fits) * 1e3:.2f} mm)"
     )
     extra = {"import_s": round(t_load, 3), "fits": fits}
-    return deliver(
+    reference = _reference(path)
+    if reference is not None:
+        # The ship's own perpendiculars (its x runs forward from the AP) and design draft, for
+        # the API and the Hydrostatics panel (which starts at that draft).
+        coll[api.LPP_PROPERTY] = coll[api.FP_PROPERTY] = reference["Lpp"]
+        coll[api.DESIGN_DRAFT_PROPERTY] = reference["T"]
+    report = deliver(
         api,
         coll,
         path,
@@ -264,6 +278,84 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
         views=("bow", "stern", "side"),
         tube=SHIP_TUBE,
     )
+    if reference is not None:
+        plot_hydrostatics(api, coll, out, reference)
+    return report
+
+
+def _reference(path: Path) -> dict | None:
+    """A real ship's ``reference.json`` beside its network (None for other section files)."""
+    ref = path.parent / "reference.json"
+    return json.loads(ref.read_text()) if path.stem == "network" and ref.is_file() else None
+
+
+#: The curves of form of a hull span these shares of its design draft.
+CURVES_OF_FORM_SPAN = (0.2, 1.2)
+CURVES_OF_FORM_DRAFTS = 11
+
+
+def _batten_module(api, name: str):
+    """A module of the batten package ``api`` belongs to (installed as an extension, its
+    package is not ``batten``)."""
+    import importlib
+
+    return importlib.import_module(f"{api.__package__}.{name}")
+
+
+#: (figure key, key in a ship's ``reference.json`` "computed") compared in the log.
+REFERENCE_KEYS = (
+    ("volume", "displaced_volume"),
+    ("lcb", "LCB_from_AP"),
+    ("vcb", "VCB_above_baseline_brep"),
+    ("waterplane_area", "waterplane_area"),
+    ("lcf", "LCF_from_AP"),
+    ("wetted_area", "wetted_surface_below_T"),
+)
+
+
+def plot_hydrostatics(api, coll, out: Path, reference: dict | None = None) -> None:
+    """A hull's hydrostatics at its design draft (a real ship's, about its perpendiculars,
+    beside its ``reference`` figures in the log; an example's at the draft the Hydrostatics
+    panel starts at), in ``<name>_hydrostatics.csv``, its sectional area curve
+    ``<name>_sac.png`` and curves of form ``<name>_curves_of_form.png`` (and ``.csv``). A
+    hydrostatics error (a hole under water) is logged, and written on the sectional area curve,
+    whose plane sections need no closed surface."""
+    import numpy as np
+
+    hydro_plot, hydro_table = _batten_module(api, "hydro_plot"), _batten_module(api, "hydro_table")
+    name = coll.name
+    draft = reference["T"] if reference else bpy.context.scene.batten.draft
+    t0 = time.perf_counter()
+    try:
+        fig, note = api.hydrostatics(coll, draft), ""
+    except api.BattenError as e:
+        fig, note = None, str(e)
+        _log(f"{name}: no figures ({e})")
+    else:
+        _log(f"{name}: hydrostatics at T = {draft:.3f} m in {(time.perf_counter() - t0) * 1e3:.1f} ms")
+        ref = reference["computed"] if reference else {}
+        for key, ref_key in REFERENCE_KEYS:
+            if ref_key in ref:
+                diff = 100 * (fig[key] / ref[ref_key] - 1)
+                _log(f"{name}: {key} {fig[key]:.3f} (reference {ref[ref_key]}, {diff:+.3f} %)")
+        hydro_table.hydrostatics_csv(fig, out / f"{name}_hydrostatics.csv")
+    xs, areas = api.sectional_areas(coll, draft, 41)
+    sac = out / f"{name}_sac.png"
+    marks = fig or {"x_ap": xs[0], "x_fp": xs[-1], "draft_mid": draft}
+    hydro_plot.sac_png(name, xs, areas, marks, sac, note=note)
+    _log(f"{name}: sectional area curve {sac}")
+    drafts = draft * np.linspace(*CURVES_OF_FORM_SPAN, CURVES_OF_FORM_DRAFTS)
+    t0 = time.perf_counter()
+    try:
+        rows = api.curves_of_form(coll, drafts)
+    except api.BattenError as e:
+        _log(f"{name}: no curves of form: {e}")
+        return
+    t_cof = time.perf_counter() - t0
+    cof = out / f"{name}_curves_of_form.png"
+    hydro_plot.curves_of_form_png(name, rows, cof)
+    hydro_table.curves_of_form_csv(rows, cof.with_suffix(".csv"))
+    _log(f"{name}: curves of form ({len(rows)} drafts in {t_cof:.2f} s) {cof} and .csv")
 
 
 def deliver(
@@ -311,7 +403,7 @@ def deliver(
     _log(
         f"{name}: max gap {b['max_gap']:.2e} m, max normal jump {b['max_normal_angle_deg']:.4f} deg, "
         f"{b['holes']} hole(s), {b['folds']} fold(s), "
-        f"displacement volume {b['displacement_volume']:.2f} m3, {len(b['warnings'])} warning(s)"
+        f"enclosed volume {b['enclosed_volume']:.2f} m3, {len(b['warnings'])} warning(s)"
     )
     for w in b["warnings"]:
         _log(f"{name}: warning ({w['kind']}): {w['message']}")

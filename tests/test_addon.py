@@ -33,7 +33,10 @@ def test_operators_keep_no_state_and_support_undo(tmp_path, examples_dir):
     ops = {name: getattr(bpy.types, f"BATTEN_OT_{name}") for name in dir(bpy.ops.batten)}
     assert len(ops) >= 6
     assert all("REGISTER" in cls.bl_options for cls in ops.values())
-    assert {n for n, cls in ops.items() if "UNDO" not in cls.bl_options} == {"export_network"}
+    assert {n for n, cls in ops.items() if "UNDO" not in cls.bl_options} == {
+        "export_network",
+        "export_hydrostatics",
+    }
     # No hidden state: two scenes with their own hulls and settings, built alternately; each
     # build follows its own scene's data alone (a setting or source kept in Python from the
     # previous call would build the other hull or resolution).

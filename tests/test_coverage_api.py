@@ -58,9 +58,10 @@ def test_build_without_mirror_has_one_half_and_its_volume(examples_dir):
     # the deck plane), equal to the report's volume and to the exact half within 0.2 %.
     measured = evaluated_volume(half.object, axis=1, level=0.0)
     assert abs(measured - WIGLEY_HALF_VOLUME) / WIGLEY_HALF_VOLUME < 0.002, measured
-    assert r["volume"] == pytest.approx(measured, rel=1e-5)
-    assert r["displacement_volume"] == pytest.approx(measured, rel=1e-5)
-    assert r["volume"] == pytest.approx(mirrored.report["volume"], rel=1e-12), "the same half surface"
+    assert r["enclosed_volume_half"] == pytest.approx(measured, rel=1e-5)
+    assert r["enclosed_volume"] == pytest.approx(measured, rel=1e-5)
+    same = mirrored.report["enclosed_volume_half"]
+    assert r["enclosed_volume_half"] == pytest.approx(same, rel=1e-12), "the same half surface"
     pos = np.empty(3 * len(half.object.data.vertices))
     half.object.data.vertices.foreach_get("co", pos)
     assert pos.reshape(-1, 3)[:, 1].min() > -1e-6, "port half only (y ≥ 0)"

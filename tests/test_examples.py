@@ -83,4 +83,4 @@ def test_multi_chine_from_sections_only_builds_its_exact_hull(examples_dir):
     for lo, hi in creases.values():
         assert 50.0 < lo <= hi < 60.0 and hi - lo < 0.1, creases
     exact = json.loads(path.read_text())["exact_volume"]
-    assert abs(report["volume"] / exact - 1) < 1e-6, (report["volume"], exact)
+    assert abs(report["enclosed_volume_half"] / exact - 1) < 1e-6, (report["enclosed_volume_half"], exact)

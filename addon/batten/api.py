@@ -532,8 +532,10 @@ def build(
     knuckle curve: name, min, max), knuckle_edges (each ``curve``, ``objects`` — the object
     it came from —, ``source`` — ``"role"`` or ``"auto"``, found at corners of crossing curves
     —, ``corner_curves``, ``crease_deg`` (min, max) or None, ``points`` along the edge),
-    volume (between the drawn half surface and the centreplane), displacement_volume (both
-    halves when mirrored), mesh_vertices, mesh_faces, and warnings: each a dict with ``kind``
+    enclosed_volume_half (m³, between the drawn half surface and the centreplane, up to the
+    top of the surface: a volume of the shape, not a displacement, which
+    :func:`hydrostatics` gives at a draft), enclosed_volume (both halves when mirrored, else
+    the half), mesh_vertices, mesh_faces, and warnings: each a dict with ``kind``
     (``dangling_end``, ``near_miss``, ``unclosed_region``, ``face_not_patched``, ``hole`` — free
     edges off the profile, deck and transom —, ``fold`` — neighbouring mesh faces more than 30°
     apart off the knuckles, or a patch out of its boundary's box —, …),
@@ -553,7 +555,9 @@ def build(
     )
     obj[SURFACE_TAG] = name
     report["mirror"] = mirror
-    report["displacement_volume"] = report["volume"] * (2.0 if mirror else 1.0)
+    half = report.pop("volume")  # the core's: the drawn half surface to the centreplane
+    report["enclosed_volume_half"] = half
+    report["enclosed_volume"] = half * (2.0 if mirror else 1.0)
     report["warnings"] = with_objects(report["warnings"], object_of)
     report["knuckle_edges"] = [
         {**k, "objects": objects_of([k["curve"]], object_of)} for k in report["knuckle_edges"]

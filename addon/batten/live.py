@@ -1,4 +1,5 @@
-"""Live rebuild: when a curve of a hull with Live on changes, rebuild its surface.
+"""Live rebuild: when a curve of a hull with Live on changes, rebuild its surface (and its
+hydrostatics, once the panel has computed them).
 
 Depsgraph updates are coalesced with a short timer, so dragging a control point triggers one
 rebuild per pause rather than one per mouse event, and updates that touch no hull curve are
@@ -10,6 +11,7 @@ import bpy
 
 from . import api
 from .scene_build import build_into_scene
+from .scene_hydro import hydrostatics_into_scene
 
 #: Seconds to wait after the last change before rebuilding.
 COALESCE_SECONDS = 0.05
@@ -27,8 +29,10 @@ def _hull_curve_names(settings) -> set[str]:
 
 
 def rebuild_scene(scene_name: str):
-    """Rebuild the surface of a scene's hull now (the timer callback). Errors are kept in the
-    scene's last report; the previous mesh stays."""
+    """Rebuild the surface of a scene's hull now (the timer callback), and its hydrostatics
+    when they have been computed once (the panel then shows the figures of the new shape).
+    Errors are kept in the scene's last report (and last hydrostatics); the previous mesh
+    stays."""
     _scheduled.discard(scene_name)
     scene = bpy.data.scenes.get(scene_name)
     if scene is None or not scene.batten.live or scene.batten.source is None:
@@ -37,8 +41,10 @@ def rebuild_scene(scene_name: str):
     _rebuilding = True
     try:
         build_into_scene(scene)
+        if scene.batten.last_hydrostatics:
+            hydrostatics_into_scene(scene, live=True)
     except api.BattenError:
-        pass  # kept in the scene's report; the previous mesh stays
+        pass  # kept in the scene's report or figures; the previous mesh stays
     finally:
         try:
             bpy.context.view_layer.update()  # consume the updates this rebuild caused

@@ -1,11 +1,13 @@
 """Viewport overlay: curvature combs on the selected curves, and from the last build markers
 on the network's nodes, T-joints, dangling ends, near misses and other problems, and the
-knuckle edges as thick lines, the automatically found ones in their own colour (drawn only,
-nothing stored).
+knuckle edges as thick lines, the automatically found ones in their own colour, and the water
+surface at the Hydrostatics panel's draft, trim and heel (drawn only, nothing stored).
 
 The comb geometry comes from :func:`batten.api.curvature_comb`, the markers and knuckle lines
 from the scene's last build report (through :mod:`batten.network_markers`); this module only
-turns them into batches for the GPU.
+turns them into batches for the GPU. The water surface is the plane of the flotation
+(:mod:`batten.waterplane_outline`) drawn as a semi-transparent rectangle over the hull's box,
+with the perpendiculars of the last figures (the box's ends before any).
 """
 
 import json
@@ -15,6 +17,8 @@ import numpy as np
 
 from . import api
 from .network_markers import knuckle_segments, marker_arrays
+from .scene_hydro import hull_box, last_figures
+from .waterplane_outline import waterplane_outline
 
 _handle = None
 
@@ -80,6 +84,58 @@ def knuckle_lines(context) -> dict[str, np.ndarray]:
     return knuckle_segments(_last_report(context).get("knuckle_edges", []))
 
 
+#: The water surface: fill and outline colours, outline width (px).
+WATER_FILL = (0.1, 0.45, 0.85, 0.25)
+WATER_EDGE = (0.05, 0.35, 0.8, 0.9)
+WATER_EDGE_WIDTH = 2.0
+
+
+def water_surface(context) -> np.ndarray:
+    """The corners (4, 3), float32, of the water surface at the scene's draft, trim and heel
+    over the hull's box (both sides when mirrored), or an empty array (no hull, or Waterline
+    off)."""
+    settings = context.scene.batten
+    if not settings.show_waterline or settings.source is None:
+        return np.zeros((0, 3), dtype=np.float32)
+    try:
+        lo, hi = hull_box(settings.source)
+    except api.BattenError:
+        return np.zeros((0, 3), dtype=np.float32)
+    if settings.mirror:
+        lo[1] = -max(abs(lo[1]), abs(hi[1]))
+        hi[1] = -lo[1]
+    figures = last_figures(settings)
+    corners = waterplane_outline(
+        lo,
+        hi,
+        draft=settings.draft,
+        trim=settings.trim,
+        heel_deg=np.degrees(settings.heel),
+        x_ap=figures.get("x_ap"),
+        x_fp=figures.get("x_fp"),
+    )
+    return corners.astype(np.float32)
+
+
+def _draw_water(context) -> None:
+    import gpu
+    from gpu_extras.batch import batch_for_shader
+
+    corners = water_surface(context)
+    if not len(corners):
+        return
+    gpu.state.blend_set("ALPHA")
+    fill = gpu.shader.from_builtin("UNIFORM_COLOR")
+    fill.uniform_float("color", WATER_FILL)
+    batch_for_shader(fill, "TRIS", {"pos": corners}, indices=((0, 1, 2), (0, 2, 3))).draw(fill)
+    edge = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
+    edge.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
+    edge.uniform_float("lineWidth", WATER_EDGE_WIDTH)
+    edge.uniform_float("color", WATER_EDGE)
+    batch_for_shader(edge, "LINE_LOOP", {"pos": corners}).draw(edge)
+    gpu.state.blend_set("NONE")
+
+
 def _draw():
     context = bpy.context
     settings = getattr(context.scene, "batten", None)
@@ -88,6 +144,7 @@ def _draw():
     import gpu
     from gpu_extras.batch import batch_for_shader
 
+    _draw_water(context)
     shader = gpu.shader.from_builtin("UNIFORM_COLOR")
     if settings.show_combs:
         lines = comb_lines(context)

@@ -1,10 +1,16 @@
-"""The batten tab in the 3D viewport's sidebar."""
+"""The batten tab in the 3D viewport's sidebar, and its Hydrostatics sub-panel."""
 
 import json
+import textwrap
 
 import bpy
 
+from . import hydro_table
 from ._registry import register_classes, unregister_classes
+
+#: Characters per line of a hydrostatics error in the panel (the message names where a hole
+#: is, and would otherwise run off the sidebar).
+ERROR_LINE_CHARS = 48
 
 
 class VIEW3D_PT_batten(bpy.types.Panel):
@@ -81,7 +87,7 @@ def _draw_report(layout, text: str) -> None:
             found_knuckle_objects(report)
         )
         col.label(text=f"  at corners of {_names(corners)}")
-    col.label(text=f"Volume: {report['displacement_volume']:.2f} m³")
+    col.label(text=f"Enclosed volume (to the top): {report['enclosed_volume']:.2f} m³")
     for warning in report["warnings"]:
         row = box.row()
         row.label(text=warning["message"], icon="ERROR")
@@ -111,7 +117,74 @@ def found_knuckle_objects(report: dict) -> list[str]:
     return sorted({o for k in report.get("knuckle_edges", []) if k["source"] == "auto" for o in k["objects"]})
 
 
-_CLASSES = (VIEW3D_PT_batten,)
+class VIEW3D_PT_batten_hydrostatics(bpy.types.Panel):
+    """The hull's hydrostatics: flotation, the table of figures, plots, CSV and floating."""
+
+    bl_label = "Hydrostatics"
+    bl_idname = "VIEW3D_PT_batten_hydrostatics"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "batten"
+    bl_parent_id = VIEW3D_PT_batten.bl_idname
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.batten
+        col = layout.column(align=True)
+        for name in ("draft", "trim", "heel", "density", "lpp"):
+            col.prop(settings, name)
+        row = layout.row(align=True)
+        row.scale_y = 1.3
+        row.operator("batten.hydrostatics", text="Compute", icon="MOD_FLUID")
+        row.prop(settings, "show_waterline", toggle=True, icon="MOD_OCEAN")
+        _draw_figures(layout, settings.last_hydrostatics)
+        box = layout.box()
+        box.label(text="Plots", icon="IMAGE_DATA")
+        row = box.row(align=True)
+        row.prop(settings, "stations")
+        row.operator("batten.sectional_areas")
+        row = box.row(align=True)
+        row.prop(settings, "curves_draft_min")
+        row.prop(settings, "curves_draft_max")
+        row = box.row(align=True)
+        row.prop(settings, "curves_drafts")
+        row.operator("batten.curves_of_form")
+        row = layout.row(align=True)
+        row.operator("batten.export_hydrostatics", text="Export CSV", icon="EXPORT").table = "HYDROSTATICS"
+        row.operator(
+            "batten.export_hydrostatics", text="Curves of Form CSV", icon="EXPORT"
+        ).table = "CURVES_OF_FORM"
+        box = layout.box()
+        box.label(text="Float", icon="FORCE_BOID")
+        col = box.column(align=True)
+        col.prop(settings, "float_displacement", text="Δ (t)")
+        col.prop(settings, "float_lcg")
+        box.operator("batten.float_to")
+
+
+def _draw_figures(layout, text: str) -> None:
+    """The last hydrostatics as a table of figures with units, by group; or its error."""
+    if not text:
+        return
+    figures = json.loads(text)
+    box = layout.box()
+    if "error" in figures:
+        box.alert = True
+        col = box.column(align=True)
+        for i, line in enumerate(textwrap.wrap(figures["error"], ERROR_LINE_CHARS)):
+            col.label(text=line, icon="ERROR" if i == 0 else "BLANK1")
+        return
+    col = box.column(align=True)
+    for group, rows in hydro_table.GROUPS:
+        col.label(text=group)
+        for row in rows:
+            split = col.split(factor=0.55, align=True)
+            split.label(text=row.label)
+            split.label(text=hydro_table.value_text(row, figures))
+
+
+_CLASSES = (VIEW3D_PT_batten, VIEW3D_PT_batten_hydrostatics)
 
 
 def register():

@@ -3,11 +3,21 @@
 Everything lives in Blender data (saved with the file, seen by undo); nothing in Python globals.
 """
 
+import math
+
 import bpy
 from batten_native import DEFAULT_FAIR_TOLERANCE, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE, MAX_RESOLUTION
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._registry import register_classes, unregister_classes
+
+#: Sea water, t/m³: the default density of :func:`batten.api.hydrostatics` (ITTC, 15 °C).
+SEA_WATER_DENSITY = 1.025
+#: Stations of the sectional area curve, and drafts of the curves of form, by default.
+DEFAULT_STATIONS = 21
+DEFAULT_CURVES_OF_FORM_DRAFTS = 10
+#: The largest heel the panel takes, radians (the hydrostatics refuse 90° and more).
+MAX_HEEL = math.radians(89.0)
 
 #: (identifier, label, description); identifiers are the core's role names.
 ROLE_ITEMS = [
@@ -38,6 +48,27 @@ def _is_collection(_self, _coll):
     return True
 
 
+def _hull_changed(settings, _context):
+    """A new hull: its drafts (design draft, range of the curves of form) and no figures yet."""
+    from .scene_hydro import set_default_drafts
+
+    set_default_drafts(settings)
+
+
+def _flotation_changed(settings, _context):
+    """Draft, trim, heel, density or Lpp changed: recompute the figures if the panel shows some
+    (an error too: the change may be its fix)."""
+    if not settings.last_hydrostatics or settings.source is None:
+        return
+    from . import api
+    from .scene_hydro import hydrostatics_into_scene
+
+    try:
+        hydrostatics_into_scene(settings.id_data, live=True)  # the scene owning these settings
+    except api.BattenError:
+        pass  # kept as the figures' error, shown in the panel
+
+
 class BattenSceneSettings(bpy.types.PropertyGroup):
     """The hull settings of a scene."""
 
@@ -45,6 +76,7 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         name="Hull curves",
         description="Collection holding the hull's curve network",
         type=bpy.types.Collection,
+        update=_hull_changed,
     )
     tolerance: FloatProperty(
         name="Tolerance",
@@ -107,6 +139,115 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         default=10.0,
         min=0.0,
         soft_max=10000.0,
+    )
+
+    # Hydrostatics (the Hydrostatics panel; figures from batten.api.hydrostatics).
+    draft: FloatProperty(
+        name="Draft",
+        description=(
+            "Draft at midships (halfway between the perpendiculars), above the baseline z = 0. Set "
+            "when the hull is chosen: its design draft (the collection's 'batten_design_draft' "
+            "property) if it has one, else half its depth"
+        ),
+        default=1.0,
+        precision=3,
+        unit="LENGTH",
+        update=_flotation_changed,
+    )
+    trim: FloatProperty(
+        name="Trim",
+        description="Trim T_AP − T_FP (by the stern positive)",
+        default=0.0,
+        precision=3,
+        unit="LENGTH",
+        update=_flotation_changed,
+    )
+    heel: FloatProperty(
+        name="Heel",
+        description="Heel (to starboard positive)",
+        default=0.0,
+        min=-MAX_HEEL,
+        max=MAX_HEEL,
+        subtype="ANGLE",
+        unit="ROTATION",
+        update=_flotation_changed,
+    )
+    density: FloatProperty(
+        name="Density",
+        description="Water density, t/m³ (sea water 1.025, fresh water 1.000)",
+        default=SEA_WATER_DENSITY,
+        min=0.001,
+        soft_min=0.9,
+        soft_max=1.1,
+        precision=4,
+        update=_flotation_changed,
+    )
+    lpp: FloatProperty(
+        name="Lpp",
+        description=(
+            "Length between perpendiculars, FP at the stem's waterline, AP this far aft; 0: AP at the "
+            "waterline's aft end (Lpp = Lwl)"
+        ),
+        default=0.0,
+        min=0.0,
+        precision=3,
+        unit="LENGTH",
+        update=_flotation_changed,
+    )
+    show_waterline: BoolProperty(
+        name="Waterline",
+        description="Draw the water surface at the draft, trim and heel in the viewport",
+        default=True,
+    )
+    stations: IntProperty(
+        name="Stations",
+        description="Stations of the sectional area curve, evenly spaced along the hull",
+        default=DEFAULT_STATIONS,
+        min=3,
+        max=1001,
+        soft_max=101,
+    )
+    curves_draft_min: FloatProperty(
+        name="From",
+        description="Lowest draft of the curves of form",
+        default=0.5,
+        precision=3,
+        unit="LENGTH",
+    )
+    curves_draft_max: FloatProperty(
+        name="To",
+        description="Highest draft of the curves of form",
+        default=1.0,
+        precision=3,
+        unit="LENGTH",
+    )
+    curves_drafts: IntProperty(
+        name="Drafts",
+        description="Drafts of the curves of form, evenly spaced",
+        default=DEFAULT_CURVES_OF_FORM_DRAFTS,
+        min=2,
+        max=200,
+        soft_max=50,
+    )
+    float_displacement: FloatProperty(
+        name="Displacement",
+        description="Displacement Δ to float the hull at, t",
+        default=1000.0,
+        min=0.0,
+        precision=1,
+    )
+    float_lcg: FloatProperty(
+        name="LCG",
+        description="Longitudinal centre of gravity, x (the hull trims until LCB is under it)",
+        default=0.0,
+        precision=3,
+        unit="LENGTH",
+    )
+    last_hydrostatics: StringProperty(
+        name="Last hydrostatics",
+        description="The figures of the last hydrostatics (JSON, or its error), shown in the panel",
+        default="",
+        options={"HIDDEN"},
     )
 
 

@@ -9,6 +9,9 @@ ADDON = Path(__file__).resolve().parents[2] / "addon"
 BPY_FREE = (
     "batten",
     "batten.atomic_write",
+    "batten.chart",
+    "batten.hydro_table",
+    "batten.waterplane_outline",
     "batten.file_text",
     "batten.fit_data",
     "batten.network_markers",

@@ -70,6 +70,20 @@ def read_object(obj) -> list[Curve]:
         return [_read_spline(spline, name, role, matrix) for spline, name in zip(splines, names, strict=True)]
 
 
+def control_points(obj) -> np.ndarray:
+    """Every control point (with a Bézier spline's handles) of the curve object ``obj``, in
+    world coordinates, (n, 3): the curves lie in their box (NaN and inf pass through)."""
+    matrix = np.array(obj.matrix_world, dtype=np.float64)
+    points = []
+    for spline in obj.data.splines:
+        if spline.type == "BEZIER":
+            pts, n = spline.bezier_points, len(spline.bezier_points)
+            points += [_array(pts, attr, n, 3) for attr in ("co", "handle_left", "handle_right")]
+        else:
+            points.append(_array(spline.points, "co", len(spline.points), 4)[:, :3])
+    return _transform(matrix, np.concatenate(points)) if points else np.zeros((0, 3))
+
+
 def _read_spline(spline, name: str, role: str, matrix: np.ndarray) -> Curve:
     cyclic = bool(spline.use_cyclic_u)
     if spline.type == "BEZIER":
