@@ -232,17 +232,22 @@ def test_real_ship_has_no_hole_under_water_and_gives_its_hydrostatics(ship):
     assert abs(h["lwl"] / c["Lwl_at_T"] - 1) <= 1e-3, h["lwl"]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="both ships' forefoot patches (under wl_z0.30 at st19.50-st20) fold across the "
-    "centreplane by 14-19 cm, so the patch model takes them for whole hulls and gives half "
-    "of every figure",
-)
 @pytest.mark.parametrize("ship", ["kcs", "kvlcc2"])
-def test_real_ship_hydrostatics_give_the_reference_volume(ship):
+def test_real_ship_hydrostatics_give_the_reference_figures(ship):
+    """The hydrostatics issue's real-ship figures at the design draft, on the patches: ∇ within
+    0.1 %, LCB and LCF within 0.05 % Lpp, Awp within 0.1 %, Cb and Cm within 0.002 (they divide
+    by the measured Bwl, 32.23 m for KCS where the reference takes the nominal 32.2 m), and the
+    wetted surface within 1 % (measured +0.11 % and +0.47 %: the fits' flat of bottom and the
+    forefoot folds add area). Both forefoot patches fold 14-19 cm across the centreplane; the
+    surface still counts as a port half (api.hydrostatics allows 5 % of the half-breadth)."""
     ref = json.loads((HULLS / ship / "reference.json").read_text())
+    lpp, c = ref["Lpp"], ref["computed"]
     coll, _ = api.import_sections(HULLS / ship / "network.json")
     api.build(coll)
-    h = api.hydrostatics(coll, ref["T"], lpp=ref["Lpp"], fp=ref["Lpp"])
-    volume = 100 * (h["volume"] / ref["computed"]["displaced_volume"] - 1)
-    assert abs(volume) <= 0.1, f"volume below T {volume:+.3f} % of the reference"
+    h = api.hydrostatics(coll, ref["T"], lpp=lpp, fp=lpp)
+    assert abs(h["volume"] / c["displaced_volume"] - 1) <= 1e-3, (h["volume"], c["displaced_volume"])
+    assert abs(h["lcb"] - c["LCB_from_AP"]) <= 5e-4 * lpp, (h["lcb"], c["LCB_from_AP"])
+    assert abs(h["lcf"] - c["LCF_from_AP"]) <= 5e-4 * lpp, (h["lcf"], c["LCF_from_AP"])
+    assert abs(h["waterplane_area"] / c["waterplane_area"] - 1) <= 1e-3, h["waterplane_area"]
+    assert abs(h["cb"] - c["Cb"]) <= 2e-3 and abs(h["cm"] - c["Cm"]) <= 2e-3, (h["cb"], h["cm"])
+    assert abs(h["wetted_area"] / c["wetted_surface_below_T"] - 1) <= 1e-2, h["wetted_area"]
