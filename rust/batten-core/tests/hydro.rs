@@ -378,3 +378,23 @@ fn a_hole_under_water_is_an_error_naming_where() {
     }
     assert!(e.to_string().contains("hole below the waterline"), "{e}");
 }
+
+#[test]
+fn the_frigate_floats_with_its_open_transom_closed_and_a_fine_entrance() {
+    let geom = model_of(&example("frigate_network.json"), CellDensity::DEFAULT);
+    let h = figures(&geom, Flotation::at_draft(4.0));
+    // Its transom (x = 0) is open: the cap closes it, and the section just forward of it is the
+    // immersed transom.
+    assert!(h.transom_area > 1.0, "immersed transom {}", h.transom_area);
+    assert!(
+        (5.0..30.0).contains(&h.entrance_half_angle),
+        "half angle of entrance {}°",
+        h.entrance_half_angle
+    );
+    assert!(
+        h.cb > 0.3 && h.cb < 0.7 && h.cp > h.cb,
+        "Cb {} Cp {}",
+        h.cb,
+        h.cp
+    );
+}

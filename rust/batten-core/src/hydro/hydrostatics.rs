@@ -26,6 +26,13 @@ const SUNK_SLACK_RELATIVE: f64 = 1e-9;
 /// than that, as the lines of a design are read).
 pub const ENTRANCE_FIT_FRACTION: f64 = 0.025;
 
+/// At least this many waterline points go into the entrance parabola (where the pieces are
+/// long, reaching beyond [`ENTRANCE_FIT_FRACTION`], but never beyond
+/// [`ENTRANCE_MAX_FRACTION`] of Lwl).
+const ENTRANCE_MIN_POINTS: usize = 4;
+/// The farthest aft (as a fraction of Lwl) the entrance parabola reads the waterline.
+const ENTRANCE_MAX_FRACTION: f64 = 0.1;
+
 /// Stations sampled along the submerged length to find the largest section before refining
 /// its place by golden-section search.
 const MAX_SECTION_SAMPLES: usize = 9;
@@ -299,10 +306,11 @@ fn sunk(
 /// The half angle of entrance (degrees): the slope at the fore end of the least-squares parabola
 /// `y(x)` through the waterline points (port side, `y ≥ 0`) within the foremost `fraction·Lwl`.
 fn entrance_half_angle(waterline: &[SectionSegment], plane: &Waterplane, lwl: f64) -> f64 {
+    // The fore end in the earth frame (ξ about the plane's origin, as the points below).
     let Some((_, fore)) = range(waterline, plane.e1) else {
         return 0.0;
     };
-    let reach = ENTRANCE_FIT_FRACTION * lwl;
+    let fore = fore - plane.e1.dot(plane.origin);
     // Points (s, |η|) with s = distance aft of the fore end.
     let mut pts: Vec<(f64, f64)> = waterline
         .iter()
@@ -311,13 +319,20 @@ fn entrance_half_angle(waterline: &[SectionSegment], plane: &Waterplane, lwl: f6
             let q = plane.earth(*p);
             (fore - q.x, q.y)
         })
-        .filter(|&(s, eta)| s <= reach && eta >= 0.0)
+        .filter(|&(s, eta)| eta >= 0.0 && s <= ENTRANCE_MAX_FRACTION * lwl)
         .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
     pts.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-12 * lwl.max(1.0));
+    // The foremost fraction, or (where the waterline's pieces are long) its first points.
+    let within = pts
+        .iter()
+        .filter(|p| p.0 <= ENTRANCE_FIT_FRACTION * lwl)
+        .count();
+    pts.truncate(within.max(ENTRANCE_MIN_POINTS));
     if pts.len() < 3 {
         return 0.0;
     }
+    let reach = pts.last().map_or(1.0, |p| p.0.max(f64::MIN_POSITIVE));
     // y = c0 + c1 s + c2 s²: normal equations in scaled s.
     let mut m = [[0.0f64; 3]; 3];
     let mut r = [0.0f64; 3];
