@@ -90,7 +90,7 @@ def text() -> str:
 
 
 def lines_text() -> str:
-    return json.dumps(network(LINES_STATIONS, LINES_WATERLINES, "wigley lines"), indent=2) + "\n"
+    return json.dumps(network(LINES_STATIONS, LINES_WATERLINES, "wigley_lines"), indent=2) + "\n"
 
 
 if __name__ == "__main__":
