@@ -44,6 +44,9 @@ fn mirror(p: DVec3) -> DVec3 {
 pub struct PatchHydroModel {
     cells: Vec<Cell>,
     boxes: Vec<(DVec3, DVec3)>,
+    /// The largest extent in `x` of a cell's box (the cells are in order of their boxes' lowest
+    /// `x`, so a station reads only the cells within this of it).
+    max_dx: f64,
     half: bool,
     open: Vec<OpenChain>,
     bounds: (DVec3, DVec3),
@@ -83,8 +86,16 @@ impl PatchHydroModel {
         mesh: &SurfaceMesh,
         density: CellDensity,
     ) -> PatchHydroModel {
-        let cells = build_cells(patches, outward, density);
-        let boxes: Vec<(DVec3, DVec3)> = cells.iter().map(net_box).collect();
+        let mut pairs: Vec<(Cell, (DVec3, DVec3))> = build_cells(patches, outward, density)
+            .into_iter()
+            .map(|c| {
+                let b = net_box(&c);
+                (c, b)
+            })
+            .collect();
+        pairs.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
+        let (cells, boxes): (Vec<Cell>, Vec<(DVec3, DVec3)>) = pairs.into_iter().unzip();
+        let max_dx = boxes.iter().map(|b| b.1.x - b.0.x).fold(0.0, f64::max);
         let mut lo = DVec3::splat(f64::INFINITY);
         let mut hi = DVec3::splat(f64::NEG_INFINITY);
         for b in &boxes {
@@ -109,6 +120,7 @@ impl PatchHydroModel {
         PatchHydroModel {
             cells,
             boxes,
+            max_dx,
             half,
             open,
             bounds: (lo, hi),
@@ -165,9 +177,18 @@ impl PatchHydroModel {
     /// The section of the drawn half by `m·p = c`.
     fn own_section(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionArc> {
         let c = c + SECTION_NUDGE_RELATIVE * self.size();
-        self.cells
+        // A station (m = x) reads only the cells whose boxes can reach it.
+        let (first, last) = if m == DVec3::X {
+            (
+                self.boxes.partition_point(|b| b.0.x < c - self.max_dx),
+                self.boxes.partition_point(|b| b.0.x <= c),
+            )
+        } else {
+            (0, self.cells.len())
+        };
+        self.cells[first..last]
             .par_iter()
-            .zip(&self.boxes)
+            .zip(&self.boxes[first..last])
             .filter(|(_, b)| {
                 let (lo, hi) = box_range(b, m);
                 lo <= c && hi >= c
