@@ -156,23 +156,23 @@ fn add(
 
 /// A box wholly under water: the tensor Gauss rule.
 fn full_box(cell: &Cell, plane: &Waterplane, bx: [f64; 4], out: &mut WetIntegrals) {
-    let (x, w) = gauss();
-    let [s0, s1, t0, t1] = bx;
-    let area = (s1 - s0) * (t1 - t0);
-    for a in 0..GAUSS {
-        let s = s0 + (s1 - s0) * x[a];
-        let (c, cs) = cell.column(s);
-        for b in 0..GAUSS {
-            let t = t0 + (t1 - t0) * x[b];
-            let (p, ps, pt) = along_column(&c, &cs, t);
-            add(cell, plane, p, ps, pt, w[a] * w[b] * area, out);
-        }
-    }
+    tensor_box(cell, plane, bx, false, out);
 }
 
 /// The last resort for a box where `ζ` is monotone in neither parameter after
 /// [`MAX_DEPTH`] halvings: the tensor rule counting the points under water.
 fn indicator_box(cell: &Cell, plane: &Waterplane, bx: [f64; 4], out: &mut WetIntegrals) {
+    tensor_box(cell, plane, bx, true, out);
+}
+
+/// The tensor Gauss rule over box `bx`, with `only_wet` counting only the points under water.
+fn tensor_box(
+    cell: &Cell,
+    plane: &Waterplane,
+    bx: [f64; 4],
+    only_wet: bool,
+    out: &mut WetIntegrals,
+) {
     let (x, w) = gauss();
     let [s0, s1, t0, t1] = bx;
     let area = (s1 - s0) * (t1 - t0);
@@ -182,7 +182,7 @@ fn indicator_box(cell: &Cell, plane: &Waterplane, bx: [f64; 4], out: &mut WetInt
         for b in 0..GAUSS {
             let t = t0 + (t1 - t0) * x[b];
             let (p, ps, pt) = along_column(&c, &cs, t);
-            if plane.zeta(p) <= 0.0 {
+            if !only_wet || plane.zeta(p) <= 0.0 {
                 add(cell, plane, p, ps, pt, w[a] * w[b] * area, out);
             }
         }
