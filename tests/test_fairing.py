@@ -232,6 +232,15 @@ def test_real_ship_has_no_hole_under_water_and_gives_its_hydrostatics(ship):
     assert abs(h["lwl"] / c["Lwl_at_T"] - 1) <= 1e-3, h["lwl"]
 
 
+def test_imported_sections_carry_the_ships_perpendiculars_and_draft():
+    coll, _ = api.import_sections(HULLS / "kcs" / "network.json")
+    assert coll["batten_lpp"] == 230.0 and coll["batten_fp"] == 230.0
+    assert api.design_draft(coll) == 10.8
+    api.build(coll)
+    h = api.hydrostatics(coll, 10.8)  # the collection's perpendiculars: AP at x = 0
+    assert h["x_ap"] == 0.0 and h["x_fp"] == 230.0
+
+
 @pytest.mark.parametrize("ship", ["kcs", "kvlcc2"])
 def test_real_ship_hydrostatics_give_the_reference_figures(ship):
     """The hydrostatics issue's real-ship figures at the design draft, on the patches: ∇ within

@@ -439,7 +439,14 @@ def import_sections(
         report["data_nodes"] = sum(1 for n in nodes if i in n["curves"])
         report["max_deviation_index"] = _file_index(report["max_deviation_index"], source)
         report["corners"] = [_file_index(k, source) for k in report["corners"]]
-    return _draw_collection(collection or name, snapped), reports
+    coll = _draw_collection(collection or name, snapped)
+    datums = sections_in.read_datums(path)
+    if "lpp" in datums:
+        coll[LPP_PROPERTY] = datums["lpp"]
+        coll[FP_PROPERTY] = datums["lpp"]
+    if "draft" in datums:
+        coll[DESIGN_DRAFT_PROPERTY] = datums["draft"]
+    return coll, reports
 
 
 def _file_index(k: int, source: list[int | None]) -> int:

@@ -52,6 +52,26 @@ def read_sections(path) -> tuple[str, list[PointCurve]]:
     return _read_json(path, text)
 
 
+def read_datums(path) -> dict[str, float]:
+    """The ship's datums a neutral JSON section file carries (as ``shared/hulls`` do): ``lpp``
+    from ``Lpp`` and ``draft`` from ``T`` (m), where they are positive numbers; nothing for CSV
+    or a file without them. The files' axes run from the aft perpendicular, so the forward one
+    is at x = Lpp."""
+    path = file_path(path, "section file")
+    if path.suffix.lower() == ".csv":
+        return {}
+    try:
+        data = json.loads(read_text(path, "section file"))
+    except json.JSONDecodeError:
+        return {}
+    out = {}
+    for key, name in (("Lpp", "lpp"), ("T", "draft")):
+        v = data.get(key) if isinstance(data, dict) else None
+        if isinstance(v, int | float) and not isinstance(v, bool) and 0 < v < float("inf"):
+            out[name] = float(v)
+    return out
+
+
 def _read_json(path: Path, text: str) -> tuple[str, list[PointCurve]]:
     try:
         data = json.loads(text)
