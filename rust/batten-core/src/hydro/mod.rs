@@ -20,7 +20,6 @@ mod geometry;
 mod hydrostatics;
 mod integrals;
 mod mesh;
-mod open_edges;
 mod patch_model;
 mod roots;
 mod waterplane;

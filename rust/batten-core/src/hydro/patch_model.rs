@@ -9,9 +9,9 @@ use rayon::prelude::*;
 use super::cells::{build_cells, Cell, CellDensity, CellMoments};
 use super::clip::{wetness, CellWetness};
 use super::contour::cell_section;
-use super::geometry::{is_port_half, HullGeometry, OpenChain, SectionArc, SectionSegment};
+use super::geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
 use super::integrals::WetIntegrals;
-use super::open_edges::{chains, free_edge_list};
+use super::mesh::boundary::boundary;
 use super::waterplane::Waterplane;
 use crate::patch::{Patch, SurfaceMesh};
 
@@ -104,16 +104,15 @@ impl PatchHydroModel {
         }
         let size = (hi - lo).length();
         let near = CENTREPLANE_RELATIVE * size;
-        let (open, on_centreplane) = free_edges(mesh, near);
-        // The surface's own extent across (the mesh's points lie on it; a cell's net may reach
-        // beyond a folded patch).
-        let (min_y, max_y) = mesh
-            .positions
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-                (a.min(p[1]), b.max(p[1]))
-            });
-        let half = is_port_half(min_y, max_y, on_centreplane);
+        // The free edges and the half-hull test from the welded mesh (its points lie on the
+        // surface, where a cell's net may reach beyond a folded patch), fanned into triangles.
+        let positions: Vec<DVec3> = mesh.positions.iter().map(|p| DVec3::from(*p)).collect();
+        let triangles: Vec<[u32; 3]> = mesh
+            .faces()
+            .flat_map(|f| (1..f.len() - 1).map(move |k| [f[0], f[k], f[k + 1]]))
+            .collect();
+        let found = boundary(&positions, &triangles, near);
+        let (half, open) = (found.half, found.open);
         if half {
             lo.y = lo.y.min(-hi.y);
         }
@@ -260,23 +259,6 @@ fn merge(a: Option<(f64, f64)>, b: Option<(f64, f64)>) -> Option<(f64, f64)> {
         (x, None) => x,
         (None, y) => y,
     }
-}
-
-/// The chains of the mesh's free edges off the centreplane (within `near`), and whether any free
-/// edge lies in the centreplane.
-fn free_edges(mesh: &SurfaceMesh, near: f64) -> (Vec<OpenChain>, bool) {
-    let positions: Vec<DVec3> = mesh.positions.iter().map(|p| DVec3::from(*p)).collect();
-    let mut on_centreplane = false;
-    let edges: Vec<(u32, u32)> = free_edge_list(mesh.faces())
-        .into_iter()
-        .filter(|&(a, b)| {
-            let inside =
-                positions[a as usize].y.abs() <= near && positions[b as usize].y.abs() <= near;
-            on_centreplane |= inside;
-            !inside
-        })
-        .collect();
-    (chains(&positions, &edges), on_centreplane)
 }
 
 impl HullGeometry for PatchHydroModel {

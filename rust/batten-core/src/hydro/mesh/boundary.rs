@@ -9,13 +9,13 @@ use crate::hydro::geometry::{is_port_half, OpenChain};
 
 /// The free boundary of a mesh, as the hydrostatics read it.
 #[derive(Clone, Debug)]
-pub(super) struct Boundary {
+pub(in crate::hydro) struct Boundary {
     /// A half hull: no vertex to starboard (beyond the centreplane tolerance) and free edges
     /// along the centreplane, which its mirror image closes.
-    pub(super) half: bool,
+    pub(in crate::hydro) half: bool,
     /// The chains of free edges off the centreplane (of the mesh as given: a half hull's image
     /// is the caps' business).
-    pub(super) open: Vec<OpenChain>,
+    pub(in crate::hydro) open: Vec<OpenChain>,
 }
 
 /// Edges used by exactly one triangle, each directed as in its triangle (so a free boundary
@@ -116,7 +116,11 @@ pub(super) fn chains(edges: &[[u32; 2]]) -> Vec<Chain> {
 
 /// The free boundary of the mesh `positions`, `triangles`; `centre_tol` is how far from `y = 0`
 /// a vertex may be and still lie on the centreplane.
-pub(super) fn boundary(positions: &[DVec3], triangles: &[[u32; 3]], centre_tol: f64) -> Boundary {
+pub(in crate::hydro) fn boundary(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    centre_tol: f64,
+) -> Boundary {
     let free = free_edges(positions.len(), triangles);
     let on_centre = |v: u32| positions[v as usize].y.abs() <= centre_tol;
     let min_y = positions.iter().map(|p| p.y).fold(f64::INFINITY, f64::min);

@@ -2,7 +2,8 @@
 //! by the waterplane and integrated exactly, so a mesh's figures are those of the polyhedron it
 //! is, and can be set beside other tools' on identical input.
 
-mod boundary;
+/// Free-edge chains and the half-hull test, shared with the patch model's mesh.
+pub(in crate::hydro) mod boundary;
 mod clip;
 mod runs;
 
