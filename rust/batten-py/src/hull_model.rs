@@ -12,7 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::{core_err, guard};
-use crate::hydro::{datums, flotation, hydrostatics_dict};
+use crate::hydro::{datums, figures_at, flotation, hydrostatics_dict};
 
 /// A hull's exact surface for hydrostatics, from [`build_hull_model`](crate::hull::build_hull_model).
 /// Its cells are made on the first call that needs them (tens of milliseconds for a ship) and
@@ -96,15 +96,15 @@ impl HullModel {
         fp: Option<f64>,
         live: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let h = py.detach(|| {
-            guard("computing hydrostatics", || {
-                let geom = self.geometry(live);
-                let d = datums(geom, draft, lpp, fp)?;
-                let f = flotation(draft, trim, heel, density);
-                hydrostatics(geom, &f, &d).map_err(core_err)
-            })
-        })?;
-        hydrostatics_dict(py, &h)
+        let f = flotation(draft, trim, heel, density);
+        figures_at(
+            py,
+            "computing hydrostatics",
+            || self.geometry(live),
+            f,
+            lpp,
+            fp,
+        )
     }
 
     /// Immersed section areas (m², both sides) at the stations `xs` (m) at `draft`, `trim`,

@@ -75,6 +75,27 @@ pub(crate) fn datums(
     }
 }
 
+/// The hydrostatics dict of the hull `geom()` gives (called with the GIL released, so making
+/// its cells does not hold Python up) at flotation `f`, about the perpendiculars of [`datums`];
+/// `what` names the work in an internal error.
+pub(crate) fn figures_at<'py, 'g, G: HullGeometry + 'g>(
+    py: Python<'py>,
+    what: &str,
+    geom: impl FnOnce() -> &'g G + Send,
+    f: Flotation,
+    lpp: Option<f64>,
+    fp: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let h = py.detach(|| {
+        guard(what, || {
+            let geom = geom();
+            let d = datums(geom, f.draft, lpp, fp)?;
+            hydrostatics(geom, &f, &d).map_err(core_err)
+        })
+    })?;
+    hydrostatics_dict(py, &h)
+}
+
 /// `positions` as points: an `(n, 3)` array of numbers.
 fn mesh_positions(obj: &Bound<'_, PyAny>) -> PyResult<Vec<DVec3>> {
     let arr = rows(obj, || "positions".to_owned())?;
@@ -207,14 +228,7 @@ impl MeshHull {
         fp: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let f = flotation(draft, trim, heel, density);
-        let geom = &self.inner;
-        let h = py.detach(|| {
-            guard("the hydrostatics of a mesh", || {
-                let d = datums(geom, draft, lpp, fp)?;
-                hydrostatics(geom, &f, &d).map_err(core_err)
-            })
-        })?;
-        hydrostatics_dict(py, &h)
+        figures_at(py, "the hydrostatics of a mesh", || &self.inner, f, lpp, fp)
     }
 
     /// Sectional areas at `stations` equally spaced stations from AP to FP inclusive (the
