@@ -103,14 +103,26 @@ fn centreplane_waterline_point(n: DVec3, d1: f64, e3: DVec3, d2: f64) -> Option<
     ))
 }
 
-/// Whether `pts` lie in one steep plane (a transom, which a cap closes).
-fn steep_and_flat(pts: &[DVec3], plane: &Waterplane, size: f64) -> bool {
-    polygon_normal(pts).is_some_and(|n| {
-        let c0 = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
-        n.dot(plane.e3).abs() <= STEEP_CAP_COSINE
-            && pts
-                .iter()
-                .all(|p| n.dot(*p - c0).abs() <= CAP_FLATNESS_RELATIVE * size)
+/// The plane of a run's points: its unit normal, their centroid, whether they lie in it (to
+/// [`CAP_FLATNESS_RELATIVE`] of the hull's size) and whether it is steep (a transom's, which a
+/// cap closes, rather than a deck's or a bottom's).
+struct RunPlane {
+    n: DVec3,
+    c0: DVec3,
+    flat: bool,
+    steep: bool,
+}
+
+fn run_plane(pts: &[DVec3], plane: &Waterplane, size: f64) -> Option<RunPlane> {
+    let n = polygon_normal(pts)?;
+    let c0 = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
+    Some(RunPlane {
+        n,
+        c0,
+        flat: pts
+            .iter()
+            .all(|p| n.dot(*p - c0).abs() <= CAP_FLATNESS_RELATIVE * size),
+        steep: n.dot(plane.e3).abs() <= STEEP_CAP_COSINE,
     })
 }
 
@@ -158,15 +170,15 @@ fn own_caps(
             if pts.len() < 2 {
                 continue;
             }
+            let run = run_plane(&pts, plane, size);
             if Some(k) == open_top
                 && pts
                     .iter()
                     .any(|p| p.z >= chain_top(chain) - 0.5 * (hi.z - lo.z))
+                && !run.as_ref().is_some_and(|r| r.flat && r.steep)
             {
                 // The deck edge's own run (not a transom below it): the water is over the top.
-                if !steep_and_flat(&pts, plane, size) {
-                    return Err(HydroError::above_top(draft, lowest(&pts, plane)));
-                }
+                return Err(HydroError::above_top(draft, lowest(&pts, plane)));
             }
             // A chain end off the centreplane of a half hull is a hole's.
             for e in [start, end] {
@@ -177,17 +189,13 @@ fn own_caps(
                     }
                 }
             }
-            let Some(n) = polygon_normal(&pts) else {
+            let Some(RunPlane { n, c0, flat, steep }) = run else {
                 continue;
             };
-            let c0 = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
-            let flat = pts
-                .iter()
-                .all(|p| n.dot(*p - c0).abs() <= CAP_FLATNESS_RELATIVE * size);
             if !flat {
                 return Err(HydroError::hole(lowest(&pts, plane), &chain.curves));
             }
-            if n.dot(plane.e3).abs() > STEEP_CAP_COSINE {
+            if !steep {
                 // A flat opening: the deck's when in the upper half of the hull, else a hole.
                 return Err(if c0.z > centre.z {
                     HydroError::above_top(draft, lowest(&pts, plane))
@@ -196,27 +204,10 @@ fn own_caps(
                 });
             }
             // Close along the water and down the centreplane.
-            match (start, end) {
-                (End::Chain(_), End::Water) => {
-                    if let Some(q) = centreplane_waterline_point(
-                        n,
-                        n.dot(c0),
-                        plane.e3,
-                        plane.e3.dot(plane.origin),
-                    ) {
-                        pts.push(q);
-                    }
-                }
-                (End::Water, End::Chain(_)) => {
-                    if let Some(q) = centreplane_waterline_point(
-                        n,
-                        n.dot(c0),
-                        plane.e3,
-                        plane.e3.dot(plane.origin),
-                    ) {
-                        pts.insert(0, q);
-                    }
-                }
+            let q = centreplane_waterline_point(n, n.dot(c0), plane.e3, plane.e3.dot(plane.origin));
+            match (start, end, q) {
+                (End::Chain(_), End::Water, Some(q)) => pts.push(q),
+                (End::Water, End::Chain(_), Some(q)) => pts.insert(0, q),
                 _ => {}
             }
             let outward = if n.dot(c0 - centre) >= 0.0 { n } else { -n };
