@@ -164,6 +164,22 @@ impl Cell {
         (p, ps, pt)
     }
 
+    /// Call `f` with the points of the grid `(s_a, t_b)` whose Bernstein bases are
+    /// `bases[a]` and `bases[b]`, in order of `a`, then `b` (sum-factorised: a column per `s_a`).
+    pub(crate) fn grid_points(&self, bases: &[[f64; N]], mut f: impl FnMut(DVec3)) {
+        for bs in bases {
+            let mut col = [DVec3::ZERO; N];
+            for (i, row) in self.net.iter().enumerate() {
+                for (c, p) in col.iter_mut().zip(row) {
+                    *c += *p * bs[i];
+                }
+            }
+            for bt in bases {
+                f(col.iter().zip(bt).map(|(c, b)| *c * *b).sum());
+            }
+        }
+    }
+
     /// The 1-D nets along `t` at fixed `s`: of `P(s, ·)` and of `P_s(s, ·)`.
     #[inline]
     pub(crate) fn column(&self, s: f64) -> ([DVec3; N], [DVec3; N]) {

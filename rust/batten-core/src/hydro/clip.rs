@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 use super::bernstein::{basis, bounds, eval1, gauss, split1, GAUSS, N};
-use super::cells::Cell;
+use super::cells::{Cell, CellMoments};
 use super::integrals::WetIntegrals;
 use super::roots::{bracketed, sign_changes};
 use super::waterplane::Waterplane;
@@ -17,6 +17,9 @@ use super::waterplane::Waterplane;
 /// Halvings of a box before giving up on monotony (the box is then `2⁻¹²` of the cell: its
 /// tensor rule with the wet indicator errs by far less than rounding of the whole).
 const MAX_DEPTH: usize = 12;
+
+/// Halvings below which a box's quarters are integrated in parallel (the first two levels).
+const PARALLEL_DEPTH: usize = 2;
 
 /// How a cell lies relative to the water.
 pub(crate) enum CellWetness {
@@ -90,27 +93,29 @@ pub(crate) fn wetness(cell: &Cell, plane: &Waterplane, slack: f64) -> CellWetnes
     if hi <= slack {
         return CellWetness::Wet;
     }
+    // The quadrature reads the cell in the plane's earth frame: the net's image is the
+    // surface's (a Bernstein net is affine invariant), and normals turn with the frame — a
+    // rotation, or for a half hull's mirrored plane a reflection, which turns them round too.
+    let handedness = plane.e1.cross(plane.e2).dot(plane.e3).signum();
+    let earth = Cell {
+        net: cell.net.map(|row| row.map(|p| plane.earth(p))),
+        sign: cell.sign * handedness,
+        moments: CellMoments::default(),
+    };
     let mut out = WetIntegrals::default();
-    clip(cell, plane, &z, [0.0, 1.0, 0.0, 1.0], 0, &mut out);
+    clip(&earth, &z, [0.0, 1.0, 0.0, 1.0], 0, &mut out);
     CellWetness::Cut(out)
 }
 
-/// Add the integrals over the wet part of box `bx = [s0, s1, t0, t1]` of `cell`, whose `ζ`
-/// net over the box is `z`.
-fn clip(
-    cell: &Cell,
-    plane: &Waterplane,
-    z: &[[f64; N]; N],
-    bx: [f64; 4],
-    depth: usize,
-    out: &mut WetIntegrals,
-) {
+/// Add the integrals over the wet part of box `bx = [s0, s1, t0, t1]` of `cell` (in earth
+/// coordinates), whose `ζ` net over the box is `z`.
+fn clip(cell: &Cell, z: &[[f64; N]; N], bx: [f64; 4], depth: usize, out: &mut WetIntegrals) {
     let (lo, hi) = bounds(z);
     if lo >= 0.0 {
         return;
     }
     if hi <= 0.0 {
-        full_box(cell, plane, bx, out);
+        full_box(cell, bx, out);
         return;
     }
     let along_t = monotone_t(z);
@@ -122,57 +127,61 @@ fn clip(
         (None, None) => None,
     };
     match pick_t {
-        Some(true) => graph(cell, plane, z, bx, false, out),
-        Some(false) => graph(cell, plane, &transpose(z), bx, true, out),
+        Some(true) => graph(cell, z, bx, false, out),
+        Some(false) => graph(cell, &transpose(z), bx, true, out),
         None if depth < MAX_DEPTH => {
             let [s0, s1, t0, t1] = bx;
             let (sm, tm) = (0.5 * (s0 + s1), 0.5 * (t0 + t1));
             let (l, r) = split_s(z);
             let (ll, lr) = split_t(&l);
             let (rl, rr) = split_t(&r);
-            clip(cell, plane, &ll, [s0, sm, t0, tm], depth + 1, out);
-            clip(cell, plane, &lr, [s0, sm, tm, t1], depth + 1, out);
-            clip(cell, plane, &rl, [sm, s1, t0, tm], depth + 1, out);
-            clip(cell, plane, &rr, [sm, s1, tm, t1], depth + 1, out);
+            let quarters = [
+                (ll, [s0, sm, t0, tm]),
+                (lr, [s0, sm, tm, t1]),
+                (rl, [sm, s1, t0, tm]),
+                (rr, [sm, s1, tm, t1]),
+            ];
+            let part = |q: &[([[f64; N]; N], [f64; 4])]| {
+                let mut w = WetIntegrals::default();
+                for (z, bx) in q {
+                    clip(cell, z, *bx, depth + 1, &mut w);
+                }
+                w
+            };
+            if depth < PARALLEL_DEPTH {
+                // A cell that needs halving may need thousands of boxes (a waterline wavering
+                // about the water): its first quarters go to other threads.
+                let (a, b) = rayon::join(|| part(&quarters[..2]), || part(&quarters[2..]));
+                *out += a + b;
+            } else {
+                *out += part(&quarters);
+            }
         }
-        None => indicator_box(cell, plane, bx, out),
+        None => indicator_box(cell, bx, out),
     }
 }
 
-/// Add one quadrature point at cell parameters `(s, t)` with weight `w`.
+/// Add one quadrature point of `cell` (in earth coordinates): `p` and its derivatives `ps`,
+/// `pt`, with weight `w`.
 #[inline]
-fn add(
-    cell: &Cell,
-    plane: &Waterplane,
-    p: DVec3,
-    ps: DVec3,
-    pt: DVec3,
-    w: f64,
-    out: &mut WetIntegrals,
-) {
+fn add(cell: &Cell, p: DVec3, ps: DVec3, pt: DVec3, w: f64, out: &mut WetIntegrals) {
     let n = ps.cross(pt) * (cell.sign * w);
-    out.add_ship_point(plane, p, n, n.length());
+    out.add_point(p, n.z, n.length());
 }
 
 /// A box wholly under water: the tensor Gauss rule.
-fn full_box(cell: &Cell, plane: &Waterplane, bx: [f64; 4], out: &mut WetIntegrals) {
-    tensor_box(cell, plane, bx, false, out);
+fn full_box(cell: &Cell, bx: [f64; 4], out: &mut WetIntegrals) {
+    tensor_box(cell, bx, false, out);
 }
 
 /// The last resort for a box where `ζ` is monotone in neither parameter after
 /// [`MAX_DEPTH`] halvings: the tensor rule counting the points under water.
-fn indicator_box(cell: &Cell, plane: &Waterplane, bx: [f64; 4], out: &mut WetIntegrals) {
-    tensor_box(cell, plane, bx, true, out);
+fn indicator_box(cell: &Cell, bx: [f64; 4], out: &mut WetIntegrals) {
+    tensor_box(cell, bx, true, out);
 }
 
 /// The tensor Gauss rule over box `bx`, with `only_wet` counting only the points under water.
-fn tensor_box(
-    cell: &Cell,
-    plane: &Waterplane,
-    bx: [f64; 4],
-    only_wet: bool,
-    out: &mut WetIntegrals,
-) {
+fn tensor_box(cell: &Cell, bx: [f64; 4], only_wet: bool, out: &mut WetIntegrals) {
     let (x, w) = gauss();
     let [s0, s1, t0, t1] = bx;
     let area = (s1 - s0) * (t1 - t0);
@@ -182,8 +191,8 @@ fn tensor_box(
         for b in 0..GAUSS {
             let t = t0 + (t1 - t0) * x[b];
             let (p, ps, pt) = along_column(&c, &cs, t);
-            if !only_wet || plane.zeta(p) <= 0.0 {
-                add(cell, plane, p, ps, pt, w[a] * w[b] * area, out);
+            if !only_wet || p.z <= 0.0 {
+                add(cell, p, ps, pt, w[a] * w[b] * area, out);
             }
         }
     }
@@ -222,14 +231,7 @@ fn along_row(r: &[DVec3; N], rt: &[DVec3; N], s: f64) -> (DVec3, DVec3, DVec3) {
 
 /// The wet part of a box where `ζ` is monotone along the height parameter: `z[u][h]` is the
 /// net with `u` the outer parameter and `h` the height one (`swapped`: `u = t`, `h = s`).
-fn graph(
-    cell: &Cell,
-    plane: &Waterplane,
-    z: &[[f64; N]; N],
-    bx: [f64; 4],
-    swapped: bool,
-    out: &mut WetIntegrals,
-) {
+fn graph(cell: &Cell, z: &[[f64; N]; N], bx: [f64; 4], swapped: bool, out: &mut WetIntegrals) {
     let [s0, s1, t0, t1] = bx;
     let (u0, u1, h0, h1) = if swapped {
         (t0, t1, s0, s1)
@@ -282,7 +284,7 @@ fn graph(
                 } else {
                     along_column(&c, &cd, h)
                 };
-                add(cell, plane, p, ps, pt, wu * wh, out);
+                add(cell, p, ps, pt, wu * wh, out);
             }
         }
     }

@@ -5,7 +5,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::bernstein::{basis, bounds, N};
+use super::bernstein::{basis, bounds, eval1, N};
 use super::cells::Cell;
 use super::geometry::SectionArc;
 use super::roots::bracketed;
@@ -51,14 +51,40 @@ fn project(g: &[[f64; N]; N], mut x: DVec2) -> DVec2 {
     x
 }
 
-/// The crossing of `g = 0` on the grid edge from `a` to `b` (parameters), where the signs of
-/// `ga` and `gb` differ.
-fn edge_root(g: &[[f64; N]; N], a: DVec2, b: DVec2, ga: f64, gb: f64) -> DVec2 {
-    let f = |l: f64| {
-        let x = a + (b - a) * l;
-        scalar(g, x.x, x.y).0
-    };
-    a + (b - a) * bracketed(f, 0.0, 1.0, ga, gb)
+/// The crossings of `g = 0` on the grid lines, each grid edge solved once on the 1-D polynomial
+/// of its line: `along_s[a][b]` on the edge from node `(a, b)` to `(a + 1, b)`, `along_t[a][b]`
+/// on the edge from `(a, b)` to `(a, b + 1)` (`None` where the signs at its ends agree).
+type EdgeRoots = (
+    [[Option<DVec2>; GRID + 1]; GRID],
+    [[Option<DVec2>; GRID]; GRID + 1],
+);
+
+/// The [`EdgeRoots`] of the net `g`, whose values at the grid nodes are `vals`.
+fn edge_roots(g: &[[f64; N]; N], vals: &[[f64; GRID + 1]; GRID + 1]) -> EdgeRoots {
+    let h = 1.0 / GRID as f64;
+    let neg = |v: f64| v < 0.0;
+    let mut along_s = [[None; GRID + 1]; GRID];
+    let mut along_t = [[None; GRID]; GRID + 1];
+    for k in 0..=GRID {
+        let (bk, _) = basis(k as f64 * h);
+        // The nets of g on the line t = k·h (along s) and on the line s = k·h (along t).
+        let line_s: [f64; N] = std::array::from_fn(|i| (0..N).map(|j| g[i][j] * bk[j]).sum());
+        let line_t: [f64; N] = std::array::from_fn(|j| (0..N).map(|i| g[i][j] * bk[i]).sum());
+        for e in 0..GRID {
+            let x0 = e as f64 * h;
+            let (ga, gb) = (vals[e][k], vals[e + 1][k]);
+            if neg(ga) != neg(gb) {
+                let l = bracketed(|l| eval1(&line_s, x0 + h * l), 0.0, 1.0, ga, gb);
+                along_s[e][k] = Some(DVec2::new(x0 + h * l, k as f64 * h));
+            }
+            let (ga, gb) = (vals[k][e], vals[k][e + 1]);
+            if neg(ga) != neg(gb) {
+                let l = bracketed(|l| eval1(&line_t, x0 + h * l), 0.0, 1.0, ga, gb);
+                along_t[k][e] = Some(DVec2::new(k as f64 * h, x0 + h * l));
+            }
+        }
+    }
+    (along_s, along_t)
 }
 
 /// Add the pieces of the section of `cell` by `{p : m·p = c}` to `out`, oriented along `m × n`
@@ -83,35 +109,30 @@ pub(crate) fn cell_section(
         }
     }
     let neg = |v: f64| v < 0.0;
+    let (along_s, along_t) = edge_roots(&g, &vals);
     for a in 0..GRID {
         for b in 0..GRID {
-            let corners = [
-                (DVec2::new(a as f64 * h, b as f64 * h), vals[a][b]),
-                (DVec2::new((a + 1) as f64 * h, b as f64 * h), vals[a + 1][b]),
-                (
-                    DVec2::new((a + 1) as f64 * h, (b + 1) as f64 * h),
-                    vals[a + 1][b + 1],
-                ),
-                (DVec2::new(a as f64 * h, (b + 1) as f64 * h), vals[a][b + 1]),
-            ];
-            let mut hits: Vec<(usize, DVec2)> = Vec::with_capacity(4);
-            for e in 0..4 {
-                let (pa, ga) = corners[e];
-                let (pb, gb) = corners[(e + 1) % 4];
-                if neg(ga) != neg(gb) {
-                    hits.push((e, edge_root(&g, pa, pb, ga, gb)));
-                }
-            }
+            let corner = vals[a][b];
+            // The square's edges counter-clockwise from (a, b): bottom, right, top, left.
+            let hits: Vec<DVec2> = [
+                along_s[a][b],
+                along_t[a + 1][b],
+                along_s[a][b + 1],
+                along_t[a][b],
+            ]
+            .into_iter()
+            .flatten()
+            .collect();
             let pairs: Vec<(DVec2, DVec2)> = match hits.len() {
-                2 => vec![(hits[0].1, hits[1].1)],
+                2 => vec![(hits[0], hits[1])],
                 4 => {
                     // A saddle: join by the sign at the centre.
                     let centre = DVec2::new((a as f64 + 0.5) * h, (b as f64 + 0.5) * h);
                     let gc = scalar(&g, centre.x, centre.y).0;
-                    if neg(gc) == neg(corners[0].1) {
-                        vec![(hits[0].1, hits[1].1), (hits[2].1, hits[3].1)]
+                    if neg(gc) == neg(corner) {
+                        vec![(hits[0], hits[1]), (hits[2], hits[3])]
                     } else {
-                        vec![(hits[0].1, hits[3].1), (hits[1].1, hits[2].1)]
+                        vec![(hits[0], hits[3]), (hits[1], hits[2])]
                     }
                 }
                 _ => Vec::new(),

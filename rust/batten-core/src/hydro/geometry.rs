@@ -63,6 +63,19 @@ pub trait HullGeometry: Sync {
             .collect()
     }
 
+    /// The pieces of the same section that can reach below the water surface `plane`: pieces
+    /// wholly above it may be left out, as they add nothing to an immersed area (the default
+    /// leaves none out).
+    fn section_arcs_below(
+        &self,
+        m: DVec3,
+        c: f64,
+        tolerance: f64,
+        _plane: &Waterplane,
+    ) -> Vec<SectionArc> {
+        self.section_arcs(m, c, tolerance)
+    }
+
     /// The smallest box holding the surface, both halves.
     fn bounds(&self) -> (DVec3, DVec3);
 

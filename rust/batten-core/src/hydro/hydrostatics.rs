@@ -209,7 +209,7 @@ pub fn immersed_section_area(
     let b = up / up_len;
     let a = b.cross(m);
     let sum: f64 = geom
-        .section_arcs(m, c, tolerance)
+        .section_arcs_below(m, c, tolerance, plane)
         .iter()
         .map(|arc| arc_integral(arc.map(|p| plane.zeta(p)), arc.map(|p| a.dot(p))))
         .sum();

@@ -6,6 +6,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::bernstein::{basis, N};
 use super::cells::{build_cells, Cell, CellDensity, CellMoments};
 use super::clip::{wetness, CellWetness};
 use super::contour::cell_section;
@@ -173,8 +174,14 @@ impl PatchHydroModel {
         moments.in_frame(plane) + cut
     }
 
-    /// The section of the drawn half by `m·p = c`.
-    fn own_section(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionArc> {
+    /// The section of the drawn half by `m·p = c`, from the cells whose boxes `keep` passes.
+    fn own_section(
+        &self,
+        m: DVec3,
+        c: f64,
+        tolerance: f64,
+        keep: &(dyn Fn(&(DVec3, DVec3)) -> bool + Sync),
+    ) -> Vec<SectionArc> {
         let c = c + SECTION_NUDGE_RELATIVE * self.size();
         // A station (m = x) reads only the cells whose boxes can reach it.
         let (first, last) = if m == DVec3::X {
@@ -185,19 +192,50 @@ impl PatchHydroModel {
         } else {
             (0, self.cells.len())
         };
-        self.cells[first..last]
-            .par_iter()
-            .zip(&self.boxes[first..last])
-            .filter(|(_, b)| {
+        // The box test is cheap: done in one go, so the parallel work is the cells cut.
+        let cut: Vec<usize> = (first..last)
+            .filter(|&k| {
+                let b = &self.boxes[k];
                 let (lo, hi) = box_range(b, m);
-                lo <= c && hi >= c
+                lo <= c && hi >= c && keep(b)
             })
-            .flat_map_iter(|(cell, _)| {
+            .collect();
+        cut.par_iter()
+            .flat_map_iter(|&k| {
                 let mut out = Vec::new();
-                cell_section(cell, m, c, tolerance, &mut out);
+                cell_section(&self.cells[k], m, c, tolerance, &mut out);
                 out
             })
             .collect()
+    }
+
+    /// The section of both halves by `m·p = c` (see [`HullGeometry::section_arcs`]), from the
+    /// cells whose boxes `keep` passes.
+    fn arcs_of(
+        &self,
+        m: DVec3,
+        c: f64,
+        tolerance: f64,
+        keep: &(dyn Fn(&(DVec3, DVec3)) -> bool + Sync),
+    ) -> Vec<SectionArc> {
+        let mut out = self.own_section(m, c, tolerance, keep);
+        if self.half {
+            // The image's section is the mirrored section of the half by the mirrored plane,
+            // its direction reversed (a reflection turns m × n round).
+            // A plane square to the centreplane (a station, an upright waterplane) is its own
+            // image: the half's pieces, mirrored, are the image's.
+            let image = if m.y == 0.0 {
+                out.clone()
+            } else {
+                self.own_section(mirror(m), c, tolerance, keep)
+            };
+            out.extend(
+                image
+                    .into_iter()
+                    .map(|[a, p, b]| [mirror(b), mirror(p), mirror(a)]),
+            );
+        }
+        out
     }
 
     /// The range of `dir·p` over the wet part of the drawn half: the ends of the waterline's
@@ -230,6 +268,8 @@ impl PatchHydroModel {
             })
             .collect();
         candidates.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let samples: [[f64; N]; RANGE_SAMPLES + 1] =
+            std::array::from_fn(|k| basis(k as f64 / RANGE_SAMPLES as f64).0);
         for (_, k) in candidates {
             let (lo, hi) = box_range(&self.boxes[k], dir);
             if let Some((a, z)) = range {
@@ -237,17 +277,12 @@ impl PatchHydroModel {
                     continue;
                 }
             }
-            let cell = &self.cells[k];
-            for a in 0..=RANGE_SAMPLES {
-                for b in 0..=RANGE_SAMPLES {
-                    let h = 1.0 / RANGE_SAMPLES as f64;
-                    let (p, _, _) = cell.eval(a as f64 * h, b as f64 * h);
-                    if plane.zeta(p) <= 0.0 {
-                        let v = dir.dot(p);
-                        range = merge(range, Some((v, v)));
-                    }
+            self.cells[k].grid_points(&samples, |p| {
+                if plane.zeta(p) <= 0.0 {
+                    let v = dir.dot(p);
+                    range = merge(range, Some((v, v)));
                 }
-            }
+            });
         }
         range
     }
@@ -281,24 +316,25 @@ impl HullGeometry for PatchHydroModel {
     }
 
     fn section_arcs(&self, m: DVec3, c: f64, tolerance: f64) -> Vec<SectionArc> {
-        let mut out = self.own_section(m, c, tolerance);
-        if self.half {
-            // The image's section is the mirrored section of the half by the mirrored plane,
-            // its direction reversed (a reflection turns m × n round).
-            // A plane square to the centreplane (a station, an upright waterplane) is its own
-            // image: the half's pieces, mirrored, are the image's.
-            let image = if m.y == 0.0 {
-                out.clone()
-            } else {
-                self.own_section(mirror(m), c, tolerance)
-            };
-            out.extend(
-                image
-                    .into_iter()
-                    .map(|[a, p, b]| [mirror(b), mirror(p), mirror(a)]),
-            );
-        }
-        out
+        self.arcs_of(m, c, tolerance, &|_| true)
+    }
+
+    fn section_arcs_below(
+        &self,
+        m: DVec3,
+        c: f64,
+        tolerance: f64,
+        plane: &Waterplane,
+    ) -> Vec<SectionArc> {
+        // A cell whose box is above the water surface (of the half's plane, or for a half hull
+        // of its image's) adds nothing below it: its pieces are left out.
+        let image = plane.mirrored();
+        let level = |p: &Waterplane| p.e3.dot(p.origin);
+        let (own, mirrored) = (level(plane), level(&image));
+        let below = |b: &(DVec3, DVec3)| {
+            box_range(b, plane.e3).0 <= own || (self.half && box_range(b, image.e3).0 <= mirrored)
+        };
+        self.arcs_of(m, c, tolerance, &below)
     }
 
     fn bounds(&self) -> (DVec3, DVec3) {
@@ -333,7 +369,7 @@ impl HullGeometry for PatchHydroModel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hydro::bernstein::{split1, N};
+    use crate::hydro::bernstein::split1;
     use crate::hydro::cells::moments_of;
     use crate::{build_hull, HullOptions, Network};
 
