@@ -308,7 +308,9 @@ fn the_frigate_s_sections_are_whole_polylines_on_their_planes() {
     }
     let mut pieces = Vec::new();
     for plane in &planes {
-        let lines = model.section(plane, DEFAULT_CUT_TOLERANCE).expect("section");
+        let lines = model
+            .section(plane, DEFAULT_CUT_TOLERANCE)
+            .expect("section");
         for l in &lines {
             for p in &l.points {
                 let r = (plane.normal().dot(*p) - plane.offset()).abs();
@@ -317,5 +319,8 @@ fn the_frigate_s_sections_are_whole_polylines_on_their_planes() {
         }
         pieces.push(lines.len());
     }
-    assert!(pieces.iter().all(|&n| n == 1), "one polyline per plane: {pieces:?}");
+    assert!(
+        pieces.iter().all(|&n| n == 1),
+        "one polyline per plane: {pieces:?}"
+    );
 }
