@@ -16,6 +16,7 @@ mod hull;
 mod hydro;
 mod network;
 mod patch;
+mod sections;
 mod tolerance;
 mod topo;
 mod union_find;
@@ -56,6 +57,9 @@ pub use patch::{
     PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
     SideSegment, SupportNode, SurfaceMesh, ACROSS_DISTRUSTED_DEGREES, ACROSS_TRUSTED_DEGREES,
     MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
+};
+pub use sections::{
+    knuckle_lines, KnuckleLine, SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,
 };
 pub use tolerance::{InvalidTolerance, Tolerance};
 pub use topo::{
