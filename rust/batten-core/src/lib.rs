@@ -55,8 +55,7 @@ pub use network::{
 pub use patch::{
     gram_schmidt_cross_tangent, tessellate_patches, Domain, EdgeNormal, FaceBoundary, Patch,
     PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
-    SideSegment, SupportNode, SurfaceMesh, ACROSS_DISTRUSTED_DEGREES, ACROSS_TRUSTED_DEGREES,
-    MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
+    SideSegment, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
 };
 pub use sections::{
     knuckle_lines, KnuckleLine, SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,

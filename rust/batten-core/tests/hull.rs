@@ -258,24 +258,16 @@ fn wigley_example_matches_its_exact_volume_and_refines() {
         err_surface * 100.0
     );
     assert!(
-        v[0] < v[1] && v[1] < v[2],
-        "inscribed meshes grow towards the surface's volume: {v:?}"
+        v[0] < v[1] && v[1] < v[2] && v[2] < exact,
+        "inscribed meshes grow towards the exact volume: {v:?}"
     );
     assert!(
         (3.5..4.5).contains(&ratio),
         "second-order convergence under mesh refinement (ratio {ratio})"
     );
     assert!(
-        v[2] < surface && err_surface < 0.75 * err,
+        v[2] < surface && surface < exact && err_surface < 0.75 * err,
         "the surface is closer than its resolution-16 mesh ({err_surface} vs {err})"
-    );
-    // The ribbons blend the crossing waterlines' directions with three-point slopes along
-    // each station, exact where they vary quadratically (measured 0.0025 %; the per-edge
-    // straight blend of normals gave 0.06 %).
-    assert!(
-        err_surface < 1e-4,
-        "the light drawing's surface is within 0.01 % of the exact volume ({:.4}%)",
-        err_surface * 100.0
     );
     for h in &hulls {
         assert!(
@@ -290,25 +282,20 @@ fn wigley_example_matches_its_exact_volume_and_refines() {
         );
     }
 
-    // Refining the network reduces the surface's error: the 15×6 network's surface volume,
-    // extrapolated from its meshes at resolutions 8 and 16 as above (the meshes' own error is
-    // now larger than either surface's).
+    // Refining the network reduces the error; at resolution 8 the 15×6 network's mesh spacing
+    // is about that of the 7×3 network at 16, so the gain is the surface's, not the mesh's.
     let fine = build(&wigley(15, 6), 8);
-    let finer = build(&wigley(15, 6), 16);
-    let fine_surface = finer.report.volume + (finer.report.volume - fine.report.volume) / 3.0;
-    let err_fine = (fine_surface - exact).abs() / exact;
+    let err_fine = (fine.report.volume - exact).abs() / exact;
     println!(
-        "wigley 15x6 at resolutions 8, 16: volumes {:.4}, {:.4} m³, extrapolated {fine_surface:.4} \
-         (error {:.5}%), max normal angle {:.2e}°, max gap {:.2e} m",
+        "wigley 15x6 at resolution 8: volume {:.4} m³ (error {:.5}%), max normal angle {:.2e}°, max gap {:.2e} m",
         fine.report.volume,
-        finer.report.volume,
         err_fine * 100.0,
         fine.report.max_normal_angle_deg,
         fine.report.max_gap
     );
     assert!(
-        err_fine < err_surface,
-        "refined network is closer ({err_fine} vs {err_surface})"
+        err_fine < err,
+        "refined network is closer ({err_fine} vs {err})"
     );
     assert!(
         fine.report.max_normal_angle_deg <= 0.01,

@@ -190,14 +190,13 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
     let edges = FaceEdges::new(network, &topology, options.tolerance);
     let near_miss = options.tolerance.near_miss();
     let knuckle = knuckle_edges(network, &topology, &edges, near_miss);
-    let is_knuckle: Vec<bool> = knuckle.iter().map(Option::is_some).collect();
     let shared_results: Vec<Result<Option<EdgeNormal>, FaceError>> = (0..brep.edges.len())
         .into_par_iter()
         .map(|k| {
             if knuckle[k].is_some() || edges.info[k].is_none() {
                 Ok(None)
             } else {
-                Ok(shared_normal(k, network, &topology, &edges, &is_knuckle)?)
+                Ok(shared_normal(k, &topology, &edges)?)
             }
         })
         .collect();

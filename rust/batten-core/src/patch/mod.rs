@@ -34,8 +34,7 @@ pub use domain::{Domain, MAX_SIDES};
 pub use error::{PatchError, PatchWarning};
 pub use face_patch::{Patch, PatchKind, PatchOptions};
 pub use ribbon::{
-    gram_schmidt_cross_tangent, EdgeNormal, RibbonNode, SideRibbon, SupportNode,
-    ACROSS_DISTRUSTED_DEGREES, ACROSS_TRUSTED_DEGREES, MIN_CORNER_ANGLE_DEGREES,
+    gram_schmidt_cross_tangent, EdgeNormal, RibbonNode, SideRibbon, MIN_CORNER_ANGLE_DEGREES,
     MIN_CROSSING_ANGLE_DEGREES,
 };
 pub use tessellate::{tessellate_patches, SurfaceMesh};

@@ -40,16 +40,6 @@ pub const MIN_CORNER_ANGLE_DEGREES: f64 = 2.0;
 /// remainder is treated as zero: directions that close are parallel for every purpose here.
 const PARALLEL: f64 = 1e-9;
 
-/// Up to this angle between the crossing-direction normal `ĉ × ŵ` and the blend of the node
-/// normals, [`EdgeNormal::normal_across`] gives the former: on exactly drawn networks the two
-/// agree within 0.4° (Wigley 0.1°, frigate 0.4°, KCS 0.6° at the 90th percentile).
-pub const ACROSS_TRUSTED_DEGREES: f64 = 2.0;
-
-/// From this angle on, [`EdgeNormal::normal_across`] gives the blend of the node normals: the
-/// curve wiggles between its crossings (fitted stations at KVLCC2's forefoot turn through
-/// 90° between two waterlines) and `ĉ × ŵ` would fold the patches with it.
-pub const ACROSS_DISTRUSTED_DEGREES: f64 = 6.0;
-
 /// How far a ribbon node's parameter may lie outside its segment's interval, relative to the
 /// interval's length (at least 1): node parameters come from the topology's intersections and
 /// may round past the segment's ends.
@@ -94,131 +84,19 @@ pub fn gram_schmidt_cross_tangent(
     (l > PARALLEL * lc).then(|| t / l)
 }
 
-/// A node on the same curve beyond a segment's ends: its crossing tangents shape the normal
-/// field's slopes at the segment's own nodes (three-point stencils along the curve) but no
-/// value inside the segment. Its curve tangent is given because the segment's curve is cut to
-/// the segment and does not reach it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SupportNode {
-    /// Parameter of the node on the segment's curve (outside the segment's interval).
-    pub t: f64,
-    /// The curve's tangent at the node (any length, any sign).
-    pub curve_tangent: DVec3,
-    /// Tangents of the crossing curves at the node.
-    pub tangents: Vec<DVec3>,
-}
-
 /// The surface normal along one side segment (one topological edge), blended between nodes:
 /// the shared-plane form of the paper's tangent ribbon (§3.2.2, eq. 8). See the module docs.
 ///
 /// Nodes are keyed by the curve's own parameter, so the two faces sharing the segment (which
-/// traverse it in opposite directions) evaluate the same normal at the same point.
-///
-/// Built from crossing curves ([`EdgeNormal::from_crossings`]), it blends the crossing
-/// *directions* `ŵ` and takes the normal as `ĉ(t) × ŵ(t)` with the curve's own exact tangent
-/// `ĉ(t)` ([`EdgeNormal::normal_across`]): along a station whose tangent turns quickly (bilge,
-/// keel) the crossing waterlines' direction changes slowly, and on a surface whose crossing
-/// tangents vary quadratically along the curve (the Wigley hull's stations) the blend is exact.
-/// Built from given normals ([`EdgeNormal::from_normals`]), it blends the unit normals. Either
-/// way the blend is a cubic Hermite in `t` whose slopes are three-point (quadratic) derivatives
-/// over the nodes, including [`SupportNode`]s beyond the segment; outside the first and last
-/// node the end values are held. The sign is arbitrary; each face orients it outwards.
+/// traverse it in opposite directions) evaluate the same normal at the same point. Between
+/// nodes the unit normals are blended by a cubic Hermite (Catmull–Rom slopes) in `t` and
+/// normalised; outside the first and last node the end normals are held. The sign is
+/// arbitrary; each face orients it outwards.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EdgeNormal {
-    /// The unit normals at the segment's own nodes, blended with chord (Catmull–Rom) slopes.
-    normals: Blend,
-    /// From crossing curves: the unit crossing directions (signed so that `ĉ × ŵ` is the
-    /// node's normal) at the own and the support nodes, with limited three-point slopes.
-    crossings: Option<Blend>,
-}
-
-/// Unit vectors at sorted curve parameters, blended by a cubic Hermite in `t` with given
-/// slopes; outside the first and last node the end values are held.
-#[derive(Clone, Debug, PartialEq)]
-struct Blend {
     ts: Vec<f64>,
-    values: Vec<DVec3>,
+    normals: Vec<DVec3>,
     slopes: Vec<DVec3>,
-}
-
-impl Blend {
-    /// The blend at `t`, not normalised; outside the nodes' range, the end value.
-    #[inline]
-    fn eval(&self, t: f64) -> DVec3 {
-        let k = self.ts.len();
-        if k == 1 || t.is_nan() || t <= self.ts[0] {
-            return self.values[0];
-        }
-        if t >= self.ts[k - 1] {
-            return self.values[k - 1];
-        }
-        let i = (self.ts.partition_point(|&x| x <= t) - 1).min(k - 2);
-        let h = self.ts[i + 1] - self.ts[i];
-        let x = (t - self.ts[i]) / h;
-        let (x2, x3) = (x * x, x * x * x);
-        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
-        let h10 = x3 - 2.0 * x2 + x;
-        let h01 = -2.0 * x3 + 3.0 * x2;
-        let h11 = x3 - x2;
-        self.values[i] * h00
-            + self.slopes[i] * (h10 * h)
-            + self.values[i + 1] * h01
-            + self.slopes[i + 1] * (h11 * h)
-    }
-
-    /// The node value nearest to `t`.
-    #[inline]
-    fn nearest(&self, t: f64) -> DVec3 {
-        let i = self.ts.partition_point(|&x| x <= t).min(self.ts.len() - 1);
-        if i > 0 && (t - self.ts[i - 1]).abs() < (self.ts[i] - t).abs() {
-            self.values[i - 1]
-        } else {
-            self.values[i]
-        }
-    }
-}
-
-/// Chord (Catmull–Rom) slopes: at each node the secant between its neighbours, one-sided at
-/// the ends; two nodes give the straight blend.
-fn chord_slopes(ts: &[f64], values: &[DVec3]) -> Vec<DVec3> {
-    let k = ts.len();
-    (0..k)
-        .map(|i| {
-            if k < 2 {
-                DVec3::ZERO
-            } else {
-                let (a, b) = (i.saturating_sub(1), (i + 1).min(k - 1));
-                (values[b] - values[a]) / (ts[b] - ts[a])
-            }
-        })
-        .collect()
-}
-
-/// One node's normal and crossing direction from its crossing tangents (eq. 8 with the angle
-/// rule; several tangents averaged with their normals aligned), or `None` when none survives.
-fn node_frame(c_hat: DVec3, tangents: &[DVec3], min_angle_degrees: f64) -> Option<(DVec3, DVec3)> {
-    let mut normal = DVec3::ZERO;
-    let mut cross = DVec3::ZERO;
-    let mut first: Option<DVec3> = None;
-    for &v in tangents {
-        if let Some(t_hat) = gram_schmidt_cross_tangent(v, c_hat, min_angle_degrees) {
-            let (mut n, mut w) = (c_hat.cross(t_hat), v.normalize());
-            match first {
-                None => first = Some(n),
-                Some(f) if f.dot(n) < 0.0 => (n, w) = (-n, -w),
-                Some(_) => {}
-            }
-            normal += n;
-            cross += w;
-        }
-    }
-    let n = normal.try_normalize()?;
-    // The averaged direction, kept on the normal's side: c × w must agree with n.
-    let w = cross
-        .try_normalize()
-        .filter(|w| c_hat.cross(*w).dot(n) > PARALLEL)
-        .unwrap_or_else(|| n.cross(c_hat));
-    Some((n, w))
 }
 
 impl EdgeNormal {
@@ -233,78 +111,45 @@ impl EdgeNormal {
         nodes: &[RibbonNode],
         min_angle_degrees: f64,
     ) -> Result<Option<EdgeNormal>, PatchError> {
-        EdgeNormal::from_crossings_along(segment, nodes, &[], min_angle_degrees)
-    }
-
-    /// [`EdgeNormal::from_crossings`] with the crossings at `support` nodes further along the
-    /// same curve (beyond the segment's ends, on the same smooth piece of the curve), which
-    /// give the blend its slopes at the segment's own nodes. Support nodes whose tangents do
-    /// not survive the angle rule are left out.
-    ///
-    /// Errors as [`EdgeNormal::from_crossings`]; a support node's parameter must be finite and
-    /// outside the segment, its tangents finite.
-    pub fn from_crossings_along(
-        segment: &SideSegment,
-        nodes: &[RibbonNode],
-        support: &[SupportNode],
-        min_angle_degrees: f64,
-    ) -> Result<Option<EdgeNormal>, PatchError> {
-        let bad_tangent = |t: f64, tangents: &[DVec3]| {
-            tangents
-                .iter()
-                .find(|v| !v.is_finite())
-                .map(|bad| PatchError::BadRibbonNode {
-                    curve: segment_label(segment),
-                    t,
-                    reason: format!("crossing tangent {bad} is not finite"),
-                })
-        };
-        let mut own = Vec::with_capacity(nodes.len());
+        let mut pairs = Vec::with_capacity(nodes.len());
         for node in nodes {
             check_node_t(segment, node.t)?;
-            if let Some(e) = bad_tangent(node.t, &node.tangents) {
-                return Err(e);
+            if let Some(bad) = node.tangents.iter().find(|v| !v.is_finite()) {
+                return Err(PatchError::BadRibbonNode {
+                    curve: segment_label(segment),
+                    t: node.t,
+                    reason: format!("crossing tangent {bad} is not finite"),
+                });
             }
             let d = segment.curve.derivs(node.t);
             let c = if d.d1.length() > 0.0 { d.d1 } else { d.d2 };
             let Some(c_hat) = c.try_normalize() else {
                 continue;
             };
-            if let Some((n, w)) = node_frame(c_hat, &node.tangents, min_angle_degrees) {
-                own.push((node.t, n, w, true));
+            let mut acc = DVec3::ZERO;
+            let mut first: Option<DVec3> = None;
+            for &v in &node.tangents {
+                if let Some(t_hat) = gram_schmidt_cross_tangent(v, c_hat, min_angle_degrees) {
+                    let n = c_hat.cross(t_hat);
+                    let n = match first {
+                        None => {
+                            first = Some(n);
+                            n
+                        }
+                        Some(f) if f.dot(n) < 0.0 => -n,
+                        Some(_) => n,
+                    };
+                    acc += n;
+                }
+            }
+            if let Some(n) = acc.try_normalize() {
+                pairs.push((node.t, n));
             }
         }
-        if own.is_empty() {
+        if pairs.is_empty() {
             return Ok(None);
         }
-        let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
-        let mut all = own;
-        for node in support {
-            if !node.t.is_finite() || (node.t >= lo && node.t <= hi) {
-                return Err(PatchError::BadRibbonNode {
-                    curve: segment_label(segment),
-                    t: node.t,
-                    reason: format!("support node inside the segment [{lo}, {hi}]"),
-                });
-            }
-            if let Some(e) = bad_tangent(node.t, &node.tangents) {
-                return Err(e);
-            }
-            if !node.curve_tangent.is_finite() {
-                return Err(PatchError::BadRibbonNode {
-                    curve: segment_label(segment),
-                    t: node.t,
-                    reason: format!("curve tangent {} is not finite", node.curve_tangent),
-                });
-            }
-            let Some(c_hat) = node.curve_tangent.try_normalize() else {
-                continue;
-            };
-            if let Some((n, w)) = node_frame(c_hat, &node.tangents, min_angle_degrees) {
-                all.push((node.t, n, w, false));
-            }
-        }
-        Ok(Some(EdgeNormal::from_frames(all)))
+        Ok(Some(EdgeNormal::from_pairs(pairs)))
     }
 
     /// Build from given unit (or any non-zero) normals at curve parameters along `segment`,
@@ -313,7 +158,7 @@ impl EdgeNormal {
         segment: &SideSegment,
         nodes: &[(f64, DVec3)],
     ) -> Result<EdgeNormal, PatchError> {
-        let mut frames = Vec::with_capacity(nodes.len());
+        let mut pairs = Vec::with_capacity(nodes.len());
         for &(t, n) in nodes {
             check_node_t(segment, t)?;
             let Some(n) = n.is_finite().then(|| n.try_normalize()).flatten() else {
@@ -323,173 +168,95 @@ impl EdgeNormal {
                     reason: format!("normal {n} is zero or not finite"),
                 });
             };
-            frames.push((t, n, DVec3::ZERO, true));
+            pairs.push((t, n));
         }
-        if frames.is_empty() {
+        if pairs.is_empty() {
             return Err(PatchError::BadRibbonNode {
                 curve: segment_label(segment),
                 t: segment.t0,
                 reason: "no normals given".to_string(),
             });
         }
-        let mut en = EdgeNormal::from_frames(frames);
-        en.crossings = None;
-        Ok(en)
+        Ok(EdgeNormal::from_pairs(pairs))
     }
 
-    /// Nodes `(t, normal, crossing direction, own)` sorted, merged where they share a
-    /// parameter and sign-aligned along the curve: the normals of the own nodes (those on the
-    /// segment) and the crossing directions of all.
-    fn from_frames(mut frames: Vec<(f64, DVec3, DVec3, bool)>) -> EdgeNormal {
-        frames.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut ts: Vec<f64> = Vec::with_capacity(frames.len());
-        let mut normals: Vec<DVec3> = Vec::with_capacity(frames.len());
-        let mut crossings: Vec<DVec3> = Vec::with_capacity(frames.len());
-        let mut own: Vec<bool> = Vec::with_capacity(frames.len());
-        for (t, mut n, mut w, mine) in frames {
+    fn from_pairs(mut pairs: Vec<(f64, DVec3)>) -> EdgeNormal {
+        pairs.sort_by(|(ta, _), (tb, _)| ta.total_cmp(tb));
+        // Merge nodes at the same parameter; align signs along the curve.
+        let mut ts: Vec<f64> = Vec::with_capacity(pairs.len());
+        let mut normals: Vec<DVec3> = Vec::with_capacity(pairs.len());
+        for (t, mut n) in pairs {
             if let Some(prev) = normals.last() {
                 if prev.dot(n) < 0.0 {
-                    (n, w) = (-n, -w);
+                    n = -n;
                 }
             }
             if ts.last() == Some(&t) {
                 let last = normals.last_mut().expect("same length as ts");
                 *last = (*last + n).try_normalize().unwrap_or(*last);
-                let lw = crossings.last_mut().expect("same length as ts");
-                *lw = (*lw + w).try_normalize().unwrap_or(*lw);
-                *own.last_mut().expect("same length as ts") |= mine;
             } else {
                 ts.push(t);
                 normals.push(n);
-                crossings.push(w);
-                own.push(mine);
             }
         }
-        let (own_ts, own_normals): (Vec<f64>, Vec<DVec3>) = ts
-            .iter()
-            .zip(&normals)
-            .zip(&own)
-            .filter(|(_, &mine)| mine)
-            .map(|((&t, &n), _)| (t, n))
-            .unzip();
-        let slopes = chord_slopes(&own_ts, &own_normals);
-        let crossing_slopes = three_point_slopes(&ts, &crossings);
+        let k = ts.len();
+        let slopes = (0..k)
+            .map(|i| {
+                if k < 3 {
+                    // One node: constant; two nodes: the Hermite below with chord slopes
+                    // is the straight blend.
+                    if k == 2 {
+                        (normals[1] - normals[0]) / (ts[1] - ts[0])
+                    } else {
+                        DVec3::ZERO
+                    }
+                } else {
+                    let (a, b) = (i.saturating_sub(1), (i + 1).min(k - 1));
+                    (normals[b] - normals[a]) / (ts[b] - ts[a])
+                }
+            })
+            .collect();
         EdgeNormal {
-            normals: Blend {
-                ts: own_ts,
-                values: own_normals,
-                slopes,
-            },
-            crossings: Some(Blend {
-                ts,
-                values: crossings,
-                slopes: crossing_slopes,
-            }),
+            ts,
+            normals,
+            slopes,
         }
     }
 
-    /// The unit normal at curve parameter `t` blended from the own nodes' normals (not yet made
-    /// perpendicular to the curve): the field's orientation, and its value where no curve
-    /// tangent is at hand.
+    /// The unit normal at curve parameter `t` (not yet made perpendicular to the curve).
     #[inline]
     pub fn normal(&self, t: f64) -> DVec3 {
+        let k = self.ts.len();
+        if k == 1 || t.is_nan() || t <= self.ts[0] {
+            return self.normals[0];
+        }
+        if t >= self.ts[k - 1] {
+            return self.normals[k - 1];
+        }
+        let i = self.ts.partition_point(|&x| x <= t) - 1;
+        let (t0, t1) = (self.ts[i], self.ts[i + 1]);
+        let h = t1 - t0;
+        let x = (t - t0) / h;
+        let (x2, x3) = (x * x, x * x * x);
+        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
+        let h10 = x3 - 2.0 * x2 + x;
+        let h01 = -2.0 * x3 + 3.0 * x2;
+        let h11 = x3 - x2;
+        let v = self.normals[i] * h00
+            + self.slopes[i] * (h10 * h)
+            + self.normals[i + 1] * h01
+            + self.slopes[i + 1] * (h11 * h);
         // Aligned unit normals never blend to zero unless opposite; fall back to the nearer.
-        self.normals
-            .eval(t)
-            .try_normalize()
-            .unwrap_or_else(|| self.normals.nearest(t))
-    }
-
-    /// The unit normal at curve parameter `t`, where the curve's unit tangent is `c_hat`:
-    /// `ĉ × ŵ(t)` with `ŵ` the blended crossing direction (exactly perpendicular to the curve),
-    /// signed as [`EdgeNormal::normal`]. Where that disagrees with the blend of the node
-    /// normals (made perpendicular to the curve) by more than [`ACROSS_TRUSTED_DEGREES`], the
-    /// curve turns faster than its crossings say — a wiggle in a fitted curve — and `ĉ × ŵ`
-    /// would follow it: the result goes over smoothly to the blended normal, reached at
-    /// [`ACROSS_DISTRUSTED_DEGREES`]. A field built from normals gives the blended normal.
-    #[inline]
-    pub fn normal_across(&self, t: f64, c_hat: DVec3) -> DVec3 {
-        let blended = self.normal(t);
-        let Some(crossings) = &self.crossings else {
-            return blended;
-        };
-        let w = crossings.eval(t);
-        let across = c_hat.cross(w);
-        let flat = blended - c_hat * blended.dot(c_hat);
-        let (Some(across), Some(flat)) = (
-            (across.length() > PARALLEL * w.length()).then(|| across.normalize()),
-            flat.try_normalize(),
-        ) else {
-            return blended;
-        };
-        let across = if across.dot(flat) < 0.0 {
-            -across
+        v.try_normalize().unwrap_or(if x < 0.5 {
+            self.normals[i]
         } else {
-            across
-        };
-        let angle = across.angle_between(flat).to_degrees();
-        let x = ((angle - ACROSS_TRUSTED_DEGREES)
-            / (ACROSS_DISTRUSTED_DEGREES - ACROSS_TRUSTED_DEGREES))
-            .clamp(0.0, 1.0);
-        let distrust = x * x * (3.0 - 2.0 * x);
-        (across * (1.0 - distrust) + flat * distrust)
-            .try_normalize()
-            .unwrap_or(flat)
+            self.normals[i + 1]
+        })
     }
 
-    /// The parameters of the nodes on the segment.
+    /// The node parameters.
     pub fn parameters(&self) -> &[f64] {
-        &self.normals.ts
-    }
-}
-
-/// The slope limit of [`three_point_slopes`]: a node's slope is at most this many times the
-/// smaller of its two neighbouring secants (the Fritsch–Carlson bound of monotone cubic
-/// interpolation, for vectors), so no Hermite interval overshoots its chord, even beside two
-/// nodes almost at one parameter.
-const SLOPE_LIMIT: f64 = 3.0;
-
-/// The derivatives at the nodes `ts` of the parabolas through each node and its neighbours
-/// (the non-uniform three-point formula; one-sided at the two ends): exact for values that
-/// vary quadratically along the curve, and limited to [`SLOPE_LIMIT`] times the adjacent
-/// secants. One node: zero; two nodes: the chord, so the Hermite blend is the straight one.
-fn three_point_slopes(ts: &[f64], values: &[DVec3]) -> Vec<DVec3> {
-    let k = ts.len();
-    match k {
-        0 | 1 => vec![DVec3::ZERO; k],
-        2 => {
-            let chord = (values[1] - values[0]) / (ts[1] - ts[0]);
-            vec![chord; 2]
-        }
-        _ => {
-            let secant = |i: usize| ((values[i + 1] - values[i]) / (ts[i + 1] - ts[i])).length();
-            (0..k)
-                .map(|i| {
-                    // The parabola through nodes j, j+1, j+2, differentiated at node i.
-                    let j = i.saturating_sub(1).min(k - 3);
-                    let (t0, t1, t2) = (ts[j], ts[j + 1], ts[j + 2]);
-                    let (y0, y1, y2) = (values[j], values[j + 1], values[j + 2]);
-                    let t = ts[i];
-                    let m = y0 * (((t - t1) + (t - t2)) / ((t0 - t1) * (t0 - t2)))
-                        + y1 * (((t - t0) + (t - t2)) / ((t1 - t0) * (t1 - t2)))
-                        + y2 * (((t - t0) + (t - t1)) / ((t2 - t0) * (t2 - t1)));
-                    let before = (i > 0).then(|| secant(i - 1));
-                    let after = (i + 1 < k).then(|| secant(i));
-                    let bound = SLOPE_LIMIT
-                        * match (before, after) {
-                            (Some(a), Some(b)) => a.min(b),
-                            (Some(a), None) | (None, Some(a)) => a,
-                            (None, None) => 0.0,
-                        };
-                    let len = m.length();
-                    if len > bound {
-                        m * (bound / len)
-                    } else {
-                        m
-                    }
-                })
-                .collect()
-        }
+        &self.ts
     }
 }
 
@@ -578,7 +345,7 @@ impl PreparedRibbon {
             .try_normalize()
             .unwrap_or_else(|| (side.end - side.start()).normalize_or(DVec3::X));
         let n = match &self.normals[k] {
-            Some((en, sign)) => en.normal_across(t, c) * *sign,
+            Some((en, sign)) => en.normal(t) * *sign,
             None => self.default_normal(s),
         };
         let cross = in_plane_cross(n, c)
