@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .drawing import dashes, finite_runs
+
 #: RGBA colours (0–1).
 WHITE = (1.0, 1.0, 1.0, 1.0)
 BLACK = (0.0, 0.0, 0.0, 1.0)
@@ -119,7 +121,7 @@ class Canvas:
         """A polyline through ``points`` ((n, 2) pixels) ``width`` pixels wide, solid or
         dashed (``dash`` = (on, off) pixels); non-finite points break it."""
         points = np.asarray(points, dtype=float).reshape(-1, 2)
-        pieces = [p for run in _finite_runs(points) for p in (_dashes(run, dash) if dash else [run])]
+        pieces = [p for run in finite_runs(points) for p in (dashes(run, *dash) if dash else [run])]
         self._cover(
             [(p, q) for piece in pieces for p, q in zip(piece[:-1], piece[1:], strict=True)],
             0.5 * width,
@@ -233,34 +235,6 @@ def _cover_segment(coverage: np.ndarray, origin, p, q, half: float) -> None:
     dist = np.hypot(px - p[0] - t * d[0], py - p[1] - t * d[1])
     block = coverage[lo[1] : hi[1], lo[0] : hi[0]]
     np.maximum(block, (half + 0.5 - dist).clip(0.0, 1.0), out=block)
-
-
-def _finite_runs(points: np.ndarray) -> list[np.ndarray]:
-    """The stretches of ``points`` with no non-finite coordinate, each of two points or more."""
-    ok = np.isfinite(points).all(axis=1)
-    runs, start = [], None
-    for i, good in enumerate([*ok, False]):
-        if good and start is None:
-            start = i
-        elif not good and start is not None:
-            if i - start >= 2:
-                runs.append(points[start:i])
-            start = None
-    return runs
-
-
-def _dashes(points: np.ndarray, dash: tuple[float, float]) -> list[np.ndarray]:
-    """The "on" pieces of a polyline dashed ``dash`` = (on, off) pixels."""
-    on, off = dash
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))])
-    period = on + off
-    pieces = []
-    for start in np.arange(0.0, s[-1], period):
-        at = np.concatenate([[start], s[(s > start) & (s < start + on)], [min(start + on, s[-1])]])
-        piece = np.column_stack([np.interp(at, s, points[:, 0]), np.interp(at, s, points[:, 1])])
-        if len(piece) >= 2:
-            pieces.append(piece)
-    return pieces
 
 
 @dataclass
