@@ -59,13 +59,14 @@ class Label:
 
 @dataclass
 class Drawing:
-    """The strokes and labels of a drawing, its title and the text height its pens scale
-    with."""
+    """The strokes and labels of a drawing, its title, the text height its pens scale with
+    and ``marks``: named places of the layout (a view's centreline, say) for whoever reads it."""
 
     title: str
     text_height: float
     strokes: list[Stroke] = field(default_factory=list)
     labels: list[Label] = field(default_factory=list)
+    marks: dict[str, float] = field(default_factory=dict)
 
     def line(self, layer: str, points, *, dashed: bool = False) -> None:
         """Add a polyline, broken where a point is not finite (pieces of fewer than 2 points

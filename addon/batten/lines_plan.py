@@ -159,6 +159,9 @@ def layout(sections: dict, outline: list[np.ndarray], hull: Hull) -> Drawing:
     )
     sheet = _Sheet(lo, hi, hull, reach)
     d = Drawing(title=hull.name, text_height=sheet.h)
+    # The body plan's centreline (x on the sheet) and the half-breadth plan's (y on the sheet):
+    # a section point (x, y, z) is at (body_cl ± y, z) and (x, plan_cl − y).
+    d.marks.update(body_plan_cl=sheet.body_cl, half_breadth_cl=sheet.plan_cl)
     _grid(d, sheet, sections)
     _curves(d, sheet, sections, outline, frames)
     _title_block(d, sheet)
@@ -321,3 +324,26 @@ def _title_block(d: Drawing, sh: _Sheet) -> None:
             d.text("title", cx + h, y, label)
             d.text("title", cx + width - h, y, value, align="right")
         cx += width
+
+
+#: Default waterlines: this many between the baseline and the DWL (the DWL the last), and on
+#: at the same spacing up to the top of the hull.
+WATERLINES_TO_DWL = 5
+#: Default buttocks: at these shares of the largest half-breadth.
+BUTTOCK_SHARES = (0.2, 0.4, 0.6, 0.8)
+#: A waterline closer than this share of the spacing under the top of the hull is left out
+#: (it would cut only the deck edge).
+TOP_CLEARANCE = 0.25
+
+
+def default_waterlines(draft: float, top: float) -> list[float]:
+    """The heights of the default waterlines: :data:`WATERLINES_TO_DWL` evenly up to the DWL
+    at ``draft``, then at the same spacing while below ``top`` (the hull's highest point)."""
+    step = draft / WATERLINES_TO_DWL
+    count = int(np.floor((top - step * TOP_CLEARANCE) / step))
+    return [step * k for k in range(1, max(count, WATERLINES_TO_DWL) + 1)]
+
+
+def default_buttocks(half_beam: float) -> list[float]:
+    """The offsets of the default buttocks, :data:`BUTTOCK_SHARES` of ``half_beam``."""
+    return [share * half_beam for share in BUTTOCK_SHARES]
