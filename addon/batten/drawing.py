@@ -59,14 +59,16 @@ class Label:
 
 @dataclass
 class Drawing:
-    """The strokes and labels of a drawing, its title, the text height its pens scale with
-    and ``marks``: named places of the layout (a view's centreline, say) for whoever reads it."""
+    """The strokes and labels of a drawing, its title, the text height its pens scale with,
+    ``marks``: named places of the layout (a view's centreline, say) for whoever reads it,
+    and ``tables`` ((title, header, rows of text cells)) a document format prints after it."""
 
     title: str
     text_height: float
     strokes: list[Stroke] = field(default_factory=list)
     labels: list[Label] = field(default_factory=list)
     marks: dict[str, float] = field(default_factory=dict)
+    tables: list[tuple[str, list[str], list[list[str]]]] = field(default_factory=list)
 
     def line(self, layer: str, points, *, dashed: bool = False) -> None:
         """Add a polyline, broken where a point is not finite (pieces of fewer than 2 points

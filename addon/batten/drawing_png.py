@@ -3,6 +3,10 @@
 
 from __future__ import annotations
 
+import os
+import tempfile
+from pathlib import Path
+
 import numpy as np
 
 from .chart import Canvas
@@ -40,6 +44,17 @@ def canvas_of(drawing: Drawing, width: int = 2400) -> Canvas:
     return canvas
 
 
-def write_png(drawing: Drawing, path, width: int = 2400):
-    """Write ``drawing`` as a PNG ``width`` pixels wide to ``path``; returns the path."""
-    return canvas_of(drawing, width).save_png(path)
+def write_png(drawing: Drawing, path, width: int = 2400) -> Path:
+    """Write ``drawing`` as a PNG ``width`` pixels wide to ``path``, whole or not at all (into
+    a temporary file beside it, then renamed over it); returns the path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".png", dir=path.parent)
+    os.close(fd)
+    try:
+        canvas_of(drawing, width).save_png(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+    return path

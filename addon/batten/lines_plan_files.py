@@ -7,8 +7,8 @@ from pathlib import Path
 from .atomic_write import write_atomically
 from .drawing import Drawing
 
-#: The formats a lines plan is written in, by file suffix.
-FORMATS = (".svg", ".dxf", ".pdf")
+#: The formats a lines plan is written in, by file suffix (a PNG needs Blender's font engine).
+FORMATS = (".svg", ".dxf", ".pdf", ".png")
 
 
 def format_of(path) -> str:
@@ -21,9 +21,9 @@ def format_of(path) -> str:
     return suffix
 
 
-def file_bytes(drawing: Drawing, suffix: str, tables=()) -> str | bytes:
-    """The file of ``drawing`` in the format of ``suffix`` (the PDF with ``tables``, each
-    (title, header, rows), on pages of their own)."""
+def file_bytes(drawing: Drawing, suffix: str) -> str | bytes:
+    """The file of ``drawing`` in the format of ``suffix`` (the PDF with the drawing's
+    tables on pages of their own)."""
     if suffix == ".svg":
         from .drawing_svg import svg_text
 
@@ -34,10 +34,15 @@ def file_bytes(drawing: Drawing, suffix: str, tables=()) -> str | bytes:
         return dxf_text(drawing)
     from .drawing_pdf import drawing_pdf
 
-    return drawing_pdf(drawing, list(tables))
+    return drawing_pdf(drawing, drawing.tables)
 
 
-def write(drawing: Drawing, path, tables=()) -> Path:
+def write(drawing: Drawing, path) -> Path:
     """Write ``drawing`` to ``path`` in the format its suffix names, whole or not at all;
     returns the path. ValueError for an unknown suffix, OSError when it cannot be written."""
-    return write_atomically(path, file_bytes(drawing, format_of(path), tables))
+    suffix = format_of(path)
+    if suffix == ".png":
+        from .drawing_png import write_png
+
+        return write_png(drawing, path)
+    return write_atomically(path, file_bytes(drawing, suffix))

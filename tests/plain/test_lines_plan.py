@@ -192,6 +192,7 @@ def test_pdf_pages(plan, tmp_path):
     _, d = plan
     table = ("Offsets", ["x", "y"], [[f"{i}", f"{i / 3:.3f}"] for i in range(200)])
     data = drawing_pdf.drawing_pdf(d, [table])
+    assert lines_plan_files.file_bytes(d, ".pdf").count(b"/Type /Page ") == 1  # the drawing's own: none
     assert data.startswith(b"%PDF-1.4") and data.rstrip().endswith(b"%%EOF")
     # 200 rows take several table pages after the drawing.
     pages = 1 + len(drawing_pdf.table_page(*table))
@@ -215,8 +216,8 @@ def test_pdf_text_widths():
 
 def test_bad_suffix_and_unwritable_path(plan, tmp_path):
     _, d = plan
-    with pytest.raises(ValueError, match="not '.png'"):
-        lines_plan_files.write(d, tmp_path / "plan.png")
+    with pytest.raises(ValueError, match="not '.jpg'"):
+        lines_plan_files.write(d, tmp_path / "plan.jpg")
     blocker = tmp_path / "file"
     blocker.write_text("x")
     with pytest.raises(OSError):
