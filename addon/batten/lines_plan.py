@@ -243,7 +243,7 @@ def _curves(d: Drawing, sh: _Sheet, sections: dict, outline, frames) -> None:
     for s in sections.get("buttocks", ()):
         for p in s.polylines:
             d.line("buttocks", sh.profile(p))
-    for s, frame in frames:
+    for k, (s, frame) in enumerate(frames, start=1):
         if frame is None:
             continue
         origin, direction = frame
@@ -255,8 +255,10 @@ def _curves(d: Drawing, sh: _Sheet, sections: dict, outline, frames) -> None:
         end = origin + direction * (reach + sh.over)
         for side in (-1.0, 1.0):
             d.line("diagonals", [(sh.body_cl, origin[1]), (sh.body_cl + side * end[0], end[1])])
-        d.text("diagonals", sh.body_cl - end[0] - 0.3 * sh.h, end[1], s.name, align="right", valign="center")
-        d.text("diagonals", sh.lo[0] - sh.over - 0.4 * sh.h, sh.plan_cl + reach, s.name, align="right")
+        # Named D1, D2… in order (a section's own name, "diagonal 5.000 -35.0°", is long).
+        name = f"D{k}"
+        d.text("diagonals", sh.body_cl - end[0] - 0.3 * sh.h, end[1], name, align="right", valign="center")
+        d.text("diagonals", sh.lo[0] - sh.over - 0.4 * sh.h, sh.plan_cl + reach, name, align="right")
     for layer, curves in (
         ("knuckles", [p for s in sections.get("knuckles", ()) for p in s.polylines]),
         ("outline", outline),
@@ -347,3 +349,38 @@ def default_waterlines(draft: float, top: float) -> list[float]:
 def default_buttocks(half_beam: float) -> list[float]:
     """The offsets of the default buttocks, :data:`BUTTOCK_SHARES` of ``half_beam``."""
     return [share * half_beam for share in BUTTOCK_SHARES]
+
+
+#: Decimals of the offsets printed with a lines plan (millimetres).
+OFFSET_DECIMALS = 3
+
+
+def offsets_tables(sections: dict, hull: Hull) -> list[tuple[str, list[str], list[list[str]]]]:
+    """The offsets table of the drawn sections, as the PDF prints it after the plan: the
+    half-breadths where the stations cross the waterlines, and the heights where they cross the
+    buttocks (m, read off the station sections by :func:`batten.offsets.crossings`; several
+    crossings of one station joined as in the offsets CSV, none left empty). Each table is
+    (title, header, rows): a row per waterline or buttock, a column per station (by number)."""
+    from .offsets import CELL_SEPARATOR, crossings
+
+    stations = sorted(sections.get("stations", ()), key=lambda s: s.offset)
+    header = [station_number(float(s.offset), hull) for s in stations]
+
+    def rows(family: str, axis: int, along: int) -> list[list[str]]:
+        return [
+            [_metres(float(p.offset))]
+            + [
+                CELL_SEPARATOR.join(f"{v:.{OFFSET_DECIMALS}f}" for v in crossings(s.polylines, axis, p.offset, along))
+                for s in stations
+            ]
+            for p in sorted(sections.get(family, ()), key=lambda p: p.offset)
+        ]
+
+    tables = []
+    if stations and sections.get("waterlines"):
+        tables.append((f"{hull.name}: half-breadths (m) at the stations", ["WL z \\ station", *header],
+                       rows("waterlines", 2, 1)))
+    if stations and sections.get("buttocks"):
+        tables.append((f"{hull.name}: heights (m) at the stations", ["BT y \\ station", *header],
+                       rows("buttocks", 1, 2)))
+    return tables
