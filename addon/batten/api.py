@@ -16,6 +16,7 @@ call leaves the file as it was: nothing half-written, no source curve changed.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterable
 from pathlib import Path
 from typing import NamedTuple
@@ -24,6 +25,7 @@ import bpy
 import numpy as np
 from batten_native import (
     DEFAULT_CORNER_ANGLE_DEG,
+    DEFAULT_CUT_TOLERANCE,
     DEFAULT_FAIR_DEGREE,
     DEFAULT_FAIR_TOLERANCE,
     DEFAULT_RESOLUTION,
@@ -55,15 +57,24 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
-from . import hull_models
+from . import hull_models, sections_draw
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
 from .fit_data import fit_data
 from .object_names import blender_name, errors_named_by_object, objects_of, with_objects
+from .offsets import table_text
+from .sections import Section, all_sections, finite_offsets, planes
+from .sections import cut as _cut_sections
 
 __all__ = [
     "BuildResult",
+    "DEFAULT_CUT_TOLERANCE",
+    "Section",
+    "export_sections",
+    "offsets_table",
+    "refresh_sections",
+    "sections",
     "HydrostaticsError",
     "SEA_WATER_DENSITY",
     "curves_of_form",
@@ -132,7 +143,12 @@ def curve_objects(source) -> list:
             f"expected a collection, a curve object or a list of them, got {type(source).__name__}"
         )
     # The hull surface batten built from these curves may sit beside them: it is output, not input.
-    objects = [o for o in objects if not (isinstance(o, bpy.types.Object) and o.get(SURFACE_TAG))]
+    # So are the sections batten drew (in a child collection).
+    objects = [
+        o
+        for o in objects
+        if not (isinstance(o, bpy.types.Object) and (o.get(SURFACE_TAG) or o.get(sections_draw.SECTION_TAG)))
+    ]
     if not objects:
         raise InvalidArgumentError(f"{where} holds no curves")
     for obj in objects:
@@ -774,6 +790,210 @@ def float_to(
     lpp, fp = _datums(source, lpp, fp)
     level = model.level_draft(displacement, density)
     return model.float_to(displacement, lcg, level, vcg, density, lpp, fp)
+
+
+# --- Sections -----------------------------------------------------------------------------------
+
+
+def _station_extent(source, model) -> tuple[float, float]:
+    """[AP, FP]: the collection's perpendiculars, else those at its design draft, else the
+    surface's x-extent."""
+    lpp, fp = _datums(source, None, None)
+    if lpp is not None and fp is not None:
+        return fp - lpp, fp
+    draft = design_draft(source)
+    if draft is not None:
+        try:
+            return model.datums(draft, lpp, fp)
+        except HydrostaticsError:
+            pass  # the draft does not float this surface: its extent will do
+    lo, hi = model.bounds
+    return lo[0], hi[0]
+
+
+def sections(
+    source,
+    *,
+    stations=None,
+    waterlines=None,
+    buttocks=None,
+    diagonals=None,
+    tolerance: float | None = None,
+    collection: bool = False,
+) -> dict[str, list[Section]]:
+    """Plane sections of the hull in ``source`` (what :func:`build` takes), cut from its patches
+    themselves: a dict with keys ``"stations"``, ``"waterlines"``, ``"buttocks"``,
+    ``"diagonals"`` and ``"knuckles"`` (the hull's chine lines), each a list of
+    :class:`~batten.sections.Section` (family, offset, name, polylines (n, 3) in hull
+    coordinates — the drawn half —, fitted curves).
+
+    Each family's argument is None (none), an int ``n`` (``n`` planes evenly spaced over the
+    hull's extent, the extremes left out: stations over [AP, FP] — the collection's
+    perpendiculars, else those at its design draft, else the x-extent — waterlines over the
+    z-extent, buttocks over the y-extent), or a sequence of offsets (m); diagonals a sequence of
+    ``(y0, z0, angle_deg)`` (see :mod:`batten.sections`). ``tolerance`` (m, default
+    ``DEFAULT_CUT_TOLERANCE``, 1 mm) bounds the chords' distance from the surface and the
+    fitted curves' from the points. A plane missing the hull gives a section without
+    polylines.
+
+    With ``collection=True`` the sections are also drawn as curve objects (one per section,
+    named e.g. ``"station 12.500"``) in the collection ``"<hull> sections"``, a child of the
+    hull's collection, replacing what it held; Build and Live rebuilds cut them again.
+
+    Raises InvalidArgumentError for NaN or infinite offsets (naming the argument), a negative
+    count, a tolerance that is not a positive number; what :func:`build` raises for the
+    surface.
+    """
+    tol = DEFAULT_CUT_TOLERANCE if tolerance is None else tolerance
+    requests = {"stations": stations, "waterlines": waterlines, "buttocks": buttocks, "diagonals": diagonals}
+    model = _hull_model(source)
+    lo, hi = model.bounds
+    extents = {
+        "stations": _station_extent(source, model),
+        "waterlines": (lo[2], hi[2]),
+        "buttocks": (lo[1], hi[1]),
+        "diagonals": (lo[2], hi[2]),
+    }
+    result = _cut_sections(model, requests, extents, tol)
+    if collection:
+        _draw_sections(source, result, {**requests, "tolerance": tol})
+    return result
+
+
+def _json_request(request: dict) -> dict:
+    """A request as JSON values (numpy numbers and tuples made plain)."""
+
+    def plain(v):
+        if isinstance(v, int | float | str | bool) or v is None:
+            return v
+        if isinstance(v, np.generic):
+            return v.item()
+        return [plain(x) for x in v]
+
+    return {k: plain(v) for k, v in request.items()}
+
+
+def _draw_sections(source, result: dict[str, list[Section]], request: dict):
+    parent = source if isinstance(source, bpy.types.Collection) else None
+    return sections_draw.draw(_source_name(source), parent, all_sections(result), _json_request(request))
+
+
+def refresh_sections(source) -> bool:
+    """Cut again the sections drawn for the hull in ``source`` (its ``"<hull> sections"``
+    collection, with the request that made them), as a rebuild does; False when none are drawn."""
+    coll = sections_draw.existing(_source_name(source))
+    request = coll and sections_draw.request_of(coll)
+    if not request:
+        return False
+    tol = request.pop("tolerance", None)
+    families = {k: request.get(k) for k in ("stations", "waterlines", "buttocks", "diagonals")}
+    sections(source, **families, tolerance=tol, collection=True)
+    return True
+
+
+# --- Offsets table and section export -------------------------------------------------------------
+
+#: The chordal tolerance (m) of the station sections an offsets table is read off: 0.1 mm, the
+#: table's last decimal.
+OFFSETS_TOLERANCE = 1e-4
+
+#: The kind (in the neutral section format) of a curve of each batten role, for the curves
+#: :func:`export_sections` writes beside the sections.
+KIND_OF_ROLE = {"keel": "profile", "stem": "stem", "transom": "transom", "deck": "deck", "knuckle": "chine"}
+
+#: Points per curve of the hull's boundary curves in :func:`export_sections`.
+EXPORT_CURVE_SAMPLES = 200
+
+
+def _station_xs(source, model, stations) -> tuple[list[float], list[str]]:
+    """Station x values and labels: a count from AP to FP inclusive (21: stations 0 to 20, as
+    :func:`sectional_areas` counts them), or the x values themselves."""
+    if isinstance(stations, int | np.integer) and not isinstance(stations, bool):
+        if stations < 2:
+            raise InvalidArgumentError(f"stations {stations} must be at least 2 (AP and FP)")
+        x_ap, x_fp = _station_extent(source, model)
+        xs = [float(x) for x in np.linspace(x_ap, x_fp, int(stations))]
+        return xs, [str(k) for k in range(len(xs))]
+    xs = finite_offsets(stations, "stations")
+    if not xs:
+        raise InvalidArgumentError("stations must be a count or a non-empty list of x values")
+    return xs, [f"{x:.3f}" for x in xs]
+
+
+def _offsets(source, family, spec, model) -> list[float]:
+    lo, hi = model.bounds
+    extent = {"waterlines": (lo[2], hi[2]), "buttocks": (lo[1], hi[1])}[family]
+    return [p[2] for p in planes(family, spec, extent)]
+
+
+def offsets_table(
+    source, path, *, stations=21, waterlines=10, buttocks=5, tolerance: float = OFFSETS_TOLERANCE
+) -> Path:
+    """Write the offsets table of the hull in ``source`` to ``path`` (CSV, whole or not at all):
+    the half-breadths (m) where the stations cross the waterlines and the heights (m) where
+    they cross the buttocks, read off the exact station sections (within ``tolerance``, m).
+
+    ``stations``: a count of stations equally spaced from AP to FP inclusive (21: stations 0 to
+    20; AP and FP as in :func:`sections`), or their x values; ``waterlines`` and ``buttocks``:
+    a count (evenly spaced over the hull's height and half-breadth, the extremes left out) or
+    the heights / offsets (m). The header names the units, the axes, AP, FP and the design
+    draft. An empty cell: the station does not reach that waterline or buttock (no NaN is
+    written); a cell ``"a / b"``: the station crosses it more than once (see
+    :mod:`batten.offsets`). Returns the path; NetworkFileError when it cannot be written,
+    InvalidArgumentError for bad counts or offsets (naming the argument)."""
+    model = _hull_model(source)
+    xs, labels = _station_xs(source, model, stations)
+    wls = _offsets(source, "waterlines", waterlines, model)
+    bls = _offsets(source, "buttocks", buttocks, model)
+    cut = sections(source, stations=xs, tolerance=tolerance)["stations"]
+    x_ap, x_fp = _station_extent(source, model)
+    datums = {"x_ap": x_ap, "x_fp": x_fp, "design_draft": design_draft(source), "tolerance": tolerance}
+    rows = [(label, s.offset, s.polylines) for label, s in zip(labels, cut, strict=True)]
+    text = table_text(_source_name(source), rows, wls, bls, datums)
+    path = file_path(path, "offsets table")
+    try:
+        return write_atomically(path, text)
+    except OSError as e:
+        raise NetworkFileError(f"offsets table '{path}': {e.strerror or e}") from e
+
+
+def export_sections(
+    source, path, *, stations=41, waterlines=12, tolerance: float = OFFSETS_TOLERANCE
+) -> Path:
+    """Write the hull in ``source`` as a section file in the neutral format that
+    :func:`import_sections` reads (``shared/hulls``' JSON): its stations (``stations`` as in
+    :func:`offsets_table`) and waterlines (as in :func:`sections`) cut from the exact surface
+    within ``tolerance`` (m), every piece a curve of dense points, and the hull's boundary
+    curves (keel/profile, stem, transom, deck, chines: the curves with those roles, sampled),
+    with ``Lpp`` and ``T`` when the collection carries them (AP at x = 0 is then assumed, as
+    the format has it). Returns the path; NetworkFileError when it cannot be written."""
+    model = _hull_model(source)
+    xs, _ = _station_xs(source, model, stations)
+    cut = sections(source, stations=xs, waterlines=waterlines, tolerance=tolerance)
+    curves = []
+    for family, kind in (("stations", "station"), ("waterlines", "waterline")):
+        for s in cut[family]:
+            for k, pts in enumerate(s.polylines):
+                name = s.name if k == 0 else f"{s.name} ({k + 1})"
+                curves.append({"name": name, "kind": kind, "points": np.round(pts, 6).tolist()})
+    for c in read_curves(source):
+        kind = KIND_OF_ROLE.get(c.role)
+        if kind is None:
+            continue
+        t0, t1 = c.domain
+        pts = c.evaluate(np.linspace(t0, t1, EXPORT_CURVE_SAMPLES))
+        curves.append({"name": c.name, "kind": kind, "points": np.round(pts, 6).tolist()})
+    data = {"name": _source_name(source), "curves": curves}
+    lpp, _fp = _datums(source, None, None)
+    if lpp is not None:
+        data["Lpp"] = lpp
+    if design_draft(source) is not None:
+        data["T"] = design_draft(source)
+    path = file_path(path, "section file")
+    try:
+        return write_atomically(path, json.dumps(data))
+    except OSError as e:
+        raise NetworkFileError(f"section file '{path}': {e.strerror or e}") from e
 
 
 #: Points each outline curve (keel, stem, transom, deck edge) is drawn through in a lines plan.

@@ -9,7 +9,7 @@ the transient "a rebuild is scheduled" flag lives here.
 
 import bpy
 
-from . import api
+from . import api, sections_draw
 from .scene_build import build_into_scene
 from .scene_hydro import hydrostatics_into_scene
 
@@ -25,7 +25,12 @@ _rebuilding = False
 def _hull_curve_names(settings) -> set[str]:
     if settings.source is None:
         return set()
-    return {o.name for o in settings.source.all_objects if o.type == "CURVE"}
+    # Drawn sections are output: redrawing them is no edit of the hull.
+    return {
+        o.name
+        for o in settings.source.all_objects
+        if o.type == "CURVE" and not o.get(sections_draw.SECTION_TAG)
+    }
 
 
 def rebuild_scene(scene_name: str):
@@ -40,7 +45,7 @@ def rebuild_scene(scene_name: str):
     global _rebuilding
     _rebuilding = True
     try:
-        build_into_scene(scene)
+        build_into_scene(scene, live=True)
         if scene.batten.last_hydrostatics:
             hydrostatics_into_scene(scene, live=True)
     except api.BattenError:

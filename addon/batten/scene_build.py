@@ -1,15 +1,32 @@
-"""Building a scene's hull with the scene's settings (the Build operator and Live both do)."""
+"""Building a scene's hull with the scene's settings (the Build operator and Live both do), and
+cutting its drawn sections again after each build."""
 
 import json
+import time
+
+import bpy
 
 from . import api
 from .network_markers import network_markers
 
+#: A live rebuild (while a control point is dragged) cuts the drawn sections again only when
+#: their last cut took at most this (s); a slower cut waits until the rebuilds pause.
+SECTIONS_LIVE_BUDGET = 0.005
 
-def build_into_scene(scene) -> dict:
+#: Seconds without a rebuild after which sections skipped while dragging are cut again.
+SECTIONS_SETTLE_SECONDS = 0.5
+
+#: How long the last cut of each hull's drawn sections took (s), by hull collection name.
+_cut_seconds: dict[str, float] = {}
+#: The pending deferred cut of each hull (its timer function), by hull collection name.
+_deferred: dict[str, object] = {}
+
+
+def build_into_scene(scene, *, live: bool = False) -> dict:
     """Build the scene's hull with its settings, keep the report in the scene (JSON) with the
-    overlay's markers (from the report's nodes and warnings), and return it; a failure is kept
-    as the report's error and raised again."""
+    overlay's markers (from the report's nodes and warnings), cut its drawn sections again (see
+    :func:`refresh_sections`), and return the report; a failure is kept as the report's error
+    and raised again."""
     settings = scene.batten
     try:
         result = api.build(
@@ -23,5 +40,37 @@ def build_into_scene(scene) -> dict:
         raise
     report = result.report
     report["markers"] = network_markers(report["node_positions"], report["node_kinds"], report["warnings"])
+    try:
+        refresh_sections(settings.source, live=live)
+    except api.BattenError as e:
+        report["sections_error"] = str(e)
     settings.last_report = json.dumps(report)
     return report
+
+
+def refresh_sections(source, *, live: bool = False) -> None:
+    """Cut the hull's drawn sections (``"<hull> sections"``) again, if it has any: now, or
+    during a live rebuild when their last cut took more than :data:`SECTIONS_LIVE_BUDGET`,
+    once the rebuilds have paused for :data:`SECTIONS_SETTLE_SECONDS`."""
+    name = source.name
+    pending = _deferred.pop(name, None)
+    if pending is not None and bpy.app.timers.is_registered(pending):
+        bpy.app.timers.unregister(pending)
+    if live and _cut_seconds.get(name, 0.0) > SECTIONS_LIVE_BUDGET:
+
+        def later():
+            _deferred.pop(name, None)
+            coll = bpy.data.collections.get(name)
+            if coll is not None:
+                try:
+                    refresh_sections(coll)
+                except api.BattenError:
+                    pass  # the sections stay as they were; the next build reports it
+            return None
+
+        _deferred[name] = later
+        bpy.app.timers.register(later, first_interval=SECTIONS_SETTLE_SECONDS)
+        return
+    start = time.perf_counter()
+    if api.refresh_sections(source):
+        _cut_seconds[name] = time.perf_counter() - start

@@ -72,18 +72,26 @@ def write_spline(data, spec: tuple[str, np.ndarray, dict], to_local: np.ndarray 
 def new_curve_object(curve: Curve, collection, *, resolution: int = 16):
     """A new curve object drawing ``curve`` (world coordinates, identity transform), linked to
     ``collection``, with the curve's role set. Returns the object."""
-    spec = _spline_data(curve)  # refuses what Blender cannot draw before anything is created
-    data = bpy.data.curves.new(curve.name, "CURVE")
+    obj = new_curves_object(curve.name, [curve], collection, resolution=resolution)
+    if hasattr(obj, "batten"):
+        obj.batten.role = curve.role
+    return obj
+
+
+def new_curves_object(name: str, curves: list[Curve], collection, *, resolution: int = 16):
+    """A new curve object ``name`` with one spline per curve of ``curves`` (world coordinates,
+    identity transform), linked to ``collection``. Returns the object."""
+    specs = [_spline_data(c) for c in curves]  # refuses what Blender cannot draw before anything is created
+    data = bpy.data.curves.new(name, "CURVE")
     try:
         data.dimensions = "3D"
         data.resolution_u = resolution
-        write_spline(data, spec)
-        obj = bpy.data.objects.new(curve.name, data)
+        for spec in specs:
+            write_spline(data, spec)
+        obj = bpy.data.objects.new(name, data)
     except Exception:
         bpy.data.curves.remove(data)
         raise
-    if hasattr(obj, "batten"):
-        obj.batten.role = curve.role
     collection.objects.link(obj)
     return obj
 

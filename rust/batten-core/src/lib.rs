@@ -16,6 +16,7 @@ mod hull;
 mod hydro;
 mod network;
 mod patch;
+mod sections;
 mod tolerance;
 mod topo;
 mod union_find;
@@ -55,6 +56,9 @@ pub use patch::{
     gram_schmidt_cross_tangent, tessellate_patches, Domain, EdgeNormal, FaceBoundary, Patch,
     PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
     SideSegment, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
+};
+pub use sections::{
+    knuckle_lines, KnuckleLine, SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,
 };
 pub use tolerance::{InvalidTolerance, Tolerance};
 pub use topo::{

@@ -5,14 +5,15 @@ use std::sync::OnceLock;
 
 use batten_core::{
     float_to, hydrostatics, level_draft, sectional_areas, CellDensity, HullGeometry, HullSurface,
-    PatchHydroModel, SEA_WATER_DENSITY,
+    PatchHydroModel, SectionModel, DEFAULT_CUT_TOLERANCE, SEA_WATER_DENSITY,
 };
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::{core_err, guard};
 use crate::hydro::{datums, figures_at, flotation, hydrostatics_dict};
+use crate::sections::PySection;
 
 /// A hull's exact surface for hydrostatics, from [`build_hull_model`](crate::hull::build_hull_model).
 /// Its cells are made on the first call that needs them (tens of milliseconds for a ship) and
@@ -22,6 +23,7 @@ pub(crate) struct HullModel {
     surface: HullSurface,
     model: OnceLock<PatchHydroModel>,
     live: OnceLock<PatchHydroModel>,
+    sections: OnceLock<SectionModel>,
 }
 
 impl HullModel {
@@ -31,6 +33,7 @@ impl HullModel {
             surface,
             model: OnceLock::new(),
             live: OnceLock::new(),
+            sections: OnceLock::new(),
         }
     }
 
@@ -42,6 +45,11 @@ impl HullModel {
             self.model
                 .get_or_init(|| self.surface.hydro_model(CellDensity::DEFAULT))
         }
+    }
+
+    fn section_model(&self) -> &SectionModel {
+        self.sections
+            .get_or_init(|| SectionModel::new(&self.surface))
     }
 }
 
@@ -168,5 +176,46 @@ impl HullModel {
             })
         })?;
         hydrostatics_dict(py, &h)
+    }
+
+    /// The sections of the drawn surface by the planes `normals[k]·p = offsets[k]` (m): per
+    /// plane a list of `(points (n, 3), closed, corners, curve)`, the polylines in order along
+    /// the section within `tolerance` (m, chordal) of the surface, every point on the patches
+    /// and the plane, `corners` the indices where it crosses a knuckle, `curve` its fitted
+    /// NURBS named `names[k]` (further pieces of a plane ` (2)`, ` (3)` …). A plane missing
+    /// the hull gives an empty list. The GIL is released.
+    #[pyo3(signature = (normals, offsets, names, tolerance=DEFAULT_CUT_TOLERANCE))]
+    fn sections<'py>(
+        &'py self,
+        py: Python<'py>,
+        normals: Vec<[f64; 3]>,
+        offsets: Vec<f64>,
+        names: Vec<String>,
+        tolerance: f64,
+    ) -> PyResult<Vec<Vec<PySection<'py>>>> {
+        crate::sections::sections(
+            py,
+            || self.section_model(),
+            normals,
+            offsets,
+            names,
+            tolerance,
+        )
+    }
+
+    /// The hull's knuckle (chine) lines: `(curve name, points (n, 3))`.
+    fn knuckle_lines<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<Vec<(String, Bound<'py, PyArray2<f64>>)>> {
+        let model = py.detach(|| self.section_model());
+        crate::sections::knuckle_lines(py, model)
+    }
+
+    /// `((x, y, z) lowest, (x, y, z) highest)`: the box of the drawn surface.
+    #[getter]
+    fn bounds(&self, py: Python<'_>) -> ([f64; 3], [f64; 3]) {
+        let (lo, hi) = py.detach(|| self.section_model().bounds());
+        (lo.to_array(), hi.to_array())
     }
 }

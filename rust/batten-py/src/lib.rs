@@ -16,6 +16,7 @@ mod hull;
 mod hull_model;
 mod hydro;
 mod network;
+mod sections;
 mod topology;
 
 use pyo3::prelude::*;
@@ -65,6 +66,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
     m.add_class::<hull_model::HullModel>()?;
+    m.add("DEFAULT_CUT_TOLERANCE", batten_core::DEFAULT_CUT_TOLERANCE)?;
     m.add("SEA_WATER_DENSITY", batten_core::SEA_WATER_DENSITY)?;
     m.add_class::<hydro::MeshHull>()?;
     m.add_function(wrap_pyfunction!(hydro::mesh_hydrostatics, m)?)?;

@@ -203,14 +203,15 @@ impl Cell {
 
 /// A domain quadrilateral: corners in the patch's domain (counter-clockwise) and which of them
 /// are corners of the patch.
-struct Quad {
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Quad {
     c: [DVec2; 4],
     patch_corner: [bool; 4],
 }
 
 impl Quad {
     /// The domain point at quad parameters `(s, t)` (bilinear).
-    fn at(&self, s: f64, t: f64) -> DVec2 {
+    pub(crate) fn at(&self, s: f64, t: f64) -> DVec2 {
         let c = &self.c;
         c[0] * ((1.0 - s) * (1.0 - t))
             + c[1] * (s * (1.0 - t))
@@ -220,7 +221,7 @@ impl Quad {
 }
 
 /// The quadrilaterals of a domain: the square itself, or the N-gon's kites.
-fn quads(domain: &Domain) -> Vec<Quad> {
+pub(crate) fn quads(domain: &Domain) -> Vec<Quad> {
     let v: Vec<DVec2> = domain.vertices().into_iter().map(DVec2::from).collect();
     let n = v.len();
     if n == 4 {
@@ -244,7 +245,7 @@ fn quads(domain: &Domain) -> Vec<Quad> {
 
 /// The cells of a quad as parameter boxes `(s0, s1, t0, t1)`: a `k × k` grid, the boxes at the
 /// patch's corners halved `levels` more times towards them.
-fn boxes(q: &Quad, k: usize, levels: usize) -> Vec<[f64; 4]> {
+pub(crate) fn boxes(q: &Quad, k: usize, levels: usize) -> Vec<[f64; 4]> {
     let mut out = Vec::new();
     let h = 1.0 / k as f64;
     for a in 0..k {
@@ -296,7 +297,7 @@ fn graded(bx: [f64; 4], corner: usize, levels: usize, out: &mut Vec<[f64; 4]>) {
 }
 
 /// The Bernstein net interpolating `patch` over parameter box `bx` of quad `q`.
-fn interpolate(patch: &Patch, q: &Quad, bx: [f64; 4]) -> [[DVec3; N]; N] {
+pub(crate) fn interpolate(patch: &Patch, q: &Quad, bx: [f64; 4]) -> [[DVec3; N]; N] {
     let nodes = lobatto_nodes();
     let m = interpolation_matrix();
     let [s0, s1, t0, t1] = bx;

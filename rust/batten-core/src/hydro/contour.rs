@@ -12,7 +12,7 @@ use super::roots::bracketed;
 
 /// Grid squares per cell side for marching squares (a cell's polynomial is of degree 7; a plane
 /// meets it at most a few times along a grid line, and refinement follows the curve between).
-const GRID: usize = 3;
+pub(crate) const GRID: usize = 3;
 /// Halvings of a piece at most (a piece is then `2⁻¹⁴` of the cell's grid square).
 const MAX_REFINE_DEPTH: usize = 14;
 /// Newton steps projecting a point onto the curve.
@@ -71,18 +71,30 @@ pub(crate) fn cell_section(
     out: &mut Vec<SectionArc>,
 ) {
     let g = cell.scalar_net(m, c);
-    let (lo, hi) = bounds(&g);
+    for (x0, x1) in grid_pieces(&g) {
+        let (p0, p1) = (cell.eval(x0.x, x0.y).0, cell.eval(x1.x, x1.y).0);
+        refine(cell, &g, m, (x0, p0), (x1, p1), tolerance, 0, out);
+    }
+}
+
+/// The pieces of the curve `g = 0` of a cell's scalar net, as pairs of parameter points where
+/// it crosses the edges of a [`GRID`] × [`GRID`] grid (marching squares; each crossing solved
+/// on the polynomial, a saddle square joined by the sign at its centre); none when the net's
+/// bounds keep `g` off zero.
+pub(crate) fn grid_pieces(g: &[[f64; N]; N]) -> Vec<(DVec2, DVec2)> {
+    let (lo, hi) = bounds(g);
     if lo > 0.0 || hi < 0.0 {
-        return;
+        return Vec::new();
     }
     let h = 1.0 / GRID as f64;
     let mut vals = [[0.0f64; GRID + 1]; GRID + 1];
     for (a, row) in vals.iter_mut().enumerate() {
         for (b, v) in row.iter_mut().enumerate() {
-            *v = scalar(&g, a as f64 * h, b as f64 * h).0;
+            *v = scalar(g, a as f64 * h, b as f64 * h).0;
         }
     }
     let neg = |v: f64| v < 0.0;
+    let mut pieces = Vec::new();
     for a in 0..GRID {
         for b in 0..GRID {
             let corners = [
@@ -99,29 +111,28 @@ pub(crate) fn cell_section(
                 let (pa, ga) = corners[e];
                 let (pb, gb) = corners[(e + 1) % 4];
                 if neg(ga) != neg(gb) {
-                    hits.push((e, edge_root(&g, pa, pb, ga, gb)));
+                    hits.push((e, edge_root(g, pa, pb, ga, gb)));
                 }
             }
-            let pairs: Vec<(DVec2, DVec2)> = match hits.len() {
-                2 => vec![(hits[0].1, hits[1].1)],
+            match hits.len() {
+                2 => pieces.push((hits[0].1, hits[1].1)),
                 4 => {
                     // A saddle: join by the sign at the centre.
                     let centre = DVec2::new((a as f64 + 0.5) * h, (b as f64 + 0.5) * h);
-                    let gc = scalar(&g, centre.x, centre.y).0;
+                    let gc = scalar(g, centre.x, centre.y).0;
                     if neg(gc) == neg(corners[0].1) {
-                        vec![(hits[0].1, hits[1].1), (hits[2].1, hits[3].1)]
+                        pieces.push((hits[0].1, hits[1].1));
+                        pieces.push((hits[2].1, hits[3].1));
                     } else {
-                        vec![(hits[0].1, hits[3].1), (hits[1].1, hits[2].1)]
+                        pieces.push((hits[0].1, hits[3].1));
+                        pieces.push((hits[1].1, hits[2].1));
                     }
                 }
-                _ => Vec::new(),
-            };
-            for (x0, x1) in pairs {
-                let (p0, p1) = (cell.eval(x0.x, x0.y).0, cell.eval(x1.x, x1.y).0);
-                refine(cell, &g, m, (x0, p0), (x1, p1), tolerance, 0, out);
+                _ => {}
             }
         }
     }
+    pieces
 }
 
 /// Emit the piece from `x0` to `x1` (parameters on the curve, surface points `p0`, `p1`), halved

@@ -39,3 +39,9 @@ pub use integrals::WetIntegrals;
 pub use mesh::{TriangleHull, CENTREPLANE_TOLERANCE_RELATIVE};
 pub use patch_model::{PatchHydroModel, CENTREPLANE_RELATIVE};
 pub use waterplane::{Datums, Flotation, Waterplane, SEA_WATER_DENSITY};
+
+// For the exact plane sections (`crate::sections`): the cells' domain quadrilaterals and
+// interpolants, and marching squares on a cell's polynomial.
+pub(crate) use bernstein::N as NET_SIZE;
+pub(crate) use cells::{boxes, interpolate, quads, Quad};
+pub(crate) use contour::{grid_pieces, GRID};

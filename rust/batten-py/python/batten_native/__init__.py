@@ -18,6 +18,7 @@ from ._errors import (
 )
 from ._native import (
     DEFAULT_CORNER_ANGLE_DEG,
+    DEFAULT_CUT_TOLERANCE,
     DEFAULT_FAIR_DEGREE,
     DEFAULT_FAIR_TOLERANCE,
     DEFAULT_RESOLUTION,
@@ -49,6 +50,7 @@ from ._native import (
 
 __all__ = [
     "DEFAULT_CORNER_ANGLE_DEG",
+    "DEFAULT_CUT_TOLERANCE",
     "DEFAULT_FAIR_DEGREE",
     "DEFAULT_FAIR_TOLERANCE",
     "DEFAULT_RESOLUTION",

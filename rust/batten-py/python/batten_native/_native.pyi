@@ -9,6 +9,7 @@ __all__ = [
     "Curve",
     "MeshHull",
     "DEFAULT_CORNER_ANGLE_DEG",
+    "DEFAULT_CUT_TOLERANCE",
     "DEFAULT_FAIR_DEGREE",
     "DEFAULT_FAIR_TOLERANCE",
     "DEFAULT_RESOLUTION",
@@ -47,6 +48,7 @@ DEFAULT_CORNER_ANGLE_DEG: Final[float]
 DEFAULT_FAIR_DEGREE: Final[int]
 ROLES: Final[list[str]]
 SECTION_CAPTURE_FACTOR: Final[float]
+DEFAULT_CUT_TOLERANCE: Final[float]
 
 _F64 = npt.NDArray[np.float64]
 _ArrayLike = npt.ArrayLike
@@ -194,6 +196,16 @@ class HullModel:
         lpp: float | None = None,
         fp: float | None = None,
     ) -> dict[str, float]: ...
+    def sections(
+        self,
+        normals: list[tuple[float, float, float]],
+        offsets: list[float],
+        names: list[str],
+        tolerance: float = ...,
+    ) -> list[list[tuple[_F64, bool, list[int], Curve]]]: ...
+    def knuckle_lines(self) -> list[tuple[str, _F64]]: ...
+    @property
+    def bounds(self) -> tuple[list[float], list[float]]: ...
 
 def build_hull_model(
     curves: list[Curve],

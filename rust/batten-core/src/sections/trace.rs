@@ -1,0 +1,275 @@
+//! The pieces of a plane section on each patch: the patch's domain cut into the cells of the
+//! hydrostatics ([`crate::hydro`]: Bernstein interpolants of degree 7 at Chebyshev–Lobatto
+//! nodes), the curve `m·P − c = 0` found on each cell's polynomial by marching squares, then
+//! every point moved onto the patch itself by Newton steps in its domain (the minimum-norm step
+//! along the domain gradient of `m·P(x) − c`), and each piece halved in the domain, its middle
+//! polished the same way, until every chord is within the tolerance of the surface.
+
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+use crate::hydro::{boxes, grid_pieces, interpolate, quads, CellDensity, Quad, GRID, NET_SIZE};
+use crate::patch::{Domain, Patch};
+
+/// Newton steps at most when moving a point onto patch ∩ plane (it converges from the cell
+/// polynomial's root to the patch's rounding in two or three).
+const POLISH_STEPS: usize = 8;
+
+/// A curve crossing a patch's side at a smaller angle than this (its sine) is taken to run
+/// along it (a plane holding a drawn curve): about 3°.
+const ALONG_SIDE_SINE: f64 = 0.05;
+
+/// Halvings of a piece at most (the piece is then `2⁻¹⁶` of a cell's grid square).
+const MAX_REFINE_DEPTH: usize = 16;
+
+/// One cell of a patch's domain: where it is (patch, quadrilateral, parameter box), the
+/// Bernstein net of the surface over it and the net's box (which holds the polynomial).
+pub(crate) struct DomainCell {
+    patch: usize,
+    quad: Quad,
+    bx: [f64; 4],
+    net: [[DVec3; NET_SIZE]; NET_SIZE],
+    lo: DVec3,
+    hi: DVec3,
+}
+
+impl DomainCell {
+    /// The patch-domain point at cell parameters `x = (s, t)`.
+    fn domain_point(&self, x: DVec2) -> DVec2 {
+        let [s0, s1, t0, t1] = self.bx;
+        self.quad.at(s0 + (s1 - s0) * x.x, t0 + (t1 - t0) * x.y)
+    }
+
+    /// Whether the net's box reaches the plane `m·p = c`.
+    fn reaches(&self, m: DVec3, c: f64) -> bool {
+        let lo = DVec3::select(m.cmpge(DVec3::ZERO), self.lo, self.hi);
+        let hi = self.lo + self.hi - lo;
+        m.dot(lo) <= c && m.dot(hi) >= c
+    }
+}
+
+/// The cells of every patch at `density` (in parallel).
+pub(crate) fn domain_cells(patches: &[Patch], density: CellDensity) -> Vec<DomainCell> {
+    patches
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(patch, p)| {
+            let mut out = Vec::new();
+            for quad in quads(p.domain()) {
+                for bx in boxes(&quad, density.per_quad.max(1), density.corner_levels) {
+                    let net = interpolate(p, &quad, bx);
+                    let mut lo = DVec3::splat(f64::INFINITY);
+                    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+                    for q in net.iter().flatten() {
+                        lo = lo.min(*q);
+                        hi = hi.max(*q);
+                    }
+                    out.push(DomainCell {
+                        patch,
+                        quad,
+                        bx,
+                        net,
+                        lo,
+                        hi,
+                    });
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// One piece of a section on one patch: its points in order along `m × n` (`n` outward),
+/// each on the patch and the plane, and the domain points of its ends.
+#[derive(Clone, Debug)]
+pub(crate) struct Piece {
+    /// Index of the patch.
+    pub(crate) patch: usize,
+    /// The points, first to last.
+    pub(crate) points: Vec<DVec3>,
+    /// Domain point of the first point.
+    pub(crate) start: DVec2,
+    /// Domain point of the last point.
+    pub(crate) end: DVec2,
+}
+
+/// The plane a section is traced on and what it asks of the points.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cut {
+    /// Unit normal `m`.
+    pub(crate) m: DVec3,
+    /// The plane's offset `c` (`m·p = c`): where the points are polished to.
+    pub(crate) c: f64,
+    /// The offset the cells are cut at: `c` moved a little off, so a plane holding a patch
+    /// edge cuts the patches on one side of it only.
+    pub(crate) c_cells: f64,
+    /// Chordal tolerance (m).
+    pub(crate) tolerance: f64,
+    /// A point is on the plane when `|m·P − c|` is below this (m).
+    pub(crate) close: f64,
+    /// `+1` when the patches' `P_u × P_v` points out of the hull, else `−1`.
+    pub(crate) sign: f64,
+}
+
+/// Move the domain point `x` onto `m·P(x) = c` on `patch` (Newton, minimum-norm steps, kept in
+/// the domain); the best point met and its surface point.
+fn polish(patch: &Patch, cut: &Cut, mut x: DVec2) -> (DVec2, DVec3) {
+    let domain = patch.domain();
+    let mut best = (x, patch.eval_v(x), f64::INFINITY);
+    for _ in 0..POLISH_STEPS {
+        let (p, pu, pv) = patch.derivatives(x.to_array());
+        let g = cut.m.dot(p) - cut.c;
+        if g.abs() < best.2 {
+            best = (x, p, g.abs());
+        }
+        if g.abs() <= cut.close {
+            break;
+        }
+        let grad = DVec2::new(cut.m.dot(pu), cut.m.dot(pv));
+        let len2 = grad.length_squared();
+        if !(len2 > 0.0 && len2.is_finite()) {
+            break;
+        }
+        let step = x - grad * (g / len2);
+        x = if domain.contains(step.to_array()) {
+            step
+        } else {
+            // The curve leaves the domain here (it crosses the patch's side): step along
+            // the side nearest `x` instead, to the side's own crossing of the plane.
+            domain.clamp(along_side(domain, x, grad, g).unwrap_or(step))
+        };
+    }
+    (best.0, best.1)
+}
+
+/// Move the domain point `x` onto `m·P(x) = c` along the domain line through it in direction
+/// `d` (Newton on the line), so points found on a cell's edge stay on it and the pieces of
+/// neighbouring cells (and patches, whose shared side is one curve) meet at one point; where
+/// the curve runs along the line (within [`ALONG_SIDE_SINE`]), as [`polish`].
+fn polish_on_line(patch: &Patch, cut: &Cut, mut x: DVec2, d: DVec2) -> (DVec2, DVec3) {
+    let domain = patch.domain();
+    let mut best = (x, patch.eval_v(x), f64::INFINITY);
+    for _ in 0..POLISH_STEPS {
+        let (p, pu, pv) = patch.derivatives(x.to_array());
+        let g = cut.m.dot(p) - cut.c;
+        if g.abs() < best.2 {
+            best = (x, p, g.abs());
+        }
+        if g.abs() <= cut.close {
+            break;
+        }
+        let grad = DVec2::new(cut.m.dot(pu), cut.m.dot(pv));
+        let gd = grad.dot(d);
+        if !(gd.abs() > ALONG_SIDE_SINE * grad.length() * d.length() && gd.is_finite()) {
+            return polish(patch, cut, x);
+        }
+        x = domain.clamp(x - d * (g / gd));
+    }
+    (best.0, best.1)
+}
+
+/// A marching-squares hit (cell parameters `h`, on a grid line of the cell: one coordinate a
+/// multiple of `1/GRID`) moved onto the patch ∩ plane along that grid line.
+fn polish_hit(cell: &DomainCell, patch: &Patch, cut: &Cut, h: DVec2) -> (DVec2, DVec3) {
+    let step = 1.0 / GRID as f64;
+    let on_grid = |v: f64| (v * GRID as f64).round() * step == v;
+    let (a, b) = if on_grid(h.x) {
+        (DVec2::new(h.x, 0.0), DVec2::new(h.x, 1.0))
+    } else if on_grid(h.y) {
+        (DVec2::new(0.0, h.y), DVec2::new(1.0, h.y))
+    } else {
+        return polish(patch, cut, cell.domain_point(h));
+    };
+    let d = cell.domain_point(b) - cell.domain_point(a);
+    polish_on_line(patch, cut, cell.domain_point(h), d)
+}
+
+/// The Newton step from `x` along the domain side nearest it: `x − d·g/(∇g·d)`, `d` the
+/// side's direction; `None` when the curve runs along the side (within [`ALONG_SIDE_SINE`]):
+/// the clamped step then lands on the side, which is on the curve.
+fn along_side(domain: &Domain, x: DVec2, grad: DVec2, g: f64) -> Option<DVec2> {
+    let side = (0..domain.sides()).min_by(|&a, &b| {
+        domain
+            .distance(a, x)
+            .abs()
+            .total_cmp(&domain.distance(b, x).abs())
+    })?;
+    let d = (domain.vertex(side + 1) - domain.vertex(side)).normalize();
+    let gd = grad.dot(d);
+    (gd.abs() > ALONG_SIDE_SINE * grad.length() && gd.is_finite()).then(|| x - d * (g / gd))
+}
+
+/// Push the points after `p0` up to `p1` (both on the curve, at domain points `x0`, `x1`):
+/// the piece's middle (polished), halving while a chord is further than the tolerance from it.
+fn refine(
+    patch: &Patch,
+    cut: &Cut,
+    (x0, p0): (DVec2, DVec3),
+    (x1, p1): (DVec2, DVec3),
+    depth: usize,
+    out: &mut Vec<DVec3>,
+) {
+    let (xm, pm) = polish(patch, cut, 0.5 * (x0 + x1));
+    if (pm - 0.5 * (p0 + p1)).length() > cut.tolerance && depth < MAX_REFINE_DEPTH {
+        refine(patch, cut, (x0, p0), (xm, pm), depth + 1, out);
+        refine(patch, cut, (xm, pm), (x1, p1), depth + 1, out);
+    } else {
+        out.push(pm);
+        out.push(p1);
+    }
+}
+
+/// Keep the points the polish brought onto the plane; move those it left within the tolerance
+/// of it onto it (where the plane runs along a drawn curve that is not quite plane, the
+/// section weaves across the patch's side and the patch holds no exact point); drop the rest
+/// (a degenerate patch corner where the cell's polynomial strays from the patch).
+fn on_plane(points: &mut Vec<DVec3>, cut: &Cut) {
+    points.retain_mut(|p| {
+        let r = cut.m.dot(*p) - cut.c;
+        if r.abs() > cut.tolerance {
+            return false;
+        }
+        if r.abs() > cut.close {
+            *p -= cut.m * r;
+        }
+        true
+    });
+}
+
+/// The pieces of the section of one cell, oriented along `m × n`.
+fn cell_pieces(cell: &DomainCell, patch: &Patch, cut: &Cut) -> Vec<Piece> {
+    let g = cell.net.map(|row| row.map(|p| cut.m.dot(p) - cut.c_cells));
+    grid_pieces(&g)
+        .into_iter()
+        .map(|(a, b)| {
+            let (x0, p0) = polish_hit(cell, patch, cut, a);
+            let (x1, p1) = polish_hit(cell, patch, cut, b);
+            let mut points = vec![p0];
+            refine(patch, cut, (x0, p0), (x1, p1), 0, &mut points);
+            on_plane(&mut points, cut);
+            let mid = 0.5 * (x0 + x1);
+            let n = patch.normal(mid.to_array()) * cut.sign;
+            let mut piece = Piece {
+                patch: cell.patch,
+                points,
+                start: x0,
+                end: x1,
+            };
+            if (p1 - p0).dot(cut.m.cross(n)) < 0.0 {
+                piece.points.reverse();
+                std::mem::swap(&mut piece.start, &mut piece.end);
+            }
+            piece
+        })
+        .filter(|piece| piece.points.len() >= 2)
+        .collect()
+}
+
+/// The pieces of the section by `cut` of every cell whose box reaches it (in parallel).
+pub(crate) fn section_pieces(cells: &[DomainCell], patches: &[Patch], cut: &Cut) -> Vec<Piece> {
+    cells
+        .par_iter()
+        .filter(|cell| cell.reaches(cut.m, cut.c_cells))
+        .flat_map_iter(|cell| cell_pieces(cell, &patches[cell.patch], cut))
+        .collect()
+}
