@@ -41,13 +41,14 @@ def test_dxf_station_is_the_surface_section(wigley, tmp_path):
     drawing = api.lines_plan_drawing(wigley, stations=[-37.5, 0.0, 12.5], draft=T)
     cl = drawing.marks["body_plan_cl"]
     fore = [np.array([(p[0], p[1]) for p in e.get_points()]) for e in stations]
-    fore = [p for p in fore if p[:, 0].min() > cl + 1e-9 and p[:, 0].max() < cl + wigley_y(0.0, T) - 1e-3]
+    # Right of the centreline (from the keel on it), narrower than the midship station.
+    fore = [p for p in fore if p[:, 0].min() > cl - 1e-9 and cl + 1.0 < p[:, 0].max() < cl + wigley_y(0.0, T) - 1e-3]
     assert fore, "the fore station at x = 12.5 is right of the body plan's centreline"
     pts = np.vstack(fore)
     y, z = pts[:, 0] - cl, pts[:, 1]
     assert np.abs(y - wigley_y(12.5, z)).max() < 1e-3
     # Default waterlines: T/5 apart to the deck at 8.75 m (6 of them), default buttocks: 4.
-    assert len(msp.query('LWPOLYLINE[layer=="waterlines"]')) >= 7
+    assert len(msp.query('LWPOLYLINE[layer=="waterlines"]')) == 6
     assert len(msp.query('LWPOLYLINE[layer=="buttocks"]')) >= 4
 
 
@@ -55,14 +56,19 @@ def test_svg_pdf_png(wigley, tmp_path):
     svg = api.lines_plan(wigley, tmp_path / "w.svg", draft=T)
     root = ET.parse(svg).getroot()
     groups = {g.get("id"): g for g in root.iter(f"{SVG}g")}
-    assert len(groups["stations"].findall(f"{SVG}path")) >= 22
+    # Stations 1–19, the midship one on both halves, the AP (a line on the centreline); the FP
+    # plane only touches the stem: no section.
+    assert len(groups["stations"].findall(f"{SVG}path")) == 21
     texts = [t.text for t in root.iter(f"{SVG}text")]
     assert "DWL" in texts and "wigley_lines: lines plan" in texts
     # The title block's volume is the surface's own.
     volume = api.hydrostatics(wigley, T)["volume"]
     assert f"{volume:,.2f} m³" in texts
     pdf = api.lines_plan(wigley, tmp_path / "w.pdf", draft=T)
-    assert pdf.read_bytes().startswith(b"%PDF")
+    data = pdf.read_bytes()
+    # The plan, then the offsets: half-breadths and heights (21 stations fit one page each).
+    assert data.startswith(b"%PDF") and b"/Count 3" in data
+    assert b"(wigley_lines: half-breadths \\(m\\) at the stations) Tj" in data
     png = api.lines_plan(wigley, tmp_path / "w.png", draft=T)
     image = bpy.data.images.load(str(png))
     assert image.size[0] == 2400 and image.size[1] > 600
@@ -113,6 +119,10 @@ def test_operator_scene_is_the_api_drawing(wigley):
     assert bpy.ops.batten.lines_plan(stations=11) == {"FINISHED"}
     plan = bpy.data.scenes["wigley_lines lines plan"]
     assert plan.camera is not None and plan.camera.data.type == "ORTHO"
+    # The live 3D sections too, with a camera for each view.
+    assert "wigley_lines sections" in plan.collection.children
+    for view in ("profile", "half-breadth", "body plan"):
+        assert bpy.data.objects[f"wigley_lines {view} camera"].data.type == "ORTHO"
     drawing = api.lines_plan_drawing(wigley, stations=11, draft=T)
     stations = bpy.data.objects["wigley_lines stations"]
     assert len(stations.data.splines) == sum(s.layer == "stations" for s in drawing.strokes)

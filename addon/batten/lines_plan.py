@@ -366,21 +366,31 @@ def offsets_tables(sections: dict, hull: Hull) -> list[tuple[str, list[str], lis
     stations = sorted(sections.get("stations", ()), key=lambda s: s.offset)
     header = [station_number(float(s.offset), hull) for s in stations]
 
+    def cell(station, axis: int, value: float, along: int) -> str:
+        values = crossings(station.polylines, axis, value, along)
+        return CELL_SEPARATOR.join(f"{v:.{OFFSET_DECIMALS}f}" for v in values)
+
     def rows(family: str, axis: int, along: int) -> list[list[str]]:
+        planes = sorted(sections.get(family, ()), key=lambda p: p.offset)
         return [
-            [_metres(float(p.offset))]
-            + [
-                CELL_SEPARATOR.join(f"{v:.{OFFSET_DECIMALS}f}" for v in crossings(s.polylines, axis, p.offset, along))
-                for s in stations
-            ]
-            for p in sorted(sections.get(family, ()), key=lambda p: p.offset)
+            [_metres(float(p.offset))] + [cell(s, axis, p.offset, along) for s in stations] for p in planes
         ]
 
     tables = []
     if stations and sections.get("waterlines"):
-        tables.append((f"{hull.name}: half-breadths (m) at the stations", ["WL z \\ station", *header],
-                       rows("waterlines", 2, 1)))
+        tables.append(
+            (
+                f"{hull.name}: half-breadths (m) at the stations",
+                ["WL z \\ station", *header],
+                rows("waterlines", 2, 1),
+            )
+        )
     if stations and sections.get("buttocks"):
-        tables.append((f"{hull.name}: heights (m) at the stations", ["BT y \\ station", *header],
-                       rows("buttocks", 1, 2)))
+        tables.append(
+            (
+                f"{hull.name}: heights (m) at the stations",
+                ["BT y \\ station", *header],
+                rows("buttocks", 1, 2),
+            )
+        )
     return tables

@@ -230,3 +230,18 @@ def test_svg_written_whole(plan, tmp_path):
     path = lines_plan_files.write(d, tmp_path / "plan.SVG")
     ET.parse(io.StringIO(path.read_text()))
     assert [p.name for p in tmp_path.iterdir()] == ["plan.SVG"]
+
+
+def test_offsets_tables_read_off_the_stations(plan):
+    sections, _ = plan
+    hull = lines_plan.Hull("Wigley", -w.L / 2, w.L / 2, w.T)
+    (breadths, bheader, brows), (heights, hheader, hrows) = lines_plan.offsets_tables(sections, hull)
+    assert "half-breadths" in breadths and "heights" in heights
+    assert bheader[1:] == [str(n) for n in range(STATIONS)]
+    assert len(brows) == 6 and len(hrows) == 4
+    # Station 15 (x = 25 m) at the waterline 2.5 m, and at the buttock 2 m.
+    assert float(brows[1][16]) == pytest.approx(w.half_breadth(25.0) * w.depth_factor(2.5), abs=1e-3)
+    z = w.T * (1 - np.sqrt(1 - 2.0 / w.half_breadth(25.0)))
+    assert float(hrows[1][16]) == pytest.approx(z, abs=1e-3)
+    # Station 0 (the AP, where the hull ends in a vertical line) has no breadth.
+    assert brows[1][1] == "0.000"

@@ -6,24 +6,12 @@ deck at z = D (examples/wigley.py); x from −L/2 (AP) to L/2 (FP), port half.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
+from batten.sections import Section
 
 L, B, T, D = 100.0, 10.0, 6.25, 8.75
 #: Points per section polyline.
 SAMPLES = 201
-
-
-@dataclass(frozen=True)
-class Section:
-    """A plane section as the sections helper's ``batten.sections.Section`` has it."""
-
-    family: str
-    offset: float
-    name: str
-    polylines: list
-    curves: list = field(default_factory=list)
 
 
 def half_breadth(x):
@@ -73,11 +61,11 @@ def sections(
     """The sections dict of ``api.sections``: ``stations`` evenly from AP to FP."""
     xs = np.linspace(-L / 2, L / 2, stations)
     return {
-        "stations": [Section("stations", float(x), f"station {i}", [station(x)]) for i, x in enumerate(xs)],
-        "waterlines": [Section("waterlines", z, f"WL {z:g}", [waterline(z)]) for z in waterlines],
-        "buttocks": [Section("buttocks", y, f"BL {y:g}", [buttock(y)]) for y in buttocks],
+        "stations": [Section("stations", float(x), f"station {i}", [station(x)], []) for i, x in enumerate(xs)],
+        "waterlines": [Section("waterlines", z, f"WL {z:g}", [waterline(z)], []) for z in waterlines],
+        "buttocks": [Section("buttocks", y, f"BL {y:g}", [buttock(y)], []) for y in buttocks],
         "diagonals": [
-            Section("diagonals", z, f"D{i + 1}", [diagonal(z, a)]) for i, (z, a) in enumerate(diagonals)
+            Section("diagonals", z, f"D{i + 1}", [diagonal(z, a)], []) for i, (z, a) in enumerate(diagonals)
         ],
         "knuckles": [],
     }
