@@ -5,7 +5,7 @@ default, build them the same way and render them from the bow, the stern and the
 write their hydrostatics at the design draft (logged beside the reference figures, and in
 ``<name>_hydrostatics.csv``), their sectional area curve ``<name>_sac.png`` and curves of form
 ``<name>_curves_of_form.png`` (and ``.csv``); the examples' too, at the draft the panel
-starts at. Each hull's lines plan is written as ``<name>_lines.svg`` and ``<name>_lines.png``,
+starts at. Each hull's lines plan is written as ``<name>_lines_plan.svg`` and ``.png``,
 and the whole hull (both halves, no curves) is rendered with its DWL from a three-quarter bow
 view and from the side, framed to fill the picture: ``<name>_hull_bow.png``,
 ``<name>_hull_side.png``.
@@ -463,13 +463,13 @@ DWL_TUBE = 0.0012
 
 
 def present(api, coll, out: Path, draft: float) -> None:
-    """The lines plan of ``coll`` at ``draft`` (``<name>_lines.svg`` and ``.png``), and
+    """The lines plan of ``coll`` at ``draft`` (``<name>_lines_plan.svg`` and ``.png``), and
     renders of its whole hull with the DWL (``<name>_hull_<view>.png``). An error is logged."""
     name = coll.name
     t0 = time.perf_counter()
     try:
         drawing = api.lines_plan_drawing(coll, draft=draft)
-        written = [api.write_lines_plan(drawing, out / f"{name}_lines{ext}") for ext in (".svg", ".png")]
+        written = [api.write_lines_plan(drawing, out / f"{name}_lines_plan{ext}") for ext in (".svg", ".png")]
     except api.BattenError as e:
         _log(f"{name}: no lines plan ({e})")
     else:
