@@ -42,7 +42,8 @@ def test_dxf_station_is_the_surface_section(wigley, tmp_path):
     cl = drawing.marks["body_plan_cl"]
     fore = [np.array([(p[0], p[1]) for p in e.get_points()]) for e in stations]
     # Right of the centreline (from the keel on it), narrower than the midship station.
-    fore = [p for p in fore if p[:, 0].min() > cl - 1e-9 and cl + 1.0 < p[:, 0].max() < cl + wigley_y(0.0, T) - 1e-3]
+    widest = cl + wigley_y(0.0, T) - 1e-3
+    fore = [p for p in fore if p[:, 0].min() > cl - 1e-9 and cl + 1.0 < p[:, 0].max() < widest]
     assert fore, "the fore station at x = 12.5 is right of the body plan's centreline"
     pts = np.vstack(fore)
     y, z = pts[:, 0] - cl, pts[:, 1]
@@ -143,6 +144,6 @@ def test_export_operator(wigley, tmp_path):
     path = tmp_path / "plan.dxf"
     assert bpy.ops.batten.export_lines_plan(filepath=str(path), file_format=".dxf") == {"FINISHED"}
     ours = api.lines_plan(wigley, tmp_path / "api.dxf", draft=T)
-    assert path.read_text() .count("LWPOLYLINE") == ours.read_text().count("LWPOLYLINE")
+    assert path.read_text().count("LWPOLYLINE") == ours.read_text().count("LWPOLYLINE")
     with pytest.raises(RuntimeError, match="not '.txt'"):
         bpy.ops.batten.export_lines_plan(filepath=str(tmp_path / "plan.txt"), file_format=".dxf")

@@ -61,7 +61,7 @@ def sections(
     """The sections dict of ``api.sections``: ``stations`` evenly from AP to FP."""
     xs = np.linspace(-L / 2, L / 2, stations)
     return {
-        "stations": [Section("stations", float(x), f"station {i}", [station(x)], []) for i, x in enumerate(xs)],
+        "stations": [Section("stations", float(x), f"st {i}", [station(x)], []) for i, x in enumerate(xs)],
         "waterlines": [Section("waterlines", z, f"WL {z:g}", [waterline(z)], []) for z in waterlines],
         "buttocks": [Section("buttocks", y, f"BL {y:g}", [buttock(y)], []) for y in buttocks],
         "diagonals": [
