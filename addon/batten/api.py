@@ -1033,7 +1033,7 @@ def lines_plan_drawing(
     lpp, fp = _datums(source, lpp, fp)
     xs = _stations(model, draft, stations, lpp, fp)
     x_ap, x_fp = model.datums(draft, lpp, fp)
-    hi = np.max([c.bounding_box()[1] for c in curves], axis=0)
+    _lo, hi = model.bounds
     secs = sections(
         source,
         stations=xs.tolist(),
@@ -1047,9 +1047,7 @@ def lines_plan_drawing(
         figures, note = hydrostatics(source, draft, lpp=lpp, fp=fp), ""
     except BattenError as e:
         figures, note = None, str(e)
-    outline = [
-        c.evaluate(np.linspace(*c.domain, OUTLINE_SAMPLES)) for c in curves if c.role in OUTLINE_ROLES
-    ]
+    outline = [c.evaluate(np.linspace(*c.domain, OUTLINE_SAMPLES)) for c in curves if c.role in OUTLINE_ROLES]
     hull = plan.Hull(_source_name(source), float(x_ap), float(x_fp), float(draft), figures, note)
     try:
         drawing = plan.layout(secs, outline, hull)
