@@ -44,6 +44,10 @@ PALETTE = (
 )
 #: The spans a tick step may take in each decade (Heckbert's "nice numbers", Graphics Gems I).
 NICE_STEPS = (1.0, 2.0, 2.5, 5.0, 10.0)
+#: Segments at most this many pixels across are covered in batches (:func:`_cover_segments`)
+#: of this many, each over a window of pixels of its own; longer ones one by one.
+BATCH_SEGMENT_PX = 12.0
+BATCH_SEGMENTS = 4096
 #: Squared length (pixels²) below which a segment is a dot: keeps the projection finite.
 MIN_SEGMENT_LENGTH2 = 1e-12
 #: A range narrower than this share of its values' size (or than this, about 0) is one value.
@@ -145,8 +149,13 @@ class Canvas:
         if (hi <= lo).any():
             return
         coverage = np.zeros((hi[1] - lo[1], hi[0] - lo[0]), dtype=np.float32)
-        for p, q in segments:
-            _cover_segment(coverage, lo, np.asarray(p, float), np.asarray(q, float), half)
+        ends = ends.reshape(-1, 2, 2)
+        reach = np.abs(ends[:, 1] - ends[:, 0]).max(axis=1)
+        short = reach <= BATCH_SEGMENT_PX
+        for p, q in ends[~short]:
+            _cover_segment(coverage, lo, p, q, half)
+        for start in range(0, int(short.sum()), BATCH_SEGMENTS):
+            _cover_segments(coverage, lo, ends[short][start : start + BATCH_SEGMENTS], half)
         self._paint(coverage, color, lo)
 
     def fill_below(self, points, base_y: float, color) -> None:
@@ -219,6 +228,33 @@ class Canvas:
         imbuf.write(buffer, filepath=str(path))
         buffer.free()
         return path
+
+
+def _cover_segments(coverage: np.ndarray, origin, ends: np.ndarray, half: float) -> None:
+    """:func:`_cover_segment` for many short segments at once (``ends`` (n, 2, 2), each no
+    longer than :data:`BATCH_SEGMENT_PX` across): the same coverage, over one window of pixels
+    per segment, for polylines of many points (a lines plan's sections)."""
+    h, w = coverage.shape
+    size = int(np.ceil(BATCH_SEGMENT_PX + 2 * half + 3))
+    p, q = ends[:, 0], ends[:, 1]
+    corner = np.floor(np.minimum(p, q) - half - 1).astype(int) - origin  # (n, 2) window origins
+    grid = np.arange(size)
+    px = (corner[:, 0, None, None] + grid[None, None, :]) + origin[0] + 0.5  # (n, 1, size)
+    py = (corner[:, 1, None, None] + grid[None, :, None]) + origin[1] + 0.5  # (n, size, 1)
+    d = q - p
+    dd = np.maximum((d * d).sum(axis=1), MIN_SEGMENT_LENGTH2)[:, None, None]
+    t = (
+        (px - p[:, 0, None, None]) * d[:, 0, None, None] + (py - p[:, 1, None, None]) * d[:, 1, None, None]
+    ) / dd
+    t = t.clip(0.0, 1.0)
+    dist = np.hypot(
+        px - p[:, 0, None, None] - t * d[:, 0, None, None], py - p[:, 1, None, None] - t * d[:, 1, None, None]
+    )
+    value = (half + 0.5 - dist).clip(0.0, 1.0)
+    cols = np.broadcast_to(corner[:, 0, None, None] + grid[None, None, :], value.shape)
+    rows = np.broadcast_to(corner[:, 1, None, None] + grid[None, :, None], value.shape)
+    inside = (value > 0.0) & (cols >= 0) & (cols < w) & (rows >= 0) & (rows < h)
+    np.maximum.at(coverage, (rows[inside], cols[inside]), value[inside].astype(coverage.dtype))
 
 
 def _cover_segment(coverage: np.ndarray, origin, p, q, half: float) -> None:
