@@ -159,12 +159,31 @@ def _round_trip(coll, tmp_path, draft, **kwargs):
 
 
 def test_wigley_sections_round_trip_within_0_1_percent(wigley, tmp_path):
-    before, after = _round_trip(wigley, tmp_path, T, stations=21, waterlines=8)
+    before, after = _round_trip(wigley, tmp_path, T, stations=11, waterlines=6)
     assert after["volume"] == pytest.approx(before["volume"], rel=1e-3)
 
 
 def test_kcs_sections_round_trip_within_0_1_percent(tmp_path):
     coll, _ = api.import_sections(HULLS / "kcs" / "network.json")
     api.build(coll)
-    before, after = _round_trip(coll, tmp_path, api.design_draft(coll), stations=41, waterlines=12)
+    before, after = _round_trip(coll, tmp_path, api.design_draft(coll), stations=40, waterlines=12)
     assert after["volume"] == pytest.approx(before["volume"], rel=1e-3), (after["volume"], before["volume"])
+
+
+def test_a_slow_cut_waits_while_dragging_and_comes_once_the_rebuilds_pause(wigley):
+    from batten import scene_build
+
+    api.sections(wigley, stations=[10.0], collection=True)
+    coll = bpy.data.collections["wigley_lines sections"]
+    coll.objects["station 10.000"]["mark"] = 1  # a new object will not carry it
+    scene_build._cut_seconds[wigley.name] = 1.0  # as if the last cut took a second
+    scene_build.refresh_sections(wigley, live=True)
+    assert coll.objects["station 10.000"].get("mark") == 1, "not cut again while dragging"
+    pending = scene_build._deferred[wigley.name]
+    assert bpy.app.timers.is_registered(pending)
+    bpy.app.timers.unregister(pending)
+    pending()  # what the timer does once the rebuilds have paused
+    assert coll.objects["station 10.000"].get("mark") is None, "cut again"
+    scene_build._cut_seconds[wigley.name] = 0.0
+    scene_build.refresh_sections(wigley, live=True)  # a fast cut happens at once
+    assert wigley.name not in scene_build._deferred

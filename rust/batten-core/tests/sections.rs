@@ -289,3 +289,38 @@ fn planes_missing_the_hull_give_nothing_and_bad_input_is_refused() {
         assert!(e.to_string().contains("tolerance"), "{e}");
     }
 }
+
+#[test]
+fn the_frigate_s_sections_are_whole_polylines_on_their_planes() {
+    // The paper's frigate network: Charrot–Gregory patches, T-joints, a transom. Every
+    // station and waterline through the hull is one polyline joined across all its patches.
+    let hull = example("frigate_network.json");
+    let model = SectionModel::new(&hull);
+    let (lo, hi) = model.bounds();
+    let mut planes = Vec::new();
+    for k in 1..20 {
+        let f = k as f64 / 20.0;
+        planes.push(SectionPlane::station(lo.x + f * (hi.x - lo.x)).expect("plane"));
+    }
+    for k in 1..8 {
+        let f = k as f64 / 8.0;
+        planes.push(SectionPlane::waterline(lo.z + f * (hi.z - lo.z)).expect("plane"));
+    }
+    let mut pieces = Vec::new();
+    for plane in &planes {
+        let lines = model
+            .section(plane, DEFAULT_CUT_TOLERANCE)
+            .expect("section");
+        for l in &lines {
+            for p in &l.points {
+                let r = (plane.normal().dot(*p) - plane.offset()).abs();
+                assert!(r < 1e-9, "{plane:?}: point {p} {r} m off the plane");
+            }
+        }
+        pieces.push(lines.len());
+    }
+    assert!(
+        pieces.iter().all(|&n| n == 1),
+        "one polyline per plane: {pieces:?}"
+    );
+}

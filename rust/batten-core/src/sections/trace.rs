@@ -19,6 +19,10 @@ const POLISH_STEPS: usize = 8;
 /// along it (a plane holding a drawn curve): about 3°.
 const ALONG_SIDE_SINE: f64 = 0.05;
 
+/// A hit on a cell's grid line stays on that line when getting onto the curve along it moves
+/// it at most this many times as far as the shortest way does (a crossing at 15° or steeper).
+const LINE_SLIDE_FACTOR: f64 = 4.0;
+
 /// Halvings of a piece at most (the piece is then `2⁻¹⁶` of a cell's grid square).
 const MAX_REFINE_DEPTH: usize = 16;
 
@@ -111,10 +115,15 @@ pub(crate) struct Cut {
     pub(crate) sign: f64,
 }
 
-/// Move the domain point `x` onto `m·P(x) = c` on `patch` (Newton, minimum-norm steps, kept in
-/// the domain); the best point met and its surface point.
-fn polish(patch: &Patch, cut: &Cut, mut x: DVec2) -> (DVec2, DVec3) {
-    let domain = patch.domain();
+/// Newton steps on `g(x) = m·P(x) − c` from the domain point `x`, each the next point that
+/// `step(x, ∇g, g)` gives (`None`: stop), until `|g|` is within [`Cut::close`]; the best
+/// point met and its surface point.
+fn newton(
+    patch: &Patch,
+    cut: &Cut,
+    mut x: DVec2,
+    step: impl Fn(DVec2, DVec2, f64) -> Option<DVec2>,
+) -> (DVec2, DVec3) {
     let mut best = (x, patch.eval_v(x), f64::INFINITY);
     for _ in 0..POLISH_STEPS {
         let (p, pu, pv) = patch.derivatives(x.to_array());
@@ -125,47 +134,51 @@ fn polish(patch: &Patch, cut: &Cut, mut x: DVec2) -> (DVec2, DVec3) {
         if g.abs() <= cut.close {
             break;
         }
-        let grad = DVec2::new(cut.m.dot(pu), cut.m.dot(pv));
-        let len2 = grad.length_squared();
-        if !(len2 > 0.0 && len2.is_finite()) {
-            break;
+        match step(x, DVec2::new(cut.m.dot(pu), cut.m.dot(pv)), g) {
+            Some(next) => x = next,
+            None => break,
         }
-        let step = x - grad * (g / len2);
-        x = if domain.contains(step.to_array()) {
-            step
-        } else {
-            // The curve leaves the domain here (it crosses the patch's side): step along
-            // the side nearest `x` instead, to the side's own crossing of the plane.
-            domain.clamp(along_side(domain, x, grad, g).unwrap_or(step))
-        };
     }
     (best.0, best.1)
+}
+
+/// The minimum-norm Newton step from `x` (along `∇g`), kept in the domain: where it would
+/// leave it (the curve crosses the patch's side there), along the side nearest `x` instead,
+/// to the side's own crossing of the plane.
+fn free_step(domain: &Domain, x: DVec2, grad: DVec2, g: f64) -> Option<DVec2> {
+    let len2 = grad.length_squared();
+    if !(len2 > 0.0 && len2.is_finite()) {
+        return None;
+    }
+    let step = x - grad * (g / len2);
+    Some(if domain.contains(step.to_array()) {
+        step
+    } else {
+        domain.clamp(along_side(domain, x, grad, g).unwrap_or(step))
+    })
+}
+
+/// Move the domain point `x` onto `m·P(x) = c` on `patch` by minimum-norm Newton steps
+/// ([`free_step`]).
+fn polish(patch: &Patch, cut: &Cut, x: DVec2) -> (DVec2, DVec3) {
+    let domain = patch.domain();
+    newton(patch, cut, x, |x, grad, g| free_step(domain, x, grad, g))
 }
 
 /// Move the domain point `x` onto `m·P(x) = c` along the domain line through it in direction
 /// `d` (Newton on the line), so points found on a cell's edge stay on it and the pieces of
 /// neighbouring cells (and patches, whose shared side is one curve) meet at one point; where
-/// the curve runs along the line (within [`ALONG_SIDE_SINE`]), as [`polish`].
-fn polish_on_line(patch: &Patch, cut: &Cut, mut x: DVec2, d: DVec2) -> (DVec2, DVec3) {
+/// the curve runs along the line (within [`ALONG_SIDE_SINE`]), by minimum-norm steps.
+fn polish_on_line(patch: &Patch, cut: &Cut, x: DVec2, d: DVec2) -> (DVec2, DVec3) {
     let domain = patch.domain();
-    let mut best = (x, patch.eval_v(x), f64::INFINITY);
-    for _ in 0..POLISH_STEPS {
-        let (p, pu, pv) = patch.derivatives(x.to_array());
-        let g = cut.m.dot(p) - cut.c;
-        if g.abs() < best.2 {
-            best = (x, p, g.abs());
-        }
-        if g.abs() <= cut.close {
-            break;
-        }
-        let grad = DVec2::new(cut.m.dot(pu), cut.m.dot(pv));
+    newton(patch, cut, x, |x, grad, g| {
         let gd = grad.dot(d);
-        if !(gd.abs() > ALONG_SIDE_SINE * grad.length() * d.length() && gd.is_finite()) {
-            return polish(patch, cut, x);
+        if gd.abs() > ALONG_SIDE_SINE * grad.length() * d.length() && gd.is_finite() {
+            Some(domain.clamp(x - d * (g / gd)))
+        } else {
+            free_step(domain, x, grad, g)
         }
-        x = domain.clamp(x - d * (g / gd));
-    }
-    (best.0, best.1)
+    })
 }
 
 /// A marching-squares hit (cell parameters `h`, on a grid line of the cell: one coordinate a
@@ -180,8 +193,20 @@ fn polish_hit(cell: &DomainCell, patch: &Patch, cut: &Cut, h: DVec2) -> (DVec2, 
     } else {
         return polish(patch, cut, cell.domain_point(h));
     };
+    let x = cell.domain_point(h);
     let d = cell.domain_point(b) - cell.domain_point(a);
-    polish_on_line(patch, cut, cell.domain_point(h), d)
+    let start = patch.eval_v(x);
+    let along = polish_on_line(patch, cut, x, d);
+    let free = polish(patch, cut, x);
+    // Where the grid line meets the curve at a shallow angle, the cell polynomial's small
+    // error becomes a long slide along the line, past the pieces of the neighbouring cells:
+    // then the shortest move onto the curve is the point (the pieces' ends then meet within
+    // the tolerance, where they are joined).
+    if (along.1 - start).length() <= LINE_SLIDE_FACTOR * (free.1 - start).length() + cut.close {
+        along
+    } else {
+        free
+    }
 }
 
 /// The Newton step from `x` along the domain side nearest it: `x − d·g/(∇g·d)`, `d` the
