@@ -1,8 +1,10 @@
 """Build the installable batten extension zip with Blender's own extension tool.
 
-Stages ``addon/batten`` with the built ``batten_native`` wheel in ``wheels/``, points the
-manifest's ``wheels`` list at it, then runs ``blender_ext.py build`` and ``validate`` (the
-``bl_pkg`` command-line tool shipped inside the bpy package; no Blender binary needed).
+Stages ``addon/batten`` with the built ``batten_native`` wheel and the wheels of the Python
+packages it bundles (:data:`BUNDLED`, at their pins in requirements-dev.txt, downloaded with
+pip once into ``<wheel-dir>/../bundled`` and reused) in ``wheels/``, points the manifest's
+``wheels`` list at them, then runs ``blender_ext.py build`` and ``validate`` (the ``bl_pkg``
+command-line tool shipped inside the bpy package; no Blender binary needed).
 
     python blender_scripts/build_extension.py --wheel-dir build/wheels/release --out build/extension/release
 """
@@ -19,6 +21,46 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+#: The packages the add-on needs beside batten_native, bundled as wheels: ezdxf (writes the
+#: lines plan's DXF) and its dependencies (numpy is Blender's own).
+BUNDLED = ("ezdxf", "fonttools", "pyparsing", "typing_extensions")
+#: Blender 5.0's Python and the extension's platform (blender_manifest.toml ``platforms``).
+WHEEL_TAGS = ("--python-version", "3.11", "--implementation", "cp", "--platform", "manylinux2014_x86_64")
+
+
+def pins(names) -> list[str]:
+    """``name==version`` of each of ``names`` as requirements-dev.txt pins it."""
+    found = dict(
+        line.split("==", 1)
+        for line in (ROOT / "requirements-dev.txt").read_text().splitlines()
+        if "==" in line and not line.lstrip().startswith("#")
+    )
+    missing = [n for n in names if n not in found]
+    if missing:
+        sys.exit(f"build_extension: requirements-dev.txt pins no version of {', '.join(missing)}")
+    return [f"{n}=={found[n].strip()}" for n in names]
+
+
+def bundled_wheels(cache: Path) -> list[Path]:
+    """The wheels of :data:`BUNDLED` for Blender's Python, from ``cache`` or downloaded into it."""
+    cache.mkdir(parents=True, exist_ok=True)
+
+    def wheel_of(spec: str) -> list[Path]:
+        name, version = spec.split("==")
+        return sorted(cache.glob(f"{name.replace('-', '_')}-{version}-*.whl"))
+
+    wanted = pins(BUNDLED)
+    missing = [spec for spec in wanted if not wheel_of(spec)]
+    if missing:
+        subprocess.run(
+            [sys.executable, "-m", "pip", "download", "--quiet", "--no-deps", "--only-binary=:all:",
+             *WHEEL_TAGS, "--dest", str(cache), *missing],
+            check=True,
+        )  # fmt: skip
+    wheels = [w for spec in wanted for w in wheel_of(spec)[:1]]
+    if len(wheels) != len(wanted):
+        sys.exit(f"build_extension: no wheel of {', '.join(s for s in wanted if not wheel_of(s))} in {cache}")
+    return wheels
 
 
 def blender_ext_tool() -> Path:
@@ -53,14 +95,17 @@ def main() -> None:
         ROOT / "addon" / "batten", stage, ignore=shutil.ignore_patterns("__pycache__", "*.pyc", "wheels")
     )
     (stage / "wheels").mkdir()
-    shutil.copy2(wheel, stage / "wheels" / wheel.name)
+    staged = [wheel, *bundled_wheels(args.wheel_dir.parent / "bundled")]
+    for w in staged:
+        shutil.copy2(w, stage / "wheels" / w.name)
     examples = ROOT / "examples"
     if examples.is_dir():
         shutil.copytree(examples, stage / "examples", ignore=shutil.ignore_patterns("*.py", "__pycache__"))
 
     manifest = stage / "blender_manifest.toml"
     text = manifest.read_text()
-    text, n = re.subn(r"(?m)^wheels\s*=\s*\[.*?\]", f'wheels = ["./wheels/{wheel.name}"]', text)
+    listed = ", ".join(f'"./wheels/{w.name}"' for w in staged)
+    text, n = re.subn(r"(?m)^wheels\s*=\s*\[.*?\]", f"wheels = [{listed}]", text)
     if n != 1:
         sys.exit("build_extension: blender_manifest.toml needs one `wheels = [...]` line")
     manifest.write_text(text)

@@ -5,7 +5,10 @@ default, build them the same way and render them from the bow, the stern and the
 write their hydrostatics at the design draft (logged beside the reference figures, and in
 ``<name>_hydrostatics.csv``), their sectional area curve ``<name>_sac.png`` and curves of form
 ``<name>_curves_of_form.png`` (and ``.csv``); the examples' too, at the draft the panel
-starts at.
+starts at. Each hull's lines plan is written as ``<name>_lines_plan.svg`` and ``.png``,
+and the whole hull (both halves, no curves) is rendered with its DWL from a three-quarter bow
+view and from the side, framed to fill the picture: ``<name>_hull_bow.png``,
+``<name>_hull_side.png``.
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
@@ -239,6 +242,7 @@ def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: 
         api, coll, path, {"load_ms": round(t_load * 1e3, 3)}, out, engine, size, resolution, zebra
     )
     plot_hydrostatics(api, coll, out)
+    present(api, coll, out, bpy.context.scene.batten.draft)
     return report
 
 
@@ -280,6 +284,7 @@ def run_ship(api, path: Path, out: Path, engine: str, size: str, resolution: int
     )
     if reference is not None:
         plot_hydrostatics(api, coll, out, reference)
+    present(api, coll, out, reference["T"] if reference else bpy.context.scene.batten.draft)
     return report
 
 
@@ -443,6 +448,152 @@ def deliver(
     (out / f"{name}.json").write_text(json.dumps(report, indent=2) + "\n")
     _log(f"{name}: report {out / (name + '.json')}")
     return report
+
+
+#: The whole-hull renders: the camera's direction from the hull (three-quarter bow from port and
+#: above; the side from starboard, level, so the bow is to the right as in a profile) and whether
+#: the camera is orthographic (the side: its picture then as tall as the hull's shape asks).
+HULL_VIEWS = {"bow": ((0.75, 1.0, 0.38), False), "side": ((0.0, -1.0, 0.0), True)}
+#: The side view's picture is at least this share of its width tall.
+SIDE_MIN_HEIGHT = 0.15
+#: Share of the picture left free around a framed hull, each side.
+FRAME_MARGIN = 0.04
+#: Radius of the DWL's tube, as a share of the hull's length.
+DWL_TUBE = 0.0012
+
+
+def present(api, coll, out: Path, draft: float) -> None:
+    """The lines plan of ``coll`` at ``draft`` (``<name>_lines_plan.svg`` and ``.png``), and
+    renders of its whole hull with the DWL (``<name>_hull_<view>.png``). An error is logged."""
+    name = coll.name
+    t0 = time.perf_counter()
+    try:
+        drawing = api.lines_plan_drawing(coll, draft=draft)
+        written = [api.write_lines_plan(drawing, out / f"{name}_lines_plan{ext}") for ext in (".svg", ".png")]
+    except api.BattenError as e:
+        _log(f"{name}: no lines plan ({e})")
+    else:
+        _log(f"{name}: lines plan {', '.join(map(str, written))} in {time.perf_counter() - t0:.1f} s")
+    surface = next((o for o in bpy.data.objects if o.get(api.SURFACE_TAG) == name), None)
+    if surface is None:
+        _log(f"{name}: no surface to render")
+        return
+    render_hull(api, coll, surface, out, draft)
+
+
+def _hull_points(surface):
+    """The vertices of the surface as shown (its Mirror modifier applied), world coordinates."""
+    import numpy as np
+
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = surface.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        co = np.empty(len(mesh.vertices) * 3)
+        mesh.vertices.foreach_get("co", co)
+    finally:
+        evaluated.to_mesh_clear()
+    m = np.array(surface.matrix_world)
+    return co.reshape(-1, 3) @ m[:3, :3].T + m[:3, 3]
+
+
+def frame_points(scene, cam, points, direction, ortho: bool) -> None:
+    """Aim ``cam`` along ``-direction`` at ``points`` ((n, 3)) so that they fill the picture
+    (:data:`FRAME_MARGIN` left each side): orthographic, the scale of their extent across the
+    view; in perspective, the distance at which the widest of them just fits, the camera moved
+    across the view to centre them."""
+    import numpy as np
+    from mathutils import Vector
+
+    d = Vector(direction).normalized()
+    rot = (-d).to_track_quat("-Z", "Y")
+    cam.rotation_euler = rot.to_euler()
+    m = np.array(rot.to_matrix())  # columns: the camera's right, up and backward axes
+    centre = points.mean(axis=0)
+    local = (points - centre) @ m  # (right, up, back) about the centre
+    aspect = scene.render.resolution_x / scene.render.resolution_y
+    fill = 1.0 - 2.0 * FRAME_MARGIN
+    lo, hi = local.min(axis=0), local.max(axis=0)
+    cam.data.clip_end = max(cam.data.clip_end, 20.0 * float((hi - lo).max()))
+    if ortho:
+        # As tall as the points' shape asks (within SIDE_MIN_HEIGHT and the picture's own).
+        shape = (hi[1] - lo[1]) / max(hi[0] - lo[0], 1e-300)
+        x = scene.render.resolution_x
+        scene.render.resolution_y = min(
+            scene.render.resolution_y, max(round(x * shape), round(x * SIDE_MIN_HEIGHT))
+        )
+        aspect = x / scene.render.resolution_y
+        cam.data.type = "ORTHO"
+        cam.data.ortho_scale = max(hi[0] - lo[0], (hi[1] - lo[1]) * aspect) / fill
+        mid = 0.5 * (lo + hi)
+        cam.location = Vector((centre + m @ np.array([mid[0], mid[1], hi[2] + (hi - lo).max()])).tolist())
+        return
+    cam.data.type = "PERSP"
+    half_w = math.atan(0.5 * cam.data.sensor_width / cam.data.lens)
+    tan_x = math.tan(half_w) * fill
+    tan_y = tan_x / aspect
+    # Two rounds: centre the picture across the view, then the distance that fits every point.
+    offset = np.zeros(2)
+    for _ in range(2):
+        u, v, w = local[:, 0] - offset[0], local[:, 1] - offset[1], local[:, 2]
+        dist = float(np.max(np.maximum(w + np.abs(u) / tan_x, w + np.abs(v) / tan_y)))
+        depth = dist - w
+        pu, pv = u / depth, v / depth
+        offset += 0.5 * np.array([pu.min() + pu.max(), pv.min() + pv.max()]) * float(np.median(depth))
+    cam.location = Vector((centre + m @ np.array([offset[0], offset[1], dist])).tolist())
+
+
+def render_hull(api, coll, surface, out: Path, draft: float) -> None:
+    """Render the whole hull (the mirrored surface, the curves hidden) with its DWL (the
+    waterline section at ``draft``, both sides) from each of :data:`HULL_VIEWS`."""
+    import numpy as np
+
+    scene = bpy.context.scene
+    points = _hull_points(surface)
+    length = float(np.ptp(points[:, 0]))
+    dwl = None
+    try:
+        waterlines = api.sections(coll, waterlines=[draft])["waterlines"]
+    except api.BattenError as e:
+        _log(f"{coll.name}: no DWL drawn ({e})")
+        waterlines = []
+    if waterlines:
+        curve = bpy.data.curves.new(f"{coll.name} DWL", "CURVE")
+        curve.dimensions, curve.bevel_depth, curve.bevel_resolution = "3D", DWL_TUBE * length, 2
+        for section in waterlines:
+            for half in section.polylines:
+                for side in (1.0, -1.0):
+                    spline = curve.splines.new("POLY")
+                    spline.points.add(len(half) - 1)
+                    co = np.column_stack([half * (1.0, side, 1.0), np.ones(len(half))])
+                    spline.points.foreach_set("co", co.ravel())
+        mat = bpy.data.materials.new("batten DWL")
+        mat.diffuse_color = (0.0, 0.3, 0.85, 1.0)
+        curve.materials.append(mat)
+        dwl = bpy.data.objects.new(f"{coll.name} DWL", curve)
+        scene.collection.objects.link(dwl)
+    hidden = [o for o in coll.objects if not o.hide_render]
+    cam = scene.camera
+    saved = (cam.data.type, cam.data.clip_end, cam.location.copy(), cam.rotation_euler.copy())
+    height = scene.render.resolution_y
+    try:
+        for obj in hidden:
+            obj.hide_render = True
+        for view, (direction, ortho) in HULL_VIEWS.items():
+            scene.render.resolution_y = height
+            frame_points(scene, cam, points, direction, ortho)
+            png = out / f"{coll.name}_hull_{view}.png"
+            scene.render.filepath = str(png.resolve())
+            t0 = time.perf_counter()
+            bpy.ops.render.render(write_still=True)
+            _log(f"{coll.name}: rendered the whole hull {png} ({view}) in {time.perf_counter() - t0:.1f} s")
+    finally:
+        for obj in hidden:
+            obj.hide_render = False
+        cam.data.type, cam.data.clip_end, cam.location, cam.rotation_euler = saved
+        scene.render.resolution_y = height
+        if dwl is not None:
+            bpy.data.objects.remove(dwl)
 
 
 def main() -> None:

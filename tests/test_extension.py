@@ -1,5 +1,6 @@
 """The extension zip users download installs headless and works: the add-on enables, and
-batten_native is imported from the extension's own wheel, not from this test environment."""
+batten_native is imported from the extension's own wheel, not from this test environment; the wheels it
+bundles (ezdxf for the lines plan's DXF) are installed beside it."""
 
 import os
 import subprocess
@@ -26,6 +27,10 @@ SCRIPT = textwrap.dedent(
     c = batten_native.Curve.from_poly("probe", np.array([[0.0, 0, 0], [3, 4, 0]]))
     print("LENGTH", c.arc_length())
     here = os.path.dirname(batten_native.__file__)
+    # ezdxf (the lines plan's DXF) installed from the extension's own wheels beside it.
+    site = os.path.dirname(here)
+    bundled = ("ezdxf", "fontTools", "pyparsing")
+    print("BUNDLED", sorted(n for n in bundled if os.path.isdir(os.path.join(site, n))))
     ex = os.path.join(user, "extensions", "user_default", "batten", "examples", "wigley.json")
     bpy.ops.batten.import_network(filepath=ex)
     print("CURVES", sum(o.type == "CURVE" for o in bpy.data.objects))
@@ -47,3 +52,4 @@ def test_extension_zip_installs_and_runs(tmp_path):
     assert out.returncode == 0, out.stdout + out.stderr
     assert "LENGTH 5.0" in out.stdout
     assert "CURVES 14" in out.stdout
+    assert "BUNDLED ['ezdxf', 'fontTools', 'pyparsing']" in out.stdout

@@ -5,7 +5,8 @@ scripting API is :mod:`batten.api`; operators and panels only call it. Importing
 needs no Blender (its Blender modules load in :func:`register`), so the bpy-free modules
 (:mod:`batten.fit_data`, :mod:`batten.object_names`, :mod:`batten.network_markers`,
 :mod:`batten.atomic_write`, :mod:`batten.hydro_table`, :mod:`batten.chart`,
-:mod:`batten.waterplane_outline`) can be used and tested without it.
+:mod:`batten.waterplane_outline`, the lines plan's :mod:`batten.lines_plan`, :mod:`batten.drawing`
+and its writers) can be used and tested without it.
 """
 
 

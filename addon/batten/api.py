@@ -994,3 +994,126 @@ def export_sections(
         return write_atomically(path, json.dumps(data))
     except OSError as e:
         raise NetworkFileError(f"section file '{path}': {e.strerror or e}") from e
+
+
+#: Points each outline curve (keel, stem, transom, deck edge) is drawn through in a lines plan.
+OUTLINE_SAMPLES = 200
+#: The curve roles drawn as the outline of a lines plan.
+OUTLINE_ROLES = ("keel", "stem", "transom", "deck")
+
+
+def lines_plan_drawing(
+    source,
+    *,
+    stations=21,
+    waterlines=None,
+    buttocks=None,
+    diagonals=None,
+    draft: float | None = None,
+    lpp: float | None = None,
+    fp: float | None = None,
+    tolerance: float | None = None,
+    collection: bool = False,
+):
+    """The lines plan of the hull in ``source`` (a collection) as a
+    :class:`batten.drawing.Drawing` (model metres on the sheet, with its offsets tables), which
+    :func:`lines_plan` writes; the arguments are :func:`lines_plan`'s (``collection`` as
+    :func:`sections` takes it)."""
+    from . import lines_plan as plan
+
+    draft = design_draft(source) if draft is None else draft
+    if draft is None:
+        raise InvalidArgumentError(
+            f"lines plan of '{_source_name(source)}': give draft= (the collection has no design draft)"
+        )
+    if isinstance(draft, bool) or not (isinstance(draft, int | float) and np.isfinite(draft) and draft > 0):
+        raise InvalidArgumentError(f"lines plan: draft {draft!r} must be a finite height above the baseline")
+    curves = read_curves(source)
+    model = _hull_model(source)
+    lpp, fp = _datums(source, lpp, fp)
+    xs = _stations(model, draft, stations, lpp, fp)
+    x_ap, x_fp = model.datums(draft, lpp, fp)
+    _lo, hi = model.bounds
+    secs = sections(
+        source,
+        stations=xs.tolist(),
+        waterlines=plan.default_waterlines(draft, float(hi[2])) if waterlines is None else waterlines,
+        buttocks=plan.default_buttocks(float(hi[1])) if buttocks is None else buttocks,
+        diagonals=diagonals,
+        tolerance=tolerance,
+        collection=collection,
+    )
+    try:
+        figures, note = hydrostatics(source, draft, lpp=lpp, fp=fp), ""
+    except BattenError as e:
+        figures, note = None, str(e)
+    outline = [c.evaluate(np.linspace(*c.domain, OUTLINE_SAMPLES)) for c in curves if c.role in OUTLINE_ROLES]
+    hull = plan.Hull(_source_name(source), float(x_ap), float(x_fp), float(draft), figures, note)
+    try:
+        drawing = plan.layout(secs, outline, hull)
+    except ValueError as e:
+        raise InvalidArgumentError(f"lines plan of '{hull.name}': {e}") from None
+    drawing.tables = plan.offsets_tables(secs, hull)
+    return drawing
+
+
+def lines_plan(source, path, **options) -> Path:
+    """Draw the lines plan of the hull in ``source`` (a collection) to ``path``: SVG, DXF (one
+    layer per family: stations, waterlines, buttocks, diagonals, knuckles, outline, dwl, grid,
+    title; metres at full size), PDF (A3 to a standard scale) or a PNG picture, by the suffix
+    (``.svg``, ``.dxf``, ``.pdf``, ``.png``). Returns the path.
+
+    The body plan (aft stations left of the centreline, fore ones right), the profile with the
+    buttocks and the half-breadth plan with the waterlines (and the diagonals expanded, when
+    asked), the knuckle lines and the outline (the keel, stem, transom and deck curves), the
+    grids labelled (stations numbered 0–20 from the AP, waterline heights, buttock offsets), the
+    DWL at ``draft`` (default: the collection's design draft) and a title block with the main
+    dimensions and the :func:`hydrostatics` there (or why they could not be had).
+
+    Options: the sections are :func:`sections` of the surface itself, ``stations`` a count from
+    AP to FP inclusive (default 21: stations 0–20) or x values; ``waterlines`` (default: five
+    up to the DWL, on at that spacing to the top) and ``buttocks`` (default: at 0.2, 0.4, 0.6,
+    0.8 of the half-beam) a count or offsets, ``()`` for none; ``diagonals`` and ``tolerance``
+    as :func:`sections` takes them; ``draft``; ``lpp`` and ``fp`` as in :func:`hydrostatics`.
+
+    The file is written whole or not at all: InvalidArgumentError for another suffix, no draft,
+    a bad count or offset; NetworkFileError naming the file when it cannot be written.
+    """
+    from . import lines_plan_files
+
+    path = file_path(path, "lines plan")
+    try:
+        lines_plan_files.format_of(path)
+    except ValueError as e:
+        raise InvalidArgumentError(f"lines plan '{path}': {e}") from None
+    return write_lines_plan(lines_plan_drawing(source, **options), path)
+
+
+def write_lines_plan(drawing, path) -> Path:
+    """Write a :func:`lines_plan_drawing` to ``path`` in the format of its suffix (as
+    :func:`lines_plan`), so one set of sections gives several files."""
+    from . import lines_plan_files
+
+    path = file_path(path, "lines plan")
+    try:
+        return lines_plan_files.write(drawing, path)
+    except ImportError as e:
+        raise InvalidArgumentError(f"lines plan '{path}': {e.name or 'ezdxf'} is not installed") from e
+    except OSError as e:
+        raise NetworkFileError(f"lines plan '{path}': {e.strerror or e}") from e
+    except ValueError as e:
+        raise InvalidArgumentError(f"lines plan '{path}': {e}") from None
+
+
+def lines_plan_scene(source, **options):
+    """Show the lines plan of the hull in ``source`` in Blender: a scene ``"<hull> lines
+    plan"`` (made anew each time) with the drawing of :func:`lines_plan` laid flat, a
+    collection per layer, and an orthographic camera over it (its render is the plan as a
+    picture), and the hull's sections collection (drawn by :func:`sections`, cut again on every
+    rebuild) linked in with an orthographic camera each for the profile, the half-breadth plan
+    and the body plan. Options as :func:`lines_plan`'s. Returns the scene."""
+    from .lines_plan_scene import sheet_scene
+    from .sections_draw import existing
+
+    drawing = lines_plan_drawing(source, collection=True, **options)
+    return sheet_scene(drawing, existing(_source_name(source)))

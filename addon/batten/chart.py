@@ -18,6 +18,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .drawing import dashes, finite_runs
+
 #: RGBA colours (0–1).
 WHITE = (1.0, 1.0, 1.0, 1.0)
 BLACK = (0.0, 0.0, 0.0, 1.0)
@@ -42,6 +44,10 @@ PALETTE = (
 )
 #: The spans a tick step may take in each decade (Heckbert's "nice numbers", Graphics Gems I).
 NICE_STEPS = (1.0, 2.0, 2.5, 5.0, 10.0)
+#: Segments at most this many pixels across are covered in batches (:func:`_cover_segments`)
+#: of this many, each over a window of pixels of its own; longer ones one by one.
+BATCH_SEGMENT_PX = 12.0
+BATCH_SEGMENTS = 4096
 #: Squared length (pixels²) below which a segment is a dot: keeps the projection finite.
 MIN_SEGMENT_LENGTH2 = 1e-12
 #: A range narrower than this share of its values' size (or than this, about 0) is one value.
@@ -119,7 +125,7 @@ class Canvas:
         """A polyline through ``points`` ((n, 2) pixels) ``width`` pixels wide, solid or
         dashed (``dash`` = (on, off) pixels); non-finite points break it."""
         points = np.asarray(points, dtype=float).reshape(-1, 2)
-        pieces = [p for run in _finite_runs(points) for p in (_dashes(run, dash) if dash else [run])]
+        pieces = [p for run in finite_runs(points) for p in (dashes(run, *dash) if dash else [run])]
         self._cover(
             [(p, q) for piece in pieces for p, q in zip(piece[:-1], piece[1:], strict=True)],
             0.5 * width,
@@ -143,8 +149,13 @@ class Canvas:
         if (hi <= lo).any():
             return
         coverage = np.zeros((hi[1] - lo[1], hi[0] - lo[0]), dtype=np.float32)
-        for p, q in segments:
-            _cover_segment(coverage, lo, np.asarray(p, float), np.asarray(q, float), half)
+        ends = ends.reshape(-1, 2, 2)
+        reach = np.abs(ends[:, 1] - ends[:, 0]).max(axis=1)
+        short = reach <= BATCH_SEGMENT_PX
+        for p, q in ends[~short]:
+            _cover_segment(coverage, lo, p, q, half)
+        for start in range(0, int(short.sum()), BATCH_SEGMENTS):
+            _cover_segments(coverage, lo, ends[short][start : start + BATCH_SEGMENTS], half)
         self._paint(coverage, color, lo)
 
     def fill_below(self, points, base_y: float, color) -> None:
@@ -219,6 +230,33 @@ class Canvas:
         return path
 
 
+def _cover_segments(coverage: np.ndarray, origin, ends: np.ndarray, half: float) -> None:
+    """:func:`_cover_segment` for many short segments at once (``ends`` (n, 2, 2), each no
+    longer than :data:`BATCH_SEGMENT_PX` across): the same coverage, over one window of pixels
+    per segment, for polylines of many points (a lines plan's sections)."""
+    h, w = coverage.shape
+    size = int(np.ceil(BATCH_SEGMENT_PX + 2 * half + 3))
+    p, q = ends[:, 0], ends[:, 1]
+    corner = np.floor(np.minimum(p, q) - half - 1).astype(int) - origin  # (n, 2) window origins
+    grid = np.arange(size)
+    px = (corner[:, 0, None, None] + grid[None, None, :]) + origin[0] + 0.5  # (n, 1, size)
+    py = (corner[:, 1, None, None] + grid[None, :, None]) + origin[1] + 0.5  # (n, size, 1)
+    d = q - p
+    dd = np.maximum((d * d).sum(axis=1), MIN_SEGMENT_LENGTH2)[:, None, None]
+    t = (
+        (px - p[:, 0, None, None]) * d[:, 0, None, None] + (py - p[:, 1, None, None]) * d[:, 1, None, None]
+    ) / dd
+    t = t.clip(0.0, 1.0)
+    dist = np.hypot(
+        px - p[:, 0, None, None] - t * d[:, 0, None, None], py - p[:, 1, None, None] - t * d[:, 1, None, None]
+    )
+    value = (half + 0.5 - dist).clip(0.0, 1.0)
+    cols = np.broadcast_to(corner[:, 0, None, None] + grid[None, None, :], value.shape)
+    rows = np.broadcast_to(corner[:, 1, None, None] + grid[None, :, None], value.shape)
+    inside = (value > 0.0) & (cols >= 0) & (cols < w) & (rows >= 0) & (rows < h)
+    np.maximum.at(coverage, (rows[inside], cols[inside]), value[inside].astype(coverage.dtype))
+
+
 def _cover_segment(coverage: np.ndarray, origin, p, q, half: float) -> None:
     """Raise ``coverage`` (a block of pixels whose bottom left is ``origin``) to each pixel's
     share of the segment ``p``–``q`` thickened by ``half`` each side."""
@@ -233,34 +271,6 @@ def _cover_segment(coverage: np.ndarray, origin, p, q, half: float) -> None:
     dist = np.hypot(px - p[0] - t * d[0], py - p[1] - t * d[1])
     block = coverage[lo[1] : hi[1], lo[0] : hi[0]]
     np.maximum(block, (half + 0.5 - dist).clip(0.0, 1.0), out=block)
-
-
-def _finite_runs(points: np.ndarray) -> list[np.ndarray]:
-    """The stretches of ``points`` with no non-finite coordinate, each of two points or more."""
-    ok = np.isfinite(points).all(axis=1)
-    runs, start = [], None
-    for i, good in enumerate([*ok, False]):
-        if good and start is None:
-            start = i
-        elif not good and start is not None:
-            if i - start >= 2:
-                runs.append(points[start:i])
-            start = None
-    return runs
-
-
-def _dashes(points: np.ndarray, dash: tuple[float, float]) -> list[np.ndarray]:
-    """The "on" pieces of a polyline dashed ``dash`` = (on, off) pixels."""
-    on, off = dash
-    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(points, axis=0).T))])
-    period = on + off
-    pieces = []
-    for start in np.arange(0.0, s[-1], period):
-        at = np.concatenate([[start], s[(s > start) & (s < start + on)], [min(start + on, s[-1])]])
-        piece = np.column_stack([np.interp(at, s, points[:, 0]), np.interp(at, s, points[:, 1])])
-        if len(piece) >= 2:
-            pieces.append(piece)
-    return pieces
 
 
 @dataclass

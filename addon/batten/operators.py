@@ -1,13 +1,14 @@
 """Operators: convert properties, call :mod:`batten.api`, report errors. No geometry here."""
 
 import bpy
-from bpy.props import FloatProperty, StringProperty
+from bpy.props import EnumProperty, FloatProperty, IntProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from . import api
 from ._registry import register_classes, unregister_classes
 from .api import example_files
 from .scene_build import build_into_scene
+from .scene_hydro import draft_of
 
 
 def _hull_source(context):
@@ -187,6 +188,82 @@ class BATTEN_OT_import_sections(BattenOperator, bpy.types.Operator, ImportHelper
         return {"FINISHED"}
 
 
+class _LinesPlanOptions:
+    """The choices of a lines plan of the scene's hull (it needs one): how many stations, and
+    the draft of its DWL (the Hydrostatics panel's draft)."""
+
+    stations: IntProperty(
+        name="Stations",
+        description="Stations from AP to FP inclusive (21: stations 0 to 20)",
+        default=21,
+        min=2,
+        max=201,
+    )
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def plan_options(self, context) -> dict:
+        """The keyword arguments of :func:`batten.api.lines_plan`."""
+        return {"stations": self.stations, "draft": draft_of(context.scene.batten)}
+
+
+class BATTEN_OT_lines_plan(BattenOperator, _LinesPlanOptions, bpy.types.Operator):
+    """Draw the hull's lines plan (body plan, profile, half-breadth plan, title block) in a scene
+    of its own, seen by an orthographic camera"""
+
+    bl_idname = "batten.lines_plan"
+    bl_label = "Lines Plan"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def run(self, context):
+        source = context.scene.batten.source
+        options = self.plan_options(context)
+        scene = api.lines_plan_scene(source, **options)
+        if scene != context.scene:
+            # The plan's scene names the hull and its draft, so it can be drawn again from there.
+            scene.batten.source = source
+            scene.batten.draft = options["draft"]
+        if context.window is not None:
+            context.window.scene = scene
+        self.report({"INFO"}, f"Drew the lines plan of '{source.name}' in scene '{scene.name}'")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_export_lines_plan(BattenOperator, _LinesPlanOptions, bpy.types.Operator, ExportHelper):
+    """Write the hull's lines plan as PDF (A3, to scale), SVG, DXF (a layer per family) or PNG"""
+
+    bl_idname = "batten.export_lines_plan"
+    bl_label = "Export Lines Plan"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".pdf"
+    filter_glob: StringProperty(default="*.pdf;*.svg;*.dxf;*.png", options={"HIDDEN"})
+    file_format: EnumProperty(
+        name="Format",
+        items=(
+            (".pdf", "PDF", "A3 sheet to a standard scale, vector"),
+            (".svg", "SVG", "A3 sheet to a standard scale, vector"),
+            (".dxf", "DXF", "Full size in metres, a layer per family, for CAD"),
+            (".png", "PNG", "A picture 2400 pixels wide"),
+        ),
+        default=".pdf",
+    )
+
+    def check(self, _context):
+        """Keep the file name's suffix that of the chosen format."""
+        wanted = bpy.path.ensure_ext(bpy.path.abspath(self.filepath).rsplit(".", 1)[0], self.file_format)
+        changed = wanted != self.filepath
+        self.filepath = wanted
+        return changed
+
+    def run(self, context):
+        path = api.lines_plan(context.scene.batten.source, self.filepath, **self.plan_options(context))
+        self.report({"INFO"}, f"Wrote {path}")
+        return {"FINISHED"}
+
+
 def _menu_import(self, _context):
     self.layout.operator(BATTEN_OT_import_network.bl_idname, text="batten Network (.json)")
     self.layout.operator(BATTEN_OT_import_sections.bl_idname, text="batten Sections / Offsets (.json, .csv)")
@@ -194,6 +271,7 @@ def _menu_import(self, _context):
 
 def _menu_export(self, _context):
     self.layout.operator(BATTEN_OT_export_network.bl_idname, text="batten Network (.json)")
+    self.layout.operator(BATTEN_OT_export_lines_plan.bl_idname, text="batten Lines Plan (.pdf, .svg, .dxf)")
 
 
 _CLASSES = (
@@ -205,6 +283,8 @@ _CLASSES = (
     BATTEN_OT_import_network,
     BATTEN_OT_fair_curves,
     BATTEN_OT_import_sections,
+    BATTEN_OT_lines_plan,
+    BATTEN_OT_export_lines_plan,
 )
 
 

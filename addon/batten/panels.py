@@ -150,6 +150,9 @@ class VIEW3D_PT_batten_hydrostatics(bpy.types.Panel):
         row = box.row(align=True)
         row.prop(settings, "curves_drafts")
         row.operator("batten.curves_of_form")
+        row = box.row(align=True)
+        row.operator("batten.lines_plan", icon="MESH_GRID").stations = settings.stations
+        row.operator("batten.export_lines_plan", text="", icon="EXPORT").stations = settings.stations
         row = layout.row(align=True)
         row.operator("batten.export_hydrostatics", text="Export CSV", icon="EXPORT").table = "HYDROSTATICS"
         row.operator(

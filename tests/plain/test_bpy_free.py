@@ -17,6 +17,13 @@ BPY_FREE = (
     "batten.network_markers",
     "batten.object_names",
     "batten.bridge.sections_in",
+    "batten.drawing",
+    "batten.drawing_dxf",
+    "batten.drawing_pdf",
+    "batten.drawing_png",
+    "batten.drawing_svg",
+    "batten.lines_plan",
+    "batten.lines_plan_files",
 )
 
 
