@@ -24,6 +24,7 @@ import bpy
 import numpy as np
 from batten_native import (
     DEFAULT_CORNER_ANGLE_DEG,
+    DEFAULT_EXPORT_TOLERANCE,
     DEFAULT_FAIR_DEGREE,
     DEFAULT_FAIR_TOLERANCE,
     DEFAULT_RESOLUTION,
@@ -36,6 +37,7 @@ from batten_native import (
     BattenError,
     Curve,
     CurveError,
+    ExportError,
     FairError,
     HydrostaticsError,
     InternalError,
@@ -55,7 +57,7 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
-from . import hull_models
+from . import cad_export, hull_models
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
@@ -85,7 +87,12 @@ __all__ = [
     "curvature_comb",
     "curve_objects",
     "example_files",
+    "DEFAULT_EXPORT_TOLERANCE",
+    "ExportError",
+    "export_3dm",
+    "export_iges",
     "export_network",
+    "export_step",
     "fair_curve",
     "fair_curves",
     "fairness",
@@ -774,3 +781,48 @@ def float_to(
     lpp, fp = _datums(source, lpp, fp)
     level = model.level_draft(displacement, density)
     return model.float_to(displacement, lcg, level, vcg, density, lpp, fp)
+
+
+# --- CAD exports --------------------------------------------------------------------------------
+
+
+def _export(source, path, fmt: str, tolerance: float, allow_holes: bool) -> Path:
+    model = _hull_model(source)
+    name = _source_name(source)
+    if fmt == "3dm":
+        return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
+    return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+
+
+def export_iges(
+    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+) -> Path:
+    """Write the hull surface of ``source`` (as :func:`build` makes it, with the last build's
+    settings) to ``path`` as IGES 5.3: every patch approximated by bicubic B-spline surfaces
+    (entity 128, with their parameter ranges; an N-sided patch as N quads) within
+    ``tolerance`` m of batten's surface, neighbours meeting on the same curves, in metres.
+
+    A surface whose build found holes (``hole``, ``face_not_patched`` or ``near_miss``
+    warnings) raises ExportError saying so, unless ``allow_holes`` (then what exists is
+    written). The file is written whole or not at all (ExportError naming it when it cannot
+    be). Returns the path.
+    """
+    return _export(source, path, "iges", tolerance, allow_holes)
+
+
+def export_step(
+    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+) -> Path:
+    """Write the hull surface of ``source`` to ``path`` as STEP AP214: one open shell of
+    B-spline faces (``ADVANCED_FACE`` on ``B_SPLINE_SURFACE_WITH_KNOTS``, bounded by their
+    B-spline edge curves), in metres; the faces, holes and errors as :func:`export_iges`."""
+    return _export(source, path, "step", tolerance, allow_holes)
+
+
+def export_3dm(
+    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+) -> Path:
+    """Write the hull surface of ``source`` to ``path`` as a Rhino ``.3dm`` (rhino3dm): one
+    NurbsSurface object per face, in metres; the faces, holes and errors as
+    :func:`export_iges`."""
+    return _export(source, path, "3dm", tolerance, allow_holes)

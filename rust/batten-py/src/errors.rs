@@ -11,6 +11,7 @@
 //! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
 //! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
 //! | [`Error::Hydro`] (other than [`HydroError::InvalidInput`], an `InvalidArgumentError`) | `HydrostaticsError` |
+//! | [`Error::Export`] | `ExportError` |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -26,6 +27,7 @@ pyo3::import_exception!(batten_native._errors, NoSurfaceError);
 pyo3::import_exception!(batten_native._errors, InvalidArgumentError);
 pyo3::import_exception!(batten_native._errors, HydrostaticsError);
 pyo3::import_exception!(batten_native._errors, InternalError);
+pyo3::import_exception!(batten_native._errors, ExportError);
 
 /// A core error as the `BattenError` subclass of its kind, with the core's message (which names
 /// the curve).
@@ -45,6 +47,10 @@ pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
         | Error::InvalidInput(_)
         | Error::Hydro(HydroError::InvalidInput(_)) => InvalidArgumentError::new_err(message),
         Error::Hydro(_) => HydrostaticsError::new_err(message),
+        Error::Export(batten_core::ExportError::Tolerance(_)) => {
+            InvalidArgumentError::new_err(message)
+        }
+        Error::Export(_) => ExportError::new_err(message),
     }
 }
 

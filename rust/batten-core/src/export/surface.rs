@@ -205,12 +205,13 @@ struct PatchCurves {
 /// 2. Every patch side is its edges' curves joined (C0 at the T-joints), so the two patches of
 ///    an edge hold the same curve there, whatever the rest of their sides.
 /// 3. Every quad is fitted inside its four side curves ([`fit_surface`]) to [`FACE_SHARE`] of
-///    the tolerance: its boundary rows are the side curves' control points after exact knot
+///    the tolerance (the whole tolerance where refining cannot get there, e.g. at a repaired
+///    degenerate corner): its boundary rows are the side curves' control points after exact knot
 ///    insertion, and neighbours therefore meet exactly (to rounding) on the shared curve.
 ///
 /// Edges, patches and quads are fitted in parallel. Errors: holes in the build (unless
 /// `allow_holes`), a tolerance that is not a positive finite number, a patch that could not be
-/// fitted within [`MAX_SPANS`](super::fit::MAX_SPANS) spans.
+/// fitted within [`MAX_SURFACE_SPANS`](super::fit::MAX_SURFACE_SPANS) spans a side.
 pub fn cad_surface(
     surface: &HullSurface,
     options: &ExportOptions,
@@ -266,33 +267,33 @@ pub fn cad_surface(
                 .map(move |(k, q)| (p, k, q))
         })
         .collect();
-    let faces: Vec<CadFace> =
-        jobs.into_par_iter()
-            .map(|(p, k, quad)| {
-                let c = &curves[p];
-                let boundary = quad_boundary(&quad, &c.sides, &c.spokes)
-                    .ok_or(ExportError::Degenerate { face: face(p) })?;
-                let patch = &patches[p];
-                let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
-                let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol)
-                    .map_err(|e| ExportError::NotConverged {
-                        face: face(p),
-                        deviation: e.deviation,
-                    })?;
-                let surface_out = if surface.patches_outward {
-                    fitted
-                } else {
-                    fitted.reversed_u()
-                };
-                Ok(CadFace {
-                    patch: p,
+    let faces: Vec<CadFace> = jobs
+        .into_par_iter()
+        .map(|(p, k, quad)| {
+            let c = &curves[p];
+            let boundary = quad_boundary(&quad, &c.sides, &c.spokes)
+                .ok_or(ExportError::Degenerate { face: face(p) })?;
+            let patch = &patches[p];
+            let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
+            let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol, tol)
+                .map_err(|e| ExportError::NotConverged {
                     face: face(p),
-                    quad: k,
-                    surface: surface_out,
-                    deviation,
-                })
+                    deviation: e.deviation,
+                })?;
+            let surface_out = if surface.patches_outward {
+                fitted
+            } else {
+                fitted.reversed_u()
+            };
+            Ok(CadFace {
+                patch: p,
+                face: face(p),
+                quad: k,
+                surface: surface_out,
+                deviation,
             })
-            .collect::<Result<_, ExportError>>()?;
+        })
+        .collect::<Result<_, ExportError>>()?;
     let max_deviation = faces.iter().map(|f| f.deviation).fold(0.0, f64::max);
     Ok(CadSurface {
         faces,
