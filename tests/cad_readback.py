@@ -6,22 +6,29 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Tool
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Cut
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepBuilderAPI import BRepBuilderAPI_Sewing, BRepBuilderAPI_Transform
-from OCP.BRepGProp import BRepGProp_Domain, BRepGProp_Face, BRepGProp_Vinert
+from OCP.BRepBuilderAPI import (
+    BRepBuilderAPI_MakeFace,
+    BRepBuilderAPI_MakeSolid,
+    BRepBuilderAPI_Sewing,
+    BRepBuilderAPI_Transform,
+)
+from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
-from OCP.Bnd import Bnd_Box
-from OCP.gp import gp_Ax2, gp_Dir, gp_Pln, gp_Pnt, gp_Trsf
+from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Trsf
+from OCP.GProp import GProp_GProps
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.IGESControl import IGESControl_Reader
 from OCP.Interface import Interface_Static
 from OCP.ShapeAnalysis import ShapeAnalysis_FreeBounds, ShapeAnalysis_Surface
+from OCP.ShapeFix import ShapeFix_Solid
 from OCP.STEPControl import STEPControl_Reader
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SHELL, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Compound
+from OCP.TopoDS import TopoDS
 
 
 def read_shape(path: Path):
@@ -94,16 +101,6 @@ def mirrored(shape):
     return BRepBuilderAPI_Transform(shape, t, True).Shape()
 
 
-def compound(shapes: list):
-    """The shapes as one compound."""
-    c = TopoDS_Compound()
-    b = BRep_Builder()
-    b.MakeCompound(c)
-    for s in shapes:
-        b.Add(c, s)
-    return c
-
-
 def free_edge_count(shape) -> int:
     """Edges of the free boundary of ``shape``."""
     fb = ShapeAnalysis_FreeBounds(shape)
@@ -116,20 +113,30 @@ def free_edge_count(shape) -> int:
     return n
 
 
-def volume_below(shape, draft: float, size: float) -> float:
-    """OCCT's volume (BRepGProp_Vinert) between the half-hull faces of ``shape`` below the
-    plane z = ``draft`` and the centreplane y = 0: the faces are cut at the waterplane
-    (BRepAlgoAPI_Cut with a box above it), and each face's volume to the plane y = 0 summed
-    (the lid at the waterplane is horizontal, so it adds nothing to a volume taken to y = 0)."""
+def volume_below(half, draft: float, size: float, tolerance: float) -> float:
+    """OCCT's volume (BRepGProp.VolumeProperties) of the hull below the plane z = ``draft``:
+    the sewn half shell mirrored and sewn to itself, cut at the waterplane (BRepAlgoAPI_Cut
+    with a box above it), closed with a planar lid on each free boundary wire (the
+    waterline, a transom's immersed edge) and sewn into a solid."""
+    full, _ = sew([half, mirrored(half)], tolerance)
     box = BRepPrimAPI_MakeBox(gp_Pnt(-size, -size, draft), 2 * size, 2 * size, size).Shape()
-    below = BRepAlgoAPI_Cut(shape, box).Shape()
-    plane = gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(0, 1, 0))
-    total = 0.0
-    for f in faces(below):
-        g = BRepGProp_Face(f)
-        d = BRepGProp_Domain(f)
-        total += BRepGProp_Vinert(g, d, plane, gp_Pnt(0, 0, 0)).Mass()
-    return abs(total)
+    below = BRepAlgoAPI_Cut(full, box).Shape()
+    wires = ShapeAnalysis_FreeBounds(below, tolerance, False, False).GetClosedWires()
+    lids = []
+    exp = TopExp_Explorer(wires, TopAbs_WIRE)
+    while exp.More():
+        lid = BRepBuilderAPI_MakeFace(TopoDS.Wire(exp.Current()), True)
+        assert lid.IsDone(), "a planar lid on the free boundary"
+        lids.append(lid.Face())
+        exp.Next()
+    closed, free = sew(faces(below) + lids, tolerance)
+    assert free == 0, f"the lidded hull still has {free} free edges"
+    exp = TopExp_Explorer(closed, TopAbs_SHELL)
+    solid = ShapeFix_Solid(BRepBuilderAPI_MakeSolid(TopoDS.Shell(exp.Current())).Solid())
+    solid.Perform()
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(solid.Solid(), props)
+    return abs(props.Mass())
 
 
 def rhino_surfaces(path: Path) -> list:

@@ -19,7 +19,7 @@ RHINO_FILE_VERSION = 7
 
 
 def _now() -> tuple[int, int, int, int, int, int]:
-    t = datetime.datetime.now(datetime.timezone.utc)
+    t = datetime.datetime.now(datetime.UTC)
     return (t.year, t.month, t.day, t.hour, t.minute, t.second)
 
 
@@ -37,7 +37,9 @@ def _written(path: Path, what: str, write) -> Path:
         raise ExportError(f"{what} '{path}': cannot be written: {e.strerror or e}") from e
 
 
-def write_text_file(model, name: str, path, fmt: str, tolerance: float, allow_holes: bool) -> tuple[Path, dict]:
+def write_text_file(
+    model, name: str, path, fmt: str, tolerance: float, allow_holes: bool
+) -> tuple[Path, dict]:
     """Write ``model``'s surface (a ``batten_native.HullModel``) to ``path`` as ``fmt``
     (``"iges"`` or ``"step"``); returns the path and what the core measured (faces, patches,
     control_points, max_deviation, tolerance)."""

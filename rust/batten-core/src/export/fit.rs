@@ -30,10 +30,15 @@ const CHECK_FRACTIONS: [f64; 9] = [
 /// is not smooth enough to export, and refining further would only hide that.
 pub const MAX_CURVE_SPANS: usize = 1024;
 
-/// The most knot spans along one direction of a fitted face: each halving doubles the work in
-/// both directions, and a patch that is not within the tolerance at 64 × 64 spans is singular
-/// at a corner (a repaired degenerate corner), which more spans only chase into the corner.
-pub const MAX_SURFACE_SPANS: usize = 64;
+/// The most knot spans along one direction of a fitted face (a long, curved patch may need
+/// many along its length).
+pub const MAX_SURFACE_SPANS: usize = 512;
+
+/// The most knot spans of a fitted face in all (spans along u × spans along v): each halving
+/// doubles the work in both directions, and a patch not within the tolerance at this many is
+/// singular or folded somewhere (a repaired degenerate corner, a fold the build reports),
+/// which more spans would only chase into a point.
+pub const MAX_SURFACE_CELLS: usize = 8192;
 
 /// Why a fit failed: it did not reach the tolerance within its most spans, or its least-squares
 /// system was singular (the deviation reached so far is given).
@@ -183,7 +188,7 @@ fn bases(knots: &[f64], count: usize, ts: &[(usize, f64)]) -> Vec<(usize, [f64; 
 
 /// The bicubic surface inside `boundary` that approximates `target` within `tol` at every
 /// check sample (or, where refining cannot get there — a singular system near a degenerate
-/// corner, or [`MAX_SURFACE_SPANS`] reached —, the last fit if it is within `limit`): boundary rows and columns from the curves (knot vectors the union of the
+/// corner, or [`MAX_SURFACE_SPANS`] or [`MAX_SURFACE_CELLS`] reached —, the last fit if it is within `limit`): boundary rows and columns from the curves (knot vectors the union of the
 /// opposite curves', refined by exact knot insertion), interior control points by least
 /// squares on a grid of samples, solved along `u` then along `v` (the tensor-product system
 /// separates); spans over the tolerance are halved in both directions and the fit is made
@@ -306,7 +311,12 @@ pub(crate) fn fit_surface(
         if best.as_ref().is_none_or(|b| deviation < b.1) {
             best = Some((surface, deviation));
         }
-        if 2 * (bu.len().max(bv.len()) - 1) > MAX_SURFACE_SPANS {
+        let (su, sv) = (bu.len() - 1, bv.len() - 1);
+        let (nu_next, nv_next) = (
+            su + over_u.iter().filter(|&&o| o).count(),
+            sv + over_v.iter().filter(|&&o| o).count(),
+        );
+        if nu_next.max(nv_next) > MAX_SURFACE_SPANS || nu_next * nv_next > MAX_SURFACE_CELLS {
             return give_up(best, deviation);
         }
         ku = bisected(&ku, &bu, &over_u);
