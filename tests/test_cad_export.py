@@ -130,3 +130,14 @@ def test_a_bad_tolerance_is_an_invalid_argument(tmp_path):
     with pytest.raises(api.InvalidArgumentError, match="tolerance"):
         api.export_iges(coll, tmp_path / "x.igs", tolerance=0.0)
     assert not (tmp_path / "x.igs").exists()
+
+
+def test_the_export_operator_writes_what_the_api_writes(tmp_path):
+    import bpy
+
+    coll = api.load_network(EXAMPLES / "wigley_lines.json")
+    bpy.context.scene.batten.source = coll
+    path = tmp_path / "op.stp"
+    assert bpy.ops.batten.export_step(filepath=str(path)) == {"FINISHED"}
+    faces = rb.faces(rb.read_shape(path))
+    assert len(faces) == _quads(coll), "the operator's file has every face"
