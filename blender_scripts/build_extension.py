@@ -20,6 +20,47 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 
+#: Packages the add-on needs from PyPI, bundled as wheels at the versions pinned in
+#: requirements-dev.txt (downloaded by pip at build time, never committed): rhino3dm writes .3dm.
+BUNDLED = ("rhino3dm",)
+
+#: The platform tags of Blender 5.0's Python (CPython 3.11 on linux-x64) a bundled wheel may have.
+PLATFORMS = ("manylinux_2_28_x86_64", "manylinux_2_17_x86_64", "manylinux2014_x86_64")
+
+
+def pinned(name: str) -> str:
+    """The ``name==version`` line of requirements-dev.txt."""
+    for line in (ROOT / "requirements-dev.txt").read_text().splitlines():
+        if line.split("==")[0].strip() == name:
+            return line.strip()
+    sys.exit(f"build_extension: {name} is not pinned in requirements-dev.txt")
+
+
+def download_wheels(into: Path) -> list[Path]:
+    """The bundled packages' wheels for Blender's Python, downloaded by pip into ``into``."""
+    platforms = [arg for p in PLATFORMS for arg in ("--platform", p)]
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "download",
+            "--quiet",
+            "--only-binary=:all:",
+            "--no-deps",
+            "--python-version",
+            "3.11",
+            "--implementation",
+            "cp",
+            *platforms,
+            "-d",
+            str(into),
+            *(pinned(n) for n in BUNDLED),
+        ],
+        check=True,
+    )
+    return sorted(into.glob("*.whl"))
+
 
 def blender_ext_tool() -> Path:
     """Path of blender_ext.py inside the installed bpy package (found without importing bpy)."""
@@ -54,13 +95,15 @@ def main() -> None:
     )
     (stage / "wheels").mkdir()
     shutil.copy2(wheel, stage / "wheels" / wheel.name)
+    bundled = download_wheels(stage / "wheels")
     examples = ROOT / "examples"
     if examples.is_dir():
         shutil.copytree(examples, stage / "examples", ignore=shutil.ignore_patterns("*.py", "__pycache__"))
 
     manifest = stage / "blender_manifest.toml"
     text = manifest.read_text()
-    text, n = re.subn(r"(?m)^wheels\s*=\s*\[.*?\]", f'wheels = ["./wheels/{wheel.name}"]', text)
+    listed = ", ".join(f'"./wheels/{w.name}"' for w in bundled)
+    text, n = re.subn(r"(?m)^wheels\s*=\s*\[.*?\]", f"wheels = [{listed}]", text)
     if n != 1:
         sys.exit("build_extension: blender_manifest.toml needs one `wheels = [...]` line")
     manifest.write_text(text)
