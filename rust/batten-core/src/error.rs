@@ -4,7 +4,6 @@
 use thiserror::Error;
 
 use crate::curve::CurveError;
-use crate::export::ExportError;
 use crate::fair::FairError;
 use crate::hydro::HydroError;
 use crate::patch::PatchError;
@@ -67,10 +66,6 @@ pub enum Error {
     /// below the keel or over the top, a hole under water).
     #[error("hydrostatics: {0}")]
     Hydro(#[from] HydroError),
-    /// A CAD export that cannot give a faithful file (holes in the surface, a patch that
-    /// cannot be approximated within the tolerance).
-    #[error("export: {0}")]
-    Export(#[from] ExportError),
 }
 
 impl From<InvalidTolerance> for Error {

@@ -11,7 +11,7 @@
 //! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
 //! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
 //! | [`Error::Hydro`] (other than [`HydroError::InvalidInput`], an `InvalidArgumentError`) | `HydrostaticsError` |
-//! | [`Error::Export`] | `ExportError` |
+//! | [`ExportError`](batten_core::ExportError) (its own type: the export sits above the hull, which uses [`Error`]) | `ExportError`, `InvalidArgumentError` for a bad tolerance |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -47,10 +47,15 @@ pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
         | Error::InvalidInput(_)
         | Error::Hydro(HydroError::InvalidInput(_)) => InvalidArgumentError::new_err(message),
         Error::Hydro(_) => HydrostaticsError::new_err(message),
-        Error::Export(batten_core::ExportError::Tolerance(_)) => {
-            InvalidArgumentError::new_err(message)
-        }
-        Error::Export(_) => ExportError::new_err(message),
+    }
+}
+
+/// An export error as `ExportError` (a bad tolerance as `InvalidArgumentError`).
+pub(crate) fn export_err(err: batten_core::ExportError) -> PyErr {
+    let message = format!("export: {err}");
+    match err {
+        batten_core::ExportError::Tolerance(_) => InvalidArgumentError::new_err(message),
+        _ => ExportError::new_err(message),
     }
 }
 

@@ -10,7 +10,7 @@ use numpy::{PyArray1, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{arg_err, core_err, guard};
+use crate::errors::{arg_err, export_err, guard};
 use crate::hull_model::HullModel;
 
 /// The faces of `model` within `tolerance` (the GIL released by the caller).
@@ -19,7 +19,7 @@ fn faces(model: &HullModel, tolerance: f64, allow_holes: bool) -> PyResult<CadSu
         tolerance,
         allow_holes,
     };
-    cad_surface(model.surface(), &options).map_err(core_err)
+    cad_surface(model.surface(), &options).map_err(export_err)
 }
 
 /// What an export measured: faces, patches, control_points, max_deviation (m), tolerance (m).
