@@ -36,6 +36,9 @@ def test_operators_keep_no_state_and_support_undo(tmp_path, examples_dir):
     assert {n for n, cls in ops.items() if "UNDO" not in cls.bl_options} == {
         "export_network",
         "export_hydrostatics",
+        "export_iges",
+        "export_step",
+        "export_3dm",
     }
     # No hidden state: two scenes with their own hulls and settings, built alternately; each
     # build follows its own scene's data alone (a setting or source kept in Python from the

@@ -14,6 +14,7 @@ class _CadExport(BattenOperator, ExportHelper):
     """The shared body: the hull's surface written by ``api.<export>`` within ``tolerance``."""
 
     export = ""
+    bl_options = {"REGISTER"}
     tolerance: FloatProperty(
         name="Tolerance",
         description="Largest deviation of the exported faces from batten's surface",
