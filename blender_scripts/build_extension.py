@@ -22,10 +22,15 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 #: The packages the add-on needs beside batten_native, bundled as wheels: ezdxf (writes the
-#: lines plan's DXF) and its dependencies (numpy is Blender's own).
-BUNDLED = ("ezdxf", "fonttools", "pyparsing", "typing_extensions")
-#: Blender 5.0's Python and the extension's platform (blender_manifest.toml ``platforms``).
-WHEEL_TAGS = ("--python-version", "3.11", "--implementation", "cp", "--platform", "manylinux2014_x86_64")
+#: lines plan's DXF) and its dependencies (numpy is Blender's own), rhino3dm (writes .3dm).
+BUNDLED = ("ezdxf", "fonttools", "pyparsing", "typing_extensions", "rhino3dm")
+#: Blender 5.0's Python and the extension's platform (blender_manifest.toml ``platforms``):
+#: CPython 3.11 on linux-x64, as any of the manylinux tags its glibc takes.
+PLATFORMS = ("manylinux_2_28_x86_64", "manylinux_2_17_x86_64", "manylinux2014_x86_64")
+WHEEL_TAGS = (
+    "--python-version", "3.11", "--implementation", "cp",
+    *(arg for p in PLATFORMS for arg in ("--platform", p)),
+)  # fmt: skip
 
 
 def pins(names) -> list[str]:

@@ -37,6 +37,9 @@ def test_operators_keep_no_state_and_support_undo(tmp_path, examples_dir):
         "export_network",
         "export_hydrostatics",
         "export_lines_plan",
+        "export_iges",
+        "export_step",
+        "export_3dm",
     }
     # No hidden state: two scenes with their own hulls and settings, built alternately; each
     # build follows its own scene's data alone (a setting or source kept in Python from the

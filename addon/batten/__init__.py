@@ -4,7 +4,7 @@ The add-on is a thin front end: geometry runs in the Rust module ``batten_native
 scripting API is :mod:`batten.api`; operators and panels only call it. Importing the package
 needs no Blender (its Blender modules load in :func:`register`), so the bpy-free modules
 (:mod:`batten.fit_data`, :mod:`batten.object_names`, :mod:`batten.network_markers`,
-:mod:`batten.atomic_write`, :mod:`batten.hydro_table`, :mod:`batten.chart`,
+:mod:`batten.atomic_write`, :mod:`batten.cad_export`, :mod:`batten.hydro_table`, :mod:`batten.chart`,
 :mod:`batten.waterplane_outline`, the lines plan's :mod:`batten.lines_plan`, :mod:`batten.drawing`
 and its writers) can be used and tested without it.
 """
@@ -12,9 +12,9 @@ and its writers) can be used and tested without it.
 
 def _modules():
     """The Blender modules, in registration order."""
-    from . import hydro_operators, live, operators, overlay, panels, properties
+    from . import cad_operators, hydro_operators, live, operators, overlay, panels, properties
 
-    return (properties, operators, hydro_operators, panels, overlay, live)
+    return (properties, operators, cad_operators, hydro_operators, panels, overlay, live)
 
 
 def register():

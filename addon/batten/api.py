@@ -26,6 +26,7 @@ import numpy as np
 from batten_native import (
     DEFAULT_CORNER_ANGLE_DEG,
     DEFAULT_CUT_TOLERANCE,
+    DEFAULT_EXPORT_TOLERANCE,
     DEFAULT_FAIR_DEGREE,
     DEFAULT_FAIR_TOLERANCE,
     DEFAULT_RESOLUTION,
@@ -38,6 +39,7 @@ from batten_native import (
     BattenError,
     Curve,
     CurveError,
+    ExportError,
     FairError,
     HydrostaticsError,
     InternalError,
@@ -57,7 +59,7 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
-from . import hull_models, sections_draw
+from . import cad_export, hull_models, sections_draw
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
@@ -96,7 +98,12 @@ __all__ = [
     "curvature_comb",
     "curve_objects",
     "example_files",
+    "DEFAULT_EXPORT_TOLERANCE",
+    "ExportError",
+    "export_3dm",
+    "export_iges",
     "export_network",
+    "export_step",
     "fair_curve",
     "fair_curves",
     "fairness",
@@ -1117,3 +1124,48 @@ def lines_plan_scene(source, **options):
 
     drawing = lines_plan_drawing(source, collection=True, **options)
     return sheet_scene(drawing, existing(_source_name(source)))
+
+
+# --- CAD exports --------------------------------------------------------------------------------
+
+
+def _export(source, path, fmt: str, tolerance: float, allow_holes: bool) -> Path:
+    model = _hull_model(source)
+    name = _source_name(source)
+    if fmt == "3dm":
+        return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
+    return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+
+
+def export_iges(
+    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+) -> Path:
+    """Write the hull surface of ``source`` (as :func:`build` makes it, with the last build's
+    settings) to ``path`` as IGES 5.3: every patch approximated by bicubic B-spline surfaces
+    (entity 128, with their parameter ranges; an N-sided patch as N quads) within
+    ``tolerance`` m of batten's surface, neighbours meeting on the same curves, in metres.
+
+    A surface whose build found holes (``hole``, ``face_not_patched`` or ``near_miss``
+    warnings) raises ExportError saying so, unless ``allow_holes`` (then what exists is
+    written). The file is written whole or not at all (ExportError naming it when it cannot
+    be). Returns the path.
+    """
+    return _export(source, path, "iges", tolerance, allow_holes)
+
+
+def export_step(
+    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+) -> Path:
+    """Write the hull surface of ``source`` to ``path`` as STEP AP214: one open shell of
+    B-spline faces (``ADVANCED_FACE`` on ``B_SPLINE_SURFACE_WITH_KNOTS``, bounded by their
+    B-spline edge curves), in metres; the faces, holes and errors as :func:`export_iges`."""
+    return _export(source, path, "step", tolerance, allow_holes)
+
+
+def export_3dm(
+    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+) -> Path:
+    """Write the hull surface of ``source`` to ``path`` as a Rhino ``.3dm`` (rhino3dm): one
+    NurbsSurface object per face, in metres; the faces, holes and errors as
+    :func:`export_iges`."""
+    return _export(source, path, "3dm", tolerance, allow_holes)

@@ -11,6 +11,7 @@ mod curve;
 mod defaults;
 mod diagnostic;
 mod error;
+mod export;
 mod fair;
 mod hull;
 mod hydro;
@@ -32,6 +33,11 @@ pub use defaults::{
 };
 pub use diagnostic::Diagnostic;
 pub use error::Error;
+pub use export::{
+    cad_surface, iges_text, step_text, BsplineSurface, CadFace, CadHeader, CadSurface, ExportError,
+    ExportOptions, Timestamp, BOUNDARY_SHARE, DEFAULT_EXPORT_TOLERANCE, EXPORT_DEGREE, FACE_SHARE,
+    KNOT_MERGE, MAX_CURVE_SPANS, MAX_SURFACE_CELLS, MAX_SURFACE_SPANS,
+};
 pub use fair::{
     corner_indices, fair_points, fairness_metrics, FairError, FairOptions, FairReport, FairedCurve,
     FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,

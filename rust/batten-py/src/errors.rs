@@ -11,6 +11,7 @@
 //! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
 //! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
 //! | [`Error::Hydro`] (other than [`HydroError::InvalidInput`], an `InvalidArgumentError`) | `HydrostaticsError` |
+//! | [`ExportError`](batten_core::ExportError) (its own type: the export sits above the hull, which uses [`Error`]) | `ExportError`, `InvalidArgumentError` for a bad tolerance |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -26,6 +27,7 @@ pyo3::import_exception!(batten_native._errors, NoSurfaceError);
 pyo3::import_exception!(batten_native._errors, InvalidArgumentError);
 pyo3::import_exception!(batten_native._errors, HydrostaticsError);
 pyo3::import_exception!(batten_native._errors, InternalError);
+pyo3::import_exception!(batten_native._errors, ExportError);
 
 /// A core error as the `BattenError` subclass of its kind, with the core's message (which names
 /// the curve).
@@ -45,6 +47,15 @@ pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
         | Error::InvalidInput(_)
         | Error::Hydro(HydroError::InvalidInput(_)) => InvalidArgumentError::new_err(message),
         Error::Hydro(_) => HydrostaticsError::new_err(message),
+    }
+}
+
+/// An export error as `ExportError` (a bad tolerance as `InvalidArgumentError`).
+pub(crate) fn export_err(err: batten_core::ExportError) -> PyErr {
+    let message = format!("export: {err}");
+    match err {
+        batten_core::ExportError::Tolerance(_) => InvalidArgumentError::new_err(message),
+        _ => ExportError::new_err(message),
     }
 }
 

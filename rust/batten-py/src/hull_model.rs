@@ -37,6 +37,11 @@ impl HullModel {
         }
     }
 
+    /// The surface itself (for the CAD exports).
+    pub(crate) fn surface(&self) -> &HullSurface {
+        &self.surface
+    }
+
     fn geometry(&self, live: bool) -> &PatchHydroModel {
         if live {
             self.live

@@ -11,6 +11,7 @@
 mod args;
 mod curve;
 mod errors;
+mod export;
 mod fair;
 mod hull;
 mod hull_model;
@@ -67,6 +68,12 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
     m.add_class::<hull_model::HullModel>()?;
     m.add("DEFAULT_CUT_TOLERANCE", batten_core::DEFAULT_CUT_TOLERANCE)?;
+    m.add(
+        "DEFAULT_EXPORT_TOLERANCE",
+        batten_core::DEFAULT_EXPORT_TOLERANCE,
+    )?;
+    m.add_function(wrap_pyfunction!(export::cad_text, m)?)?;
+    m.add_function(wrap_pyfunction!(export::cad_faces, m)?)?;
     m.add("SEA_WATER_DENSITY", batten_core::SEA_WATER_DENSITY)?;
     m.add_class::<hydro::MeshHull>()?;
     m.add_function(wrap_pyfunction!(hydro::mesh_hydrostatics, m)?)?;

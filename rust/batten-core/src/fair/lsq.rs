@@ -31,7 +31,7 @@ fn givens(piv: f64, diag: f64) -> (f64, f64, f64) {
 
 impl BandedQr {
     /// An empty (all-zero) system of `n` unknowns and bandwidth `band`.
-    pub(super) fn new(n: usize, band: usize) -> Self {
+    pub(crate) fn new(n: usize, band: usize) -> Self {
         BandedQr {
             n,
             band,
@@ -90,7 +90,7 @@ impl BandedQr {
     /// Entries at columns `>= n` must be zero. As in Dierckx's ordered processing, the
     /// triangle rows the row meets must have no entries beyond its last column (true when rows
     /// come with non-decreasing last columns, as observations in span order do).
-    pub(super) fn add_row(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
+    pub(crate) fn add_row(&mut self, first: usize, h: &mut [f64], rhs: DVec3) {
         // The common widths pass through an array, so that the inlined loop has a constant
         // length and unrolls.
         match h.len() {
@@ -147,7 +147,7 @@ impl BandedQr {
     /// another, for back substitution to multiply rounding up to infinity (a nearly
     /// interpolating spline with a fixed end tangent on noisy data did), and such a system is
     /// numerically singular just the same.
-    pub(super) fn solve(&self) -> Option<Vec<DVec3>> {
+    pub(crate) fn solve(&self) -> Option<Vec<DVec3>> {
         let n = self.n;
         let b = self.band;
         let scale = (0..n).map(|i| self.r[i * b].abs()).fold(0.0, f64::max);

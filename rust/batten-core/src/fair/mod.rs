@@ -25,6 +25,9 @@ mod frame;
 mod knots;
 mod lobes;
 mod lsq;
+
+// The CAD export fits its B-spline control points with the same banded least squares.
+pub(crate) use lsq::BandedQr;
 mod metrics;
 mod param;
 mod piece;

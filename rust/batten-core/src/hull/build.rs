@@ -304,12 +304,13 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
         *p = patched[*p as usize].face as u32;
     }
     let patch_faces = patched.iter().map(|p| p.face).collect();
-    let patches = patched.into_iter().map(|p| p.patch).collect();
+    let (patches, layouts) = patched.into_iter().map(|p| (p.patch, p.layout)).unzip();
     Ok(HullSurface {
         mesh,
         report,
         patches,
         patch_faces,
+        layouts,
         patches_outward,
     })
 }

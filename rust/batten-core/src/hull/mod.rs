@@ -38,7 +38,9 @@ use crate::patch::{Patch, SurfaceMesh};
 use crate::tolerance::Tolerance;
 
 pub use folds::{BOX_SLACK, FOLD_ANGLE_DEGREES};
+// The CAD export fits each shared edge once from the patches' layouts.
 pub use knuckles::{KnuckleEdge, KnuckleSource, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES};
+pub(crate) use patched::{LayoutSegment, PatchLayout};
 pub use report::HullReport;
 pub use warning::{FaceError, Warning, WarningKind};
 
@@ -107,6 +109,9 @@ pub struct HullSurface {
     pub patches: Vec<Patch>,
     /// The topology face of each patch.
     pub patch_faces: Vec<usize>,
+    /// Where the topology's edges went among each patch's sides and segments (in patch
+    /// order): which edges two patches share, for the CAD export.
+    pub(crate) layouts: Vec<PatchLayout>,
     /// Whether `∂P/∂u × ∂P/∂v` of the patches points out of the hull (false when the mesh was
     /// flipped to face away from the centreplane).
     pub patches_outward: bool,

@@ -3,12 +3,13 @@
 Everything here is implemented in Rust (``batten_native._native``); errors are raised as
 subclasses of :class:`BattenError`, a :class:`ValueError` whose message names the curve and the
 problem (``batten_native._errors``: CurveError with ``.curve``, FairError, NetworkFileError,
-NoSurfaceError, InvalidArgumentError, HydrostaticsError, InternalError).
+NoSurfaceError, InvalidArgumentError, HydrostaticsError, ExportError, InternalError).
 """
 
 from ._errors import (
     BattenError,
     CurveError,
+    ExportError,
     FairError,
     HydrostaticsError,
     InternalError,
@@ -19,6 +20,7 @@ from ._errors import (
 from ._native import (
     DEFAULT_CORNER_ANGLE_DEG,
     DEFAULT_CUT_TOLERANCE,
+    DEFAULT_EXPORT_TOLERANCE,
     DEFAULT_FAIR_DEGREE,
     DEFAULT_FAIR_TOLERANCE,
     DEFAULT_RESOLUTION,
@@ -35,6 +37,8 @@ from ._native import (
     __version__,
     build_hull_model,
     build_surface,
+    cad_faces,
+    cad_text,
     check_lengths,
     chines_from_knuckles,
     fair_points,
@@ -51,6 +55,7 @@ from ._native import (
 __all__ = [
     "DEFAULT_CORNER_ANGLE_DEG",
     "DEFAULT_CUT_TOLERANCE",
+    "DEFAULT_EXPORT_TOLERANCE",
     "DEFAULT_FAIR_DEGREE",
     "DEFAULT_FAIR_TOLERANCE",
     "DEFAULT_RESOLUTION",
@@ -62,6 +67,7 @@ __all__ = [
     "SECTION_CAPTURE_FACTOR",
     "BattenError",
     "CurveError",
+    "ExportError",
     "FairError",
     "HydrostaticsError",
     "InternalError",
@@ -73,6 +79,8 @@ __all__ = [
     "__version__",
     "build_hull_model",
     "build_surface",
+    "cad_faces",
+    "cad_text",
     "HullModel",
     "SEA_WATER_DENSITY",
     "check_lengths",

@@ -45,6 +45,11 @@ class HydrostaticsError(BattenError):
     open top, a hole in the surface under water (the message says where), no equilibrium."""
 
 
+class ExportError(BattenError):
+    """A file batten cannot write faithfully: the surface has holes (unless they are allowed),
+    a patch cannot be approximated within the tolerance, or the file cannot be written."""
+
+
 class InternalError(BattenError):
     """A defect of batten (a caught panic of the core); please report it with the curves that caused it."""
 
@@ -52,6 +57,7 @@ class InternalError(BattenError):
 __all__ = [
     "BattenError",
     "CurveError",
+    "ExportError",
     "FairError",
     "HydrostaticsError",
     "InternalError",

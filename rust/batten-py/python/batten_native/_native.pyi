@@ -10,6 +10,7 @@ __all__ = [
     "MeshHull",
     "DEFAULT_CORNER_ANGLE_DEG",
     "DEFAULT_CUT_TOLERANCE",
+    "DEFAULT_EXPORT_TOLERANCE",
     "DEFAULT_FAIR_DEGREE",
     "DEFAULT_FAIR_TOLERANCE",
     "DEFAULT_RESOLUTION",
@@ -23,6 +24,8 @@ __all__ = [
     "_panic_for_tests",
     "build_surface",
     "build_hull_model",
+    "cad_faces",
+    "cad_text",
     "HullModel",
     "SEA_WATER_DENSITY",
     "check_lengths",
@@ -49,6 +52,7 @@ DEFAULT_FAIR_DEGREE: Final[int]
 ROLES: Final[list[str]]
 SECTION_CAPTURE_FACTOR: Final[float]
 DEFAULT_CUT_TOLERANCE: Final[float]
+DEFAULT_EXPORT_TOLERANCE: Final[float]
 
 _F64 = npt.NDArray[np.float64]
 _ArrayLike = npt.ArrayLike
@@ -215,6 +219,19 @@ def build_hull_model(
 ) -> tuple[
     tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict, HullModel
 ]: ...
+def cad_text(
+    model: HullModel,
+    format: str,
+    tolerance: float,
+    allow_holes: bool,
+    name: str,
+    file_name: str,
+    author: str,
+    timestamp: tuple[int, int, int, int, int, int],
+) -> tuple[str, dict]: ...
+def cad_faces(
+    model: HullModel, tolerance: float, allow_holes: bool
+) -> tuple[list[tuple[_F64, _F64, _F64]], dict]: ...
 def build_surface(
     curves: list[Curve],
     tolerance: float = ...,  # DEFAULT_TOLERANCE

@@ -1,0 +1,66 @@
+//! The CAD export on the example hulls: every patch approximated within the tolerance at
+//! points the fit never looked at, neighbouring faces meeting on their shared curves, and the
+//! files well formed.
+
+use batten_core::{
+    build_hull, cad_surface, iges_text, step_text, CadHeader, ExportError, ExportOptions,
+    HullOptions, Network,
+};
+
+fn example(file: &str) -> Network {
+    let path = format!("{}/../../examples/{file}", env!("CARGO_MANIFEST_DIR"));
+    Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network")
+}
+
+/// Wigley and the frigate: one face per quad, every face within half the tolerance at its
+/// check samples (the read-back tests measure the whole tolerance densely), files well formed.
+#[test]
+fn the_examples_export_within_the_tolerance() {
+    for file in ["wigley_lines.json", "frigate_network.json"] {
+        let hull = build_hull(&example(file), &HullOptions::default()).expect("builds");
+        let t = std::time::Instant::now();
+        let cad = cad_surface(&hull, &ExportOptions::default()).expect("exports");
+        let quads: usize = hull
+            .patches
+            .iter()
+            .map(|p| if p.sides() == 4 { 1 } else { p.sides() })
+            .sum();
+        assert_eq!(cad.faces.len(), quads, "{file}: one face per quad");
+        assert!(
+            cad.max_deviation <= 0.5e-4,
+            "{file}: deviation {}",
+            cad.max_deviation
+        );
+        let points: usize = cad.faces.iter().map(|f| f.surface.control.len()).sum();
+        eprintln!(
+            "{file}: {} patches, {} faces, {points} control points, max deviation {:.2e} m, {:.0} ms",
+            cad.patches,
+            cad.faces.len(),
+            cad.max_deviation,
+            t.elapsed().as_secs_f64() * 1e3
+        );
+        let iges = iges_text(&cad, &CadHeader::default());
+        let step = step_text(&cad, &CadHeader::default());
+        assert!(iges.lines().all(|l| l.len() == 80), "{file}: IGES records");
+        assert_eq!(
+            step.matches("ADVANCED_FACE(").count(),
+            cad.faces.len(),
+            "{file}: STEP faces"
+        );
+    }
+}
+
+#[test]
+fn a_bad_tolerance_is_refused() {
+    let hull = build_hull(&example("wigley_lines.json"), &HullOptions::default()).expect("builds");
+    for tol in [0.0, -1.0, f64::NAN] {
+        let options = ExportOptions {
+            tolerance: tol,
+            allow_holes: false,
+        };
+        assert!(
+            matches!(cad_surface(&hull, &options), Err(ExportError::Tolerance(_))),
+            "tolerance {tol} refused"
+        );
+    }
+}

@@ -1,0 +1,143 @@
+"""CAD exports read back: IGES and STEP with OpenCASCADE (OCP), .3dm with rhino3dm. Every face
+is there, batten's surface lies within 0.1 mm of the read faces at its mesh vertices, the
+faces sew into one shell (mirroring closes the centreplane), and the sewn Wigley hull
+(mirrored, cut at the design draft, closed with a lid) has batten's displacement volume
+within 0.01 %."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import batten.api as api
+import numpy as np
+import pytest
+
+rb = pytest.importorskip("cad_readback")
+
+HULLS = Path(__file__).resolve().parents[2] / "shared" / "hulls"
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+TOL = 1e-4  # the export tolerance, 0.1 mm
+
+
+def _quads(coll) -> int:
+    """Faces an export has: one per 4-sided patch, N per N-sided one."""
+    sides = api.build(coll, resolution=1).report["faces_by_sides"]
+    return sum((1 if int(n) == 4 else int(n)) * count for n, count in sides.items())
+
+
+def _samples(coll, resolution: int) -> np.ndarray:
+    """batten's own surface points: the vertices of a build (each on its patch)."""
+    obj = api.build(coll, resolution=resolution).object
+    n = len(obj.data.vertices)
+    co = np.empty(3 * n)
+    obj.data.vertices.foreach_get("co", co)
+    return co.reshape(n, 3)
+
+
+def _draft(coll, points: np.ndarray) -> float:
+    return api.design_draft(coll) or float(0.5 * (points[:, 2].min() + points[:, 2].max()))
+
+
+@pytest.mark.parametrize("example", ["wigley_lines.json", "frigate_network.json"])
+@pytest.mark.parametrize("fmt", ["iges", "step"])
+def test_iges_and_step_read_back_within_the_tolerance(example, fmt, tmp_path):
+    coll = api.load_network(EXAMPLES / example)
+    path = tmp_path / f"hull.{'igs' if fmt == 'iges' else 'stp'}"
+    start = time.perf_counter()
+    assert getattr(api, f"export_{fmt}")(coll, path) == path
+    took = time.perf_counter() - start
+    shape = rb.read_shape(path)
+    faces = rb.faces(shape)
+    assert len(faces) == _quads(coll), "every face read back"
+    # Samples are float32 mesh vertices (rounding about 4e-6 m at 50 m): well inside.
+    points = _samples(coll, 12)
+    deviation = rb.Surfaces.of_faces(faces).distances(points)
+    assert deviation.max() <= TOL, f"batten's surface {deviation.max():.2e} m off the faces"
+    sewn, free = rb.sew(faces, TOL)
+    whole, free_whole = rb.sew([sewn, rb.mirrored(sewn)], TOL)
+    # Mirrored, only the rim (deck, transom) stays free: fewer free edges than the half.
+    assert free_whole < free, f"mirroring closed nothing: {free} → {free_whole} free edges"
+    draft = _draft(coll, points)
+    batten = api.hydrostatics(coll, draft)["volume"]
+    # The frigate's cut hull leaves a free boundary OCCT cannot lid with one plane (not yet
+    # closed here); Wigley's waterline is one planar loop.
+    occt = rb.volume_below(sewn, draft, 1e3, TOL) if example.startswith("wigley") else float("nan")
+    if example.startswith("wigley"):
+        assert occt == pytest.approx(batten, rel=1e-4), "OCCT's volume of the read-back hull"
+    print(
+        f"{example} {fmt}: {len(faces)} faces, {path.stat().st_size} bytes, {took:.2f} s, "
+        f"max deviation {deviation.max():.2e} m, free edges {free} half / {free_whole} mirrored, "
+        f"volume at T={draft:.3f}: OCCT {occt:.4f} batten {batten:.4f} ({occt / batten - 1:+.1e})"
+    )
+
+
+@pytest.mark.parametrize("example", ["wigley_lines.json", "frigate_network.json"])
+def test_3dm_reads_back_with_rhino3dm_within_the_tolerance(example, tmp_path):
+    import rhino3dm
+
+    coll = api.load_network(EXAMPLES / example)
+    path = api.export_3dm(coll, tmp_path / "hull.3dm")
+    surfaces = rb.rhino_surfaces(path)
+    assert len(surfaces) == _quads(coll), "every face read back"
+    assert rhino3dm.File3dm.Read(str(path)).Settings.ModelUnitSystem == rhino3dm.UnitSystem.Meters
+    # The read-back control nets evaluated against the same faces written as IGES.
+    igs = api.export_iges(coll, tmp_path / "hull.igs")
+    faces = rb.Surfaces.of_faces(rb.faces(rb.read_shape(igs)))
+    pts = []
+    for s in surfaces:
+        assert s.IsValid, "a valid NurbsSurface"
+        (u0, u1), (v0, v1) = (s.Domain(0).T0, s.Domain(0).T1), (s.Domain(1).T0, s.Domain(1).T1)
+        for u in np.linspace(u0, u1, 7):
+            for v in np.linspace(v0, v1, 7):
+                p = s.PointAt(u, v)
+                pts.append((p.X, p.Y, p.Z))
+    gap = faces.distances(np.array(pts))
+    assert gap.max() <= 1e-9, f"the .3dm faces are the IGES faces (off by {gap.max():.1e} m)"
+    deviation = rb.Surfaces.of_faces(rb.faces(rb.read_shape(igs))).distances(_samples(coll, 8))
+    assert deviation.max() <= TOL, f"{deviation.max():.2e} m"
+
+
+def test_kcs_fold_is_refused_by_name():
+    """KCS at the default settings: batten's own surface folds (the build's fold warnings,
+    a triangle at the forefoot turning 180°), which no smooth face within 0.1 mm follows; the
+    export says which face instead of writing a wrong file."""
+    coll, _ = api.import_sections(HULLS / "kcs" / "network.json")
+    report = api.build(coll).report
+    folded = [w for w in report["warnings"] if w["kind"] == "fold" and w["message"].startswith("face 70 ")]
+    assert folded, "the build reports face 70 folding"
+    with pytest.raises(api.ExportError, match="face 70"):
+        api.export_step(coll, Path("/nonexistent-never-written.stp"))
+
+
+def test_an_unwritable_path_is_a_clear_error_and_leaves_no_file(tmp_path):
+    coll = api.load_network(EXAMPLES / "wigley_lines.json")
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder")
+    for export in (api.export_iges, api.export_step, api.export_3dm):
+        with pytest.raises(api.ExportError, match="cannot be written"):
+            export(coll, blocker / "hull.out")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"], "no partial or temporary file"
+    # A folder in the way of the file itself: the temporary file is removed again.
+    (tmp_path / "taken.igs").mkdir()
+    with pytest.raises(api.ExportError, match="cannot be written"):
+        api.export_iges(coll, tmp_path / "taken.igs")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file", "taken.igs"]
+
+
+def test_a_bad_tolerance_is_an_invalid_argument(tmp_path):
+    coll = api.load_network(EXAMPLES / "wigley_lines.json")
+    with pytest.raises(api.InvalidArgumentError, match="tolerance"):
+        api.export_iges(coll, tmp_path / "x.igs", tolerance=0.0)
+    assert not (tmp_path / "x.igs").exists()
+
+
+def test_the_export_operator_writes_what_the_api_writes(tmp_path):
+    import bpy
+
+    coll = api.load_network(EXAMPLES / "wigley_lines.json")
+    bpy.context.scene.batten.source = coll
+    path = tmp_path / "op.stp"
+    assert bpy.ops.batten.export_step(filepath=str(path)) == {"FINISHED"}
+    faces = rb.faces(rb.read_shape(path))
+    assert len(faces) == _quads(coll), "the operator's file has every face"
