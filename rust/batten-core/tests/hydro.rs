@@ -5,10 +5,10 @@
 
 use batten_core::{
     build_hull, default_datums, float_to, hydrostatics, sectional_areas, CellDensity, Datums,
-    Flotation, HullGeometry, HullOptions, HydroError, Hydrostatics, Network, NetworkCurve,
-    NurbsCurve, PatchHydroModel, Role,
+    Flotation, HullGeometry, HullOptions, HydroError, Hydrostatics, Network, PatchHydroModel,
 };
-use glam::DVec3;
+mod common;
+use common::{box_barge, BB, BD, BL};
 
 const L: f64 = 100.0;
 const B: f64 = 10.0;
@@ -147,80 +147,6 @@ fn integration_converges_to_1e_9_on_the_wigley_hull_and_the_frigate() {
             }
         }
     }
-}
-
-fn line(a: [f64; 3], b: [f64; 3]) -> NurbsCurve {
-    NurbsCurve::try_new(
-        1,
-        vec![0., 0., 1., 1.],
-        vec![DVec3::from(a), DVec3::from(b)],
-        None,
-    )
-    .expect("line")
-}
-
-fn polyline(pts: &[[f64; 3]]) -> NurbsCurve {
-    let n = pts.len();
-    let mut knots = vec![0.0, 0.0];
-    for k in 1..n - 1 {
-        knots.push(k as f64);
-    }
-    knots.extend([(n - 1) as f64, (n - 1) as f64]);
-    NurbsCurve::try_new(
-        1,
-        knots,
-        pts.iter().map(|p| DVec3::from(*p)).collect(),
-        None,
-    )
-    .expect("polyline")
-}
-
-fn nc(name: &str, role: Role, curve: NurbsCurve) -> NetworkCurve {
-    NetworkCurve {
-        name: name.into(),
-        role,
-        curve,
-    }
-}
-
-const BL: f64 = 40.0;
-const BB: f64 = 8.0;
-const BD: f64 = 5.0;
-
-/// The port half of a box barge `BL × BB × BD`, open at both ends (its end stations are the
-/// outlines of two flat, open transoms); with `aft_keel` false the keel starts at midships, so
-/// the aft half of the bottom is a hole.
-fn box_barge(aft_keel: bool) -> Network {
-    let b = BB / 2.0;
-    let mut c = vec![
-        nc("chine", Role::Knuckle, line([0., b, 0.], [BL, b, 0.])),
-        nc("deck", Role::Deck, line([0., b, BD], [BL, b, BD])),
-        nc(
-            "st aft",
-            Role::Transom,
-            polyline(&[[0., 0., 0.], [0., b, 0.], [0., b, BD]]),
-        ),
-        nc(
-            "st mid",
-            Role::Free,
-            polyline(&[[BL / 2., 0., 0.], [BL / 2., b, 0.], [BL / 2., b, BD]]),
-        ),
-        nc(
-            "st fwd",
-            Role::Free,
-            polyline(&[[BL, 0., 0.], [BL, b, 0.], [BL, b, BD]]),
-        ),
-    ];
-    c.push(nc(
-        "keel",
-        Role::Keel,
-        if aft_keel {
-            line([0., 0., 0.], [BL, 0., 0.])
-        } else {
-            line([BL / 2., 0., 0.], [BL, 0., 0.])
-        },
-    ));
-    Network::try_new("box", c).expect("names")
 }
 
 fn box_datums() -> Datums {

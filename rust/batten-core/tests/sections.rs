@@ -3,10 +3,13 @@
 //! curves within the tolerance with their corners, and bad input.
 
 use batten_core::{
-    build_hull, Error, HullOptions, HullSurface, Network, NetworkCurve, NurbsCurve, Role,
-    SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,
+    build_hull, Error, HullOptions, HullSurface, Network, SectionModel, SectionPlane,
+    SectionPolyline, DEFAULT_CUT_TOLERANCE,
 };
 use glam::DVec3;
+
+mod common;
+use common::box_barge;
 
 const L: f64 = 100.0;
 const B: f64 = 10.0;
@@ -29,63 +32,9 @@ fn wigley_y(x: f64, z: f64) -> f64 {
     0.5 * B * (1.0 - (2.0 * x / L).powi(2)) * (1.0 - w * w)
 }
 
-fn line(a: [f64; 3], b: [f64; 3]) -> NurbsCurve {
-    NurbsCurve::try_new(
-        1,
-        vec![0., 0., 1., 1.],
-        vec![DVec3::from(a), DVec3::from(b)],
-        None,
-    )
-    .expect("line")
-}
-
-fn polyline(pts: &[[f64; 3]]) -> NurbsCurve {
-    let n = pts.len();
-    let mut knots = vec![0.0, 0.0];
-    knots.extend((1..n - 1).map(|k| k as f64));
-    knots.extend([(n - 1) as f64, (n - 1) as f64]);
-    NurbsCurve::try_new(
-        1,
-        knots,
-        pts.iter().map(|p| DVec3::from(*p)).collect(),
-        None,
-    )
-    .expect("polyline")
-}
-
-fn nc(name: &str, role: Role, curve: NurbsCurve) -> NetworkCurve {
-    NetworkCurve {
-        name: name.into(),
-        role,
-        curve,
-    }
-}
-
 /// The port half of a box barge 40 × 8 × 5 m with a chine (knuckle) along the bilge.
-fn box_barge() -> HullSurface {
-    let b = 4.0;
-    let c = vec![
-        nc("chine", Role::Knuckle, line([0., b, 0.], [40., b, 0.])),
-        nc("deck", Role::Deck, line([0., b, 5.], [40., b, 5.])),
-        nc(
-            "st aft",
-            Role::Transom,
-            polyline(&[[0., 0., 0.], [0., b, 0.], [0., b, 5.]]),
-        ),
-        nc(
-            "st mid",
-            Role::Free,
-            polyline(&[[20., 0., 0.], [20., b, 0.], [20., b, 5.]]),
-        ),
-        nc(
-            "st fwd",
-            Role::Free,
-            polyline(&[[40., 0., 0.], [40., b, 0.], [40., b, 5.]]),
-        ),
-        nc("keel", Role::Keel, line([0., 0., 0.], [40., 0., 0.])),
-    ];
-    let net = Network::try_new("box", c).expect("names");
-    build_hull(&net, &HullOptions::default()).expect("builds")
+fn box_barge_hull() -> HullSurface {
+    build_hull(&box_barge(true), &HullOptions::default()).expect("builds")
 }
 
 /// The only polyline of a section.
@@ -190,7 +139,7 @@ fn wigley_diagonal_points_are_on_their_plane_and_the_hull() {
 
 #[test]
 fn box_barge_sections_are_exact_with_a_corner_at_the_chine() {
-    let hull = box_barge();
+    let hull = box_barge_hull();
     let model = SectionModel::new(&hull);
     let s = single(&model, SectionPlane::station(13.0).expect("plane"));
     assert_eq!(
@@ -253,7 +202,7 @@ fn box_barge_sections_are_exact_with_a_corner_at_the_chine() {
 #[test]
 fn a_drawn_station_is_cut_once() {
     // x = 20 holds the drawn midship station, a patch edge: its section is not doubled.
-    let model = SectionModel::new(&box_barge());
+    let model = SectionModel::new(&box_barge_hull());
     let s = single(&model, SectionPlane::station(20.0).expect("plane"));
     let length: f64 = s.points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
     assert!(
@@ -264,7 +213,7 @@ fn a_drawn_station_is_cut_once() {
 
 #[test]
 fn planes_missing_the_hull_give_nothing_and_bad_input_is_refused() {
-    let model = SectionModel::new(&box_barge());
+    let model = SectionModel::new(&box_barge_hull());
     for plane in [
         SectionPlane::station(-1.0),
         SectionPlane::station(41.0),

@@ -4,7 +4,7 @@
 
 pub(crate) mod fuzz;
 
-use batten_core::{KnotLayout, NurbsCurve};
+use batten_core::{KnotLayout, Network, NetworkCurve, NurbsCurve, Role};
 use glam::DVec3;
 
 /// Assert two f64 or DVec3 values differ by at most `tol` (Euclidean for vectors).
@@ -86,4 +86,81 @@ pub(crate) fn proptest_config(cases: u32) -> proptest::test_runner::Config {
         )),
         ..proptest::test_runner::Config::default()
     }
+}
+
+/// The straight line from `a` to `b` (degree 1).
+pub(crate) fn line(a: [f64; 3], b: [f64; 3]) -> NurbsCurve {
+    NurbsCurve::try_new(
+        1,
+        vec![0., 0., 1., 1.],
+        vec![DVec3::from(a), DVec3::from(b)],
+        None,
+    )
+    .expect("line")
+}
+
+/// The polyline through `pts` (degree 1, a knot per point).
+pub(crate) fn polyline(pts: &[[f64; 3]]) -> NurbsCurve {
+    let n = pts.len();
+    let mut knots = vec![0.0, 0.0];
+    for k in 1..n - 1 {
+        knots.push(k as f64);
+    }
+    knots.extend([(n - 1) as f64, (n - 1) as f64]);
+    NurbsCurve::try_new(
+        1,
+        knots,
+        pts.iter().map(|p| DVec3::from(*p)).collect(),
+        None,
+    )
+    .expect("polyline")
+}
+
+/// A network curve named `name` with `role`.
+pub(crate) fn nc(name: &str, role: Role, curve: NurbsCurve) -> NetworkCurve {
+    NetworkCurve {
+        name: name.into(),
+        role,
+        curve,
+    }
+}
+
+pub(crate) const BL: f64 = 40.0;
+pub(crate) const BB: f64 = 8.0;
+pub(crate) const BD: f64 = 5.0;
+
+/// The port half of a box barge `BL × BB × BD`, open at both ends (its end stations are the
+/// outlines of two flat, open transoms); with `aft_keel` false the keel starts at midships, so
+/// the aft half of the bottom is a hole.
+pub(crate) fn box_barge(aft_keel: bool) -> Network {
+    let b = BB / 2.0;
+    let mut c = vec![
+        nc("chine", Role::Knuckle, line([0., b, 0.], [BL, b, 0.])),
+        nc("deck", Role::Deck, line([0., b, BD], [BL, b, BD])),
+        nc(
+            "st aft",
+            Role::Transom,
+            polyline(&[[0., 0., 0.], [0., b, 0.], [0., b, BD]]),
+        ),
+        nc(
+            "st mid",
+            Role::Free,
+            polyline(&[[BL / 2., 0., 0.], [BL / 2., b, 0.], [BL / 2., b, BD]]),
+        ),
+        nc(
+            "st fwd",
+            Role::Free,
+            polyline(&[[BL, 0., 0.], [BL, b, 0.], [BL, b, BD]]),
+        ),
+    ];
+    c.push(nc(
+        "keel",
+        Role::Keel,
+        if aft_keel {
+            line([0., 0., 0.], [BL, 0., 0.])
+        } else {
+            line([BL / 2., 0., 0.], [BL, 0., 0.])
+        },
+    ));
+    Network::try_new("box", c).expect("names")
 }
