@@ -2,6 +2,8 @@
 //! the face's boundary and ribbons, and evaluation by the Gregory (4 sides) or Charrot–Gregory
 //! (N sides) scheme.
 
+use std::sync::Arc;
+
 use glam::{DVec2, DVec3};
 
 use super::boundary::{prepare_boundary, FaceBoundary, PreparedSide, SideParam};
@@ -53,15 +55,16 @@ const DERIV_STEP: f64 = 1e-6;
 /// of the face's boundary curves and tangent ribbons (H-rep paper §3.2.1–3.2.2).
 ///
 /// Evaluation allocates nothing and is `Sync`: patches of a network can be evaluated in
-/// parallel.
+/// parallel. A clone shares the patch's data (the live rebuild keeps the patches of faces
+/// that did not move).
 #[derive(Clone, Debug)]
 pub struct Patch {
     kind: PatchKind,
     domain: Domain,
-    sides: Vec<PreparedSide>,
-    ribbons: Vec<PreparedRibbon>,
-    corners: Vec<CornerData>,
-    warnings: Vec<PatchWarning>,
+    sides: Arc<[PreparedSide]>,
+    ribbons: Arc<[PreparedRibbon]>,
+    corners: Arc<[CornerData]>,
+    warnings: Arc<[PatchWarning]>,
 }
 
 impl Patch {
@@ -104,10 +107,10 @@ impl Patch {
         Ok(Patch {
             kind,
             domain: Domain::new(n),
-            sides,
-            ribbons: ribs,
-            corners,
-            warnings,
+            sides: sides.into(),
+            ribbons: ribs.into(),
+            corners: corners.into(),
+            warnings: warnings.into(),
         })
     }
 

@@ -113,7 +113,9 @@ impl Interior {
 }
 
 /// One face's mesh before welding: the first `boundary` vertices lie on the face boundary.
-struct FaceMesh {
+/// Kept per face by the hull's live rebuild, which meshes again only the faces that moved.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct FaceMesh {
     positions: Vec<DVec3>,
     boundary: usize,
     faces: Vec<u32>,
@@ -135,7 +137,7 @@ impl Patch {
     }
 
     /// The vertices [`Patch::face_mesh`] makes at resolution `r`, counted without meshing.
-    fn mesh_vertex_count(&self, r: usize) -> usize {
+    pub(crate) fn mesh_vertex_count(&self, r: usize) -> usize {
         let counts = self.side_counts(r);
         let boundary = counts.iter().fold(0usize, |a, &c| a.saturating_add(c));
         boundary.saturating_add(Interior::of(&counts).vertices(counts.len()))
@@ -175,7 +177,8 @@ impl Patch {
         }
     }
 
-    fn face_mesh(&self, r: usize) -> FaceMesh {
+    /// This patch's own mesh at resolution `r`, before welding ([`weld_face_meshes`]).
+    pub(crate) fn face_mesh(&self, r: usize) -> FaceMesh {
         let n = self.sides();
         let BoundaryRing {
             points: mut positions,
@@ -355,11 +358,32 @@ pub fn tessellate_patches<P: Borrow<Patch> + Sync>(
         total,
         "the vertex count is the meshes' own"
     );
+    Ok(weld_face_meshes(&meshes))
+}
+
+impl FaceMesh {
+    /// True when every vertex of the mesh is finite.
+    pub(crate) fn is_finite(&self) -> bool {
+        self.positions.iter().all(|p| p.is_finite())
+    }
+
+    /// Its number of vertices (before welding).
+    pub(crate) fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+}
+
+/// The faces' meshes welded into one, in order (face `k` of the result's `face_patch` is the
+/// index of its mesh in `meshes`): boundary vertices that are bitwise identical (shared
+/// segments and shared node positions) become one vertex.
+pub(crate) fn weld_face_meshes<M: Borrow<FaceMesh>>(meshes: &[M]) -> SurfaceMesh {
+    let total = meshes.iter().map(|m| m.borrow().positions.len()).sum();
     let mut out = SurfaceMesh::default();
     out.positions.reserve(total);
     let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
     let mut local = Vec::new();
     for (pid, m) in meshes.iter().enumerate() {
+        let m = m.borrow();
         local.clear();
         for (q, p) in m.positions.iter().enumerate() {
             let key = p.to_array().map(f64::to_bits);
@@ -380,5 +404,5 @@ pub fn tessellate_patches<P: Borrow<Patch> + Sync>(
         out.face_patch
             .extend(std::iter::repeat_n(pid as u32, m.sizes.len()));
     }
-    Ok(out)
+    out
 }
