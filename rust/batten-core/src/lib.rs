@@ -45,7 +45,7 @@ pub use fair::{
 };
 pub use hull::{
     build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
-    Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES, KNUCKLE_EDGE_SAMPLES,
+    LiveHull, Rebuild, Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES, KNUCKLE_EDGE_SAMPLES,
     KNUCKLE_POINT_ANGLE_DEGREES,
 };
 pub use hydro::{

@@ -1,23 +1,23 @@
 //! The pipeline of [`build_hull`](super::build_hull): faces of the topology to patch boundaries
 //! and ribbons (H-rep paper §3.2), patches, tessellation and orientation.
 
-use std::collections::BTreeSet;
+use std::sync::Arc;
 
 use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
-use super::knuckles::{knuckle_edges, Knuckle};
+use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings};
 use super::ribbons::{one_sided_normal, shared_normal};
 use super::warning::{FaceError, Warning, WarningKind};
-use super::{HullOptions, HullSurface};
+use super::{HullOptions, HullReport, HullSurface};
 use crate::error::Error;
 use crate::network::Network;
 use crate::patch::{
-    tessellate_patches, EdgeNormal, FaceBoundary, Patch, PatchKind, PatchOptions, PatchWarning,
-    Side, SideParam, SideRibbon, SurfaceMesh, MAX_SIDES,
+    weld_face_meshes, EdgeNormal, FaceBoundary, FaceMesh, Patch, PatchError, PatchKind,
+    PatchOptions, PatchWarning, Side, SideParam, SideRibbon, SurfaceMesh, MAX_SIDES,
 };
 use crate::topo::{TopoFace, Topology};
 
@@ -146,20 +146,6 @@ fn patch_warning(topology: &Topology, fi: usize, label: &str, w: &PatchWarning) 
     face_warning(topology, fi, kind, format!("{label}: {w}"), None)
 }
 
-/// Faces of the mesh touching a non-finite vertex, as patch indices.
-fn non_finite_patches(mesh: &SurfaceMesh) -> BTreeSet<usize> {
-    let mut bad = BTreeSet::new();
-    for (f, vs) in mesh.faces().enumerate() {
-        if vs
-            .iter()
-            .any(|&v| !mesh.positions[v as usize].iter().all(|c| c.is_finite()))
-        {
-            bad.insert(mesh.face_patch[f] as usize);
-        }
-    }
-    bad
-}
-
 /// Reverse every face of the mesh (first vertex kept).
 fn flip(mesh: &mut SurfaceMesh) {
     let mut start = 0;
@@ -170,12 +156,48 @@ fn flip(mesh: &mut SurfaceMesh) {
     }
 }
 
-/// The pipeline of [`build_hull`](super::build_hull), step by step (see there).
-pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurface, Error> {
-    options.check()?;
+/// What one face of the topology became.
+#[derive(Clone, Debug)]
+#[allow(
+    clippy::large_enum_variant,
+    reason = "always held in an Arc (Stages::faces): the small variants waste no memory per face"
+)]
+pub(crate) enum FaceOutcome {
+    /// A patch, where its edges went, and the patch's own mesh (before welding).
+    Built {
+        patch: Patch,
+        layout: PatchLayout,
+        mesh: FaceMesh,
+    },
+    /// No patch: why.
+    Failed(FaceError),
+    /// A patch whose surface has non-finite points: dropped.
+    NonFinite,
+}
+
+/// Everything a build computes on its way to the mesh, per edge and per face: what
+/// [`LiveHull`](super::LiveHull) keeps so that a rebuild computes again only what a moved
+/// curve reaches.
+#[derive(Clone, Debug)]
+pub(crate) struct Stages {
+    pub(crate) topology: Topology,
+    pub(crate) edges: FaceEdges,
+    /// The corner points of every curve.
+    pub(crate) corners: Vec<Vec<DVec3>>,
+    pub(crate) knuckle: Vec<Option<Knuckle>>,
+    /// The shared normal field of every smooth edge.
+    pub(crate) shared: Vec<Option<EdgeNormal>>,
+    /// Per edge: the warning that its crossing curves gave no ribbon.
+    pub(crate) edge_warnings: Vec<Option<Warning>>,
+    /// Per topology face (shared with the stages it was kept from).
+    pub(crate) faces: Vec<Arc<FaceOutcome>>,
+}
+
+/// The topology of `network`, refused with [`Error::NoSurface`] when it has no faces.
+fn faced_topology(network: &Network, options: &HullOptions) -> Result<Topology, Error> {
     let topology = Topology::build(network, options.tolerance)?;
-    let mut warnings: Vec<Warning> = topology.diagnostics.iter().map(Warning::from).collect();
     if topology.faces.is_empty() {
+        let warnings: Vec<Warning> = topology.diagnostics.iter().map(Warning::from).collect();
         let why = if warnings.is_empty() {
             "the curves enclose no region".to_string()
         } else {
@@ -186,133 +208,431 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
             network.name
         )));
     }
-    let brep = &topology.brep;
-    let edges = FaceEdges::new(network, &topology, options.tolerance);
-    let near_miss = options.tolerance.near_miss();
-    let knuckle = knuckle_edges(network, &topology, &edges, near_miss);
-    let shared_results: Vec<Result<Option<EdgeNormal>, FaceError>> = (0..brep.edges.len())
-        .into_par_iter()
-        .map(|k| {
-            if knuckle[k].is_some() || edges.info[k].is_none() {
-                Ok(None)
-            } else {
-                Ok(shared_normal(k, &topology, &edges)?)
-            }
-        })
-        .collect();
-    let shared: Vec<Option<EdgeNormal>> = shared_results
-        .into_iter()
-        .enumerate()
-        .map(|(k, r)| {
-            r.unwrap_or_else(|error| {
-                warnings.push(no_ribbon_warning(network, &topology, k, error));
-                None
-            })
-        })
-        .collect();
+    Ok(topology)
+}
 
-    let patch_options = PatchOptions {
+/// The normal field of edge `k` (none for a knuckle or a region-less edge), or the warning
+/// that its crossing curves gave none.
+fn edge_normal(
+    k: usize,
+    network: &Network,
+    topology: &Topology,
+    edges: &FaceEdges,
+    knuckle: &[Option<Knuckle>],
+) -> (Option<EdgeNormal>, Option<Warning>) {
+    if knuckle[k].is_some() || edges.info[k].is_none() {
+        return (None, None);
+    }
+    match shared_normal(k, topology, edges) {
+        Ok(normal) => (normal, None),
+        Err(error) => (
+            None,
+            Some(no_ribbon_warning(network, topology, k, error.into())),
+        ),
+    }
+}
+
+/// The options every patch of a hull is built with.
+fn patch_options(options: &HullOptions) -> PatchOptions {
+    PatchOptions {
         kind: PatchKind::Auto,
         param: SideParam::ArcLength,
         tolerance: options.tolerance,
-    };
-    let built: Vec<Result<(Patch, PatchLayout), FaceError>> = topology
+    }
+}
+
+/// The outcomes of the faces flagged in `dirty` (in parallel), the others taken from `kept`
+/// (all faces when `kept` is `None`): patch, then — once the whole mesh is known to be
+/// indexable ([`PatchError::MeshTooLarge`](crate::PatchError::MeshTooLarge) otherwise) —
+/// the patch's own mesh, checked finite.
+fn face_outcomes(
+    stages: &Stages,
+    kept: Option<&[Arc<FaceOutcome>]>,
+    dirty: &[bool],
+    options: &HullOptions,
+) -> Result<Vec<Arc<FaceOutcome>>, Error> {
+    let opts = patch_options(options);
+    let built: Vec<Option<Result<(Patch, PatchLayout), FaceError>>> = stages
+        .topology
         .faces
         .par_iter()
-        .map(|face| {
-            let plan = plan_face(face, &topology, &edges, &knuckle, &shared)?;
-            let patch = Patch::try_new(&plan.boundary, &plan.ribbons, &patch_options)?;
-            Ok((patch, plan.layout))
+        .enumerate()
+        .map(|(fi, face)| {
+            (dirty[fi] || kept.is_none()).then(|| {
+                let plan = plan_face(
+                    face,
+                    &stages.topology,
+                    &stages.edges,
+                    &stages.knuckle,
+                    &stages.shared,
+                )?;
+                let patch = Patch::try_new(&plan.boundary, &plan.ribbons, &opts)?;
+                Ok((patch, plan.layout))
+            })
         })
         .collect();
-    let mut patched: Vec<PatchedFace> = Vec::new();
-    let mut skipped = 0;
-    for (fi, r) in built.into_iter().enumerate() {
-        let label = face_label(&topology, fi, &topology.faces[fi]);
-        match r {
-            Ok((patch, layout)) => {
-                for w in patch.warnings() {
-                    warnings.push(patch_warning(&topology, fi, &label, w));
-                }
-                patched.push(PatchedFace {
-                    face: fi,
-                    patch,
-                    layout,
-                });
+    // Counted before anything is meshed: a mesh too large to index is refused up front.
+    let total = built.iter().enumerate().fold(0usize, |acc, (fi, b)| {
+        let n = match (b, kept) {
+            (Some(Ok((patch, _))), _) => patch.mesh_vertex_count(options.resolution),
+            (None, Some(kept)) => match kept[fi].as_ref() {
+                FaceOutcome::Built { mesh, .. } => mesh.vertex_count(),
+                _ => 0,
+            },
+            _ => 0,
+        };
+        acc.saturating_add(n)
+    });
+    if total >= u32::MAX as usize {
+        return Err(PatchError::MeshTooLarge(total).into());
+    }
+    Ok(built
+        .into_par_iter()
+        .enumerate()
+        .map(|(fi, b)| match b {
+            None => Arc::clone(&kept.expect("kept outcomes for the clean faces")[fi]),
+            Some(Err(error)) => Arc::new(FaceOutcome::Failed(error)),
+            Some(Ok((patch, layout))) => {
+                let mesh = patch.face_mesh(options.resolution);
+                Arc::new(if mesh.is_finite() {
+                    FaceOutcome::Built {
+                        patch,
+                        layout,
+                        mesh,
+                    }
+                } else {
+                    FaceOutcome::NonFinite
+                })
             }
-            Err(error) => {
-                skipped += 1;
-                warnings.push(face_warning(
-                    &topology,
-                    fi,
-                    WarningKind::FaceNotPatched,
-                    format!("{label} is not patched: {error}"),
-                    Some(error),
-                ));
-            }
-        }
+        })
+        .collect())
+}
+
+impl Stages {
+    /// Every stage of `network` computed from scratch (steps 1–5 of
+    /// [`build_hull`](super::build_hull), before the welding).
+    pub(crate) fn full(network: &Network, options: &HullOptions) -> Result<Stages, Error> {
+        options.check()?;
+        let topology = faced_topology(network, options)?;
+        let edges = FaceEdges::new(network, &topology, options.tolerance);
+        let corners = corner_points(network);
+        let near_miss = options.tolerance.near_miss();
+        let knuckle = knuckle_edges(network, &topology, &edges, &corners, near_miss);
+        let (shared, edge_warnings): (Vec<_>, Vec<_>) = (0..topology.brep.edges.len())
+            .into_par_iter()
+            .map(|k| edge_normal(k, network, &topology, &edges, &knuckle))
+            .unzip();
+        let mut stages = Stages {
+            topology,
+            edges,
+            corners,
+            knuckle,
+            shared,
+            edge_warnings,
+            faces: Vec::new(),
+        };
+        let dirty = vec![true; stages.topology.faces.len()];
+        stages.faces = face_outcomes(&stages, None, &dirty, options)?;
+        Ok(stages)
     }
 
-    // Tessellate; drop any patch that produced a non-finite point and try again.
-    let mut mesh = loop {
-        if patched.is_empty() {
-            return Err(Error::NoSurface(format!(
-                "network '{}': none of its {} faces could be patched: {}",
-                network.name,
-                topology.faces.len(),
-                join(&warnings)
-            )));
-        }
-        let mesh = tessellate_patches(&patched, options.resolution)?;
-        let bad = non_finite_patches(&mesh);
-        if bad.is_empty() {
-            break mesh;
-        }
-        for &p in bad.iter().rev() {
-            let fi = patched.remove(p).face;
-            let label = face_label(&topology, fi, &topology.faces[fi]);
-            warnings.push(face_warning(
-                &topology,
-                fi,
-                WarningKind::NonFiniteSurface,
-                format!("{label} is not patched: its surface has non-finite points"),
-                None,
+    /// The stages of `network` from these (made for `before`, with the same `options`),
+    /// computing again only what the curves that changed reach: the edges whose curve or end
+    /// nodes moved, the normal fields of edges at a node with such an edge, the faces with
+    /// any of those (and any edge whose knuckle status changed). The result is the same as
+    /// [`Stages::full`] bit for bit. `Ok(Err(why))` when that cannot be done because the
+    /// network's connectivity changed (curves added, removed, renamed or given another role,
+    /// nodes or faces appearing or disappearing): then build it in full.
+    pub(crate) fn updated(
+        &self,
+        before: &Network,
+        network: &Network,
+        options: &HullOptions,
+    ) -> Result<Result<(Stages, usize), String>, Error> {
+        let (old, new) = (before.curves(), network.curves());
+        if old.len() != new.len()
+            || old
+                .iter()
+                .zip(new)
+                .any(|(a, b)| a.name != b.name || a.role != b.role)
+        {
+            return Ok(Err(
+                "curves were added, removed, renamed or given another role".to_string(),
             ));
-            skipped += 1;
         }
-    };
-    let patches_outward = report::area_vector(&mesh).y >= 0.0;
-    if !patches_outward {
+        let topology = faced_topology(network, options)?;
+        if let Err(why) = same_connectivity(&self.topology, &topology) {
+            return Ok(Err(why));
+        }
+        let moved: Vec<bool> = old.iter().zip(new).map(|(a, b)| a != b).collect();
+        let (brep, old_brep) = (&topology.brep, &self.topology.brep);
+        let dirty_info: Vec<bool> = brep
+            .edges
+            .iter()
+            .zip(&old_brep.edges)
+            .map(|(e, o)| {
+                let at = |b: &crate::topo::Brep, v: crate::topo::VertexId| {
+                    b.vertices[v.index()].position.to_array().map(f64::to_bits)
+                };
+                moved[e.curve]
+                    || e.t0.to_bits() != o.t0.to_bits()
+                    || e.t1.to_bits() != o.t1.to_bits()
+                    || at(brep, e.start) != at(old_brep, o.start)
+                    || at(brep, e.end) != at(old_brep, o.end)
+            })
+            .collect();
+        let edges = self
+            .edges
+            .updated(network, &topology, options.tolerance, &dirty_info);
+        let corners: Vec<Vec<DVec3>> = new
+            .iter()
+            .zip(&self.corners)
+            .zip(&moved)
+            .map(|((c, kept), &m)| {
+                if m {
+                    curve_corner_points(c)
+                } else {
+                    kept.clone()
+                }
+            })
+            .collect();
+        let near_miss = options.tolerance.near_miss();
+        let knuckle = knuckle_edges(network, &topology, &edges, &corners, near_miss);
+        let knuckle_changed: Vec<bool> = knuckle
+            .iter()
+            .zip(&self.knuckle)
+            .map(|(a, b)| a != b)
+            .collect();
+        let dirty_normal: Vec<bool> = brep
+            .edges
+            .iter()
+            .enumerate()
+            .map(|(k, e)| {
+                dirty_info[k]
+                    || knuckle_changed[k]
+                    || [e.start, e.end].iter().any(|v| {
+                        edges.at_vertex[v.index()]
+                            .iter()
+                            .any(|end| dirty_info[end.edge])
+                    })
+            })
+            .collect();
+        let (shared, edge_warnings): (Vec<_>, Vec<_>) = (0..brep.edges.len())
+            .into_par_iter()
+            .map(|k| {
+                if dirty_normal[k] {
+                    edge_normal(k, network, &topology, &edges, &knuckle)
+                } else {
+                    (self.shared[k].clone(), self.edge_warnings[k].clone())
+                }
+            })
+            .unzip();
+        let dirty_faces: Vec<bool> = topology
+            .faces
+            .iter()
+            .map(|f| {
+                f.edges
+                    .iter()
+                    .any(|e| dirty_normal[e.index()] || knuckle_changed[e.index()])
+            })
+            .collect();
+        let mut stages = Stages {
+            topology,
+            edges,
+            corners,
+            knuckle,
+            shared,
+            edge_warnings,
+            faces: Vec::new(),
+        };
+        stages.faces = face_outcomes(&stages, Some(&self.faces), &dirty_faces, options)?;
+        let rebuilt = dirty_faces.iter().filter(|&&d| d).count();
+        Ok(Ok((stages, rebuilt)))
+    }
+
+    /// The warnings of the stages in the build's order — the topology's findings, the edges
+    /// without ribbon, then face by face the patch's own repairs or why it has none — and the
+    /// number of faces without a patch.
+    fn warnings(&self) -> (Vec<Warning>, usize) {
+        let topology = &self.topology;
+        let mut warnings: Vec<Warning> = topology.diagnostics.iter().map(Warning::from).collect();
+        warnings.extend(self.edge_warnings.iter().flatten().cloned());
+        let mut skipped = 0;
+        for (fi, outcome) in self.faces.iter().enumerate() {
+            let label = face_label(topology, fi, &topology.faces[fi]);
+            match outcome.as_ref() {
+                FaceOutcome::Built { patch, .. } => {
+                    for w in patch.warnings() {
+                        warnings.push(patch_warning(topology, fi, &label, w));
+                    }
+                }
+                FaceOutcome::Failed(error) => {
+                    skipped += 1;
+                    warnings.push(face_warning(
+                        topology,
+                        fi,
+                        WarningKind::FaceNotPatched,
+                        format!("{label} is not patched: {error}"),
+                        Some(error.clone()),
+                    ));
+                }
+                FaceOutcome::NonFinite => {
+                    skipped += 1;
+                    warnings.push(face_warning(
+                        topology,
+                        fi,
+                        WarningKind::NonFiniteSurface,
+                        format!("{label} is not patched: its surface has non-finite points"),
+                        None,
+                    ));
+                }
+            }
+        }
+        (warnings, skipped)
+    }
+}
+
+/// `Ok` when `b` has the connectivity of `a` — the same nodes, edges (curve, end nodes,
+/// whether they bound a region) and faces (edges, directions, corners, sides) in the same
+/// order — else what differs.
+fn same_connectivity(a: &Topology, b: &Topology) -> Result<(), String> {
+    let (ba, bb) = (&a.brep, &b.brep);
+    if ba.vertices.len() != bb.vertices.len()
+        || ba.edges.len() != bb.edges.len()
+        || a.faces.len() != b.faces.len()
+    {
+        return Err(format!(
+            "the connectivity changed: {} nodes, {} edges, {} faces became {}, {}, {}",
+            ba.vertices.len(),
+            ba.edges.len(),
+            a.faces.len(),
+            bb.vertices.len(),
+            bb.edges.len(),
+            b.faces.len()
+        ));
+    }
+    let edges_same = ba.edges.iter().zip(&bb.edges).all(|(x, y)| {
+        x.curve == y.curve
+            && x.start == y.start
+            && x.end == y.end
+            && x.half_edges.is_some() == y.half_edges.is_some()
+    });
+    let faces_same = a.faces.iter().zip(&b.faces).all(|(x, y)| {
+        x.edges == y.edges && x.forward == y.forward && x.corners == y.corners && x.sides == y.sides
+    });
+    if edges_same && faces_same {
+        Ok(())
+    } else {
+        Err("the connectivity changed: edges or faces run between other nodes".to_string())
+    }
+}
+
+/// The built faces of the stages as patches (in topology face order), welded into one mesh
+/// oriented outwards (`face_patch`: index into the patches), and whether the patches' own
+/// orientation was outward. [`Error::NoSurface`] when no face has a patch, or when the mesh's
+/// volume overflows.
+pub(crate) fn assemble(
+    network: &Network,
+    stages: &Stages,
+) -> Result<(Vec<PatchedFace>, SurfaceMesh, bool), Error> {
+    let mut patched = Vec::new();
+    let mut meshes = Vec::new();
+    for (fi, outcome) in stages.faces.iter().enumerate() {
+        if let FaceOutcome::Built {
+            patch,
+            layout,
+            mesh,
+        } = outcome.as_ref()
+        {
+            patched.push(PatchedFace {
+                face: fi,
+                patch: patch.clone(),
+                layout: layout.clone(),
+            });
+            meshes.push(mesh);
+        }
+    }
+    if patched.is_empty() {
+        let (warnings, _) = stages.warnings();
+        return Err(Error::NoSurface(format!(
+            "network '{}': none of its {} faces could be patched: {}",
+            network.name,
+            stages.topology.faces.len(),
+            join(&warnings)
+        )));
+    }
+    let mut mesh = weld_face_meshes(&meshes);
+    let outward = report::area_vector(&mesh).y >= 0.0;
+    if !outward {
         flip(&mut mesh);
     }
+    if !report::signed_volume(&mesh).is_finite() {
+        return Err(overflow(network, f64::INFINITY, f64::NAN));
+    }
+    Ok((patched, mesh, outward))
+}
+
+/// The report of assembled stages ([`assemble`]), refused with [`Error::NoSurface`] when its
+/// figures overflow.
+pub(crate) fn measure(
+    network: &Network,
+    options: &HullOptions,
+    stages: &Stages,
+    patched: &[PatchedFace],
+    mesh: &SurfaceMesh,
+) -> Result<HullReport, Error> {
+    let (warnings, skipped_faces) = stages.warnings();
     let findings = Findings {
-        knuckle: &knuckle,
-        skipped_faces: skipped,
+        knuckle: &stages.knuckle,
+        skipped_faces,
         warnings,
         tolerance: options.tolerance,
     };
-    let report = report::report(network, &topology, &patched, &mesh, findings);
+    let report = report::report(network, &stages.topology, patched, mesh, findings);
     let figures = [report.volume, report.max_gap, report.max_normal_angle_deg];
     if !figures.iter().all(|f| f.is_finite()) {
-        return Err(Error::NoSurface(format!(
-            "network '{}': the surface's figures overflow f64 (volume {}, max gap {}); its coordinates are too large",
-            network.name, report.volume, report.max_gap
-        )));
+        return Err(overflow(network, report.volume, report.max_gap));
     }
-    // The mesh names the topology's face of every polygon (skipped faces leave gaps).
+    Ok(report)
+}
+
+/// The error of a surface whose figures overflow f64.
+fn overflow(network: &Network, volume: f64, max_gap: f64) -> Error {
+    Error::NoSurface(format!(
+        "network '{}': the surface's figures overflow f64 (volume {volume}, max gap {max_gap}); its coordinates are too large",
+        network.name
+    ))
+}
+
+/// The hull surface of assembled stages with its report: the mesh's `face_patch` renamed to
+/// the topology's face of every polygon (skipped faces leave gaps).
+pub(crate) fn into_surface(
+    patched: Vec<PatchedFace>,
+    mut mesh: SurfaceMesh,
+    patches_outward: bool,
+    report: HullReport,
+) -> HullSurface {
     for p in &mut mesh.face_patch {
         *p = patched[*p as usize].face as u32;
     }
     let patch_faces = patched.iter().map(|p| p.face).collect();
     let (patches, layouts) = patched.into_iter().map(|p| (p.patch, p.layout)).unzip();
-    Ok(HullSurface {
+    HullSurface {
         mesh,
         report,
         patches,
         patch_faces,
         layouts,
         patches_outward,
-    })
+    }
+}
+
+/// The pipeline of [`build_hull`](super::build_hull), step by step (see there).
+pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurface, Error> {
+    let stages = Stages::full(network, options)?;
+    let (patched, mesh, outward) = assemble(network, &stages)?;
+    let report = measure(network, options, &stages, &patched, &mesh)?;
+    Ok(into_surface(patched, mesh, outward, report))
 }
 
 /// The warnings' messages, joined for an error message.

@@ -125,6 +125,7 @@ pub(crate) struct EdgeEnd {
 }
 
 /// The region-bounding edges of a topology with the edges at each node.
+#[derive(Clone, Debug)]
 pub(crate) struct FaceEdges {
     /// Per topology edge: its [`EdgeInfo`], `None` for an edge that bounds no region.
     pub(crate) info: Vec<Option<EdgeInfo>>,
@@ -159,5 +160,33 @@ impl FaceEdges {
             }
         }
         FaceEdges { info, at_vertex }
+    }
+
+    /// These edges for `topology`, a topology with the same connectivity as the one they were
+    /// made for (the live rebuild): the edges flagged in `dirty` made again (in parallel), the
+    /// others and the ends at the nodes kept.
+    pub(crate) fn updated(
+        &self,
+        network: &Network,
+        topology: &Topology,
+        tolerance: Tolerance,
+        dirty: &[bool],
+    ) -> FaceEdges {
+        let info = self
+            .info
+            .par_iter()
+            .enumerate()
+            .map(|(k, old)| {
+                if dirty[k] && old.is_some() {
+                    Some(edge_info(network, topology, k, tolerance))
+                } else {
+                    old.clone()
+                }
+            })
+            .collect();
+        FaceEdges {
+            info,
+            at_vertex: self.at_vertex.clone(),
+        }
     }
 }

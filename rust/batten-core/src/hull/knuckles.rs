@@ -8,7 +8,7 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::edges::FaceEdges;
-use crate::network::{Network, Role};
+use crate::network::{Network, NetworkCurve, Role};
 use crate::topo::Topology;
 
 /// A crossing curve whose tangent direction jumps by more than this (degrees) at a node is
@@ -75,34 +75,34 @@ pub(crate) enum Knuckle {
     Auto(BTreeSet<usize>),
 }
 
-/// The corner points of every curve (positions where the tangent jumps by more than
+/// The corner points of one curve (positions where the tangent jumps by more than
 /// [`KNUCKLE_POINT_ANGLE_DEGREES`]).
-pub(crate) fn corner_points(network: &Network) -> Vec<Vec<DVec3>> {
+pub(crate) fn curve_corner_points(curve: &NetworkCurve) -> Vec<DVec3> {
     let angle = KNUCKLE_POINT_ANGLE_DEGREES.to_radians();
-    network
-        .curves()
-        .iter()
-        .map(|c| {
-            c.curve
-                .corner_parameters(angle)
-                .into_iter()
-                .map(|t| c.curve.point(t))
-                .collect()
-        })
+    curve
+        .curve
+        .corner_parameters(angle)
+        .into_iter()
+        .map(|t| curve.curve.point(t))
         .collect()
+}
+
+/// The corner points of every curve ([`curve_corner_points`]), in network order.
+pub(crate) fn corner_points(network: &Network) -> Vec<Vec<DVec3>> {
+    network.curves().iter().map(curve_corner_points).collect()
 }
 
 /// Which edges are knuckles, and why: every edge of a curve with role [`Role::Knuckle`], and
 /// every edge with an end node that lies (within the near-miss distance, 10× the tolerance) on
-/// a corner point of another curve through that node. `None` for the other edges.
-///
+/// a corner point (`corners`, per curve as [`corner_points`] gives them) of another curve
+/// through that node. `None` for the other edges.
 pub(crate) fn knuckle_edges(
     network: &Network,
     topology: &Topology,
     edges: &FaceEdges,
+    corners: &[Vec<DVec3>],
     near_miss: f64,
 ) -> Vec<Option<Knuckle>> {
-    let corners = corner_points(network);
     let curves = network.curves();
     topology
         .brep

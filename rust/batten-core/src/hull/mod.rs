@@ -15,8 +15,9 @@
 //! - [`folds`]: neighbouring mesh faces at a steep angle off the knuckles, and patches
 //!   standing out of their boundary's box, as warnings.
 //! - [`warning`]: warnings as data (kind, message, curves, place, underlying error).
+//! - [`live`]: [`LiveHull`], the hull kept with its stages and rebuilt incrementally.
 //!
-//! The modules depend on each other one way: `build` → `report` → `knuckles` → `edges`,
+//! The modules depend on each other one way: `live` → `build`, `build` → `report` → `knuckles` → `edges`,
 //! `report` → `holes`, `report` → `folds` → `knuckles`,
 //! `build` → `ribbons` → `edges`, and `warning`, `patched` at the bottom.
 
@@ -25,6 +26,7 @@ mod edges;
 mod folds;
 mod holes;
 mod knuckles;
+mod live;
 mod patched;
 mod report;
 mod ribbons;
@@ -40,6 +42,7 @@ use crate::tolerance::Tolerance;
 pub use folds::{BOX_SLACK, FOLD_ANGLE_DEGREES};
 // The CAD export fits each shared edge once from the patches' layouts.
 pub use knuckles::{KnuckleEdge, KnuckleSource, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES};
+pub use live::{LiveHull, Rebuild};
 pub(crate) use patched::{LayoutSegment, PatchLayout};
 pub use report::HullReport;
 pub use warning::{FaceError, Warning, WarningKind};

@@ -1,0 +1,146 @@
+//! The live rebuild: a hull kept with everything its build computed, rebuilt after an edit by
+//! computing again only the edges, ribbons, patches and patch meshes that the moved curves
+//! reach, with the same result as a full build bit for bit. The report's quality sampling
+//! (gaps, normal jumps, holes, folds) is the slow part of a build; a rebuild leaves it for
+//! [`LiveHull::settle`], which the caller runs once the edits pause.
+
+use super::build::{assemble, into_surface, measure, Stages};
+use super::patched::PatchedFace;
+use super::{HullOptions, HullSurface};
+use crate::error::Error;
+use crate::network::Network;
+
+/// What the last build or rebuild of a [`LiveHull`] did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Rebuild {
+    /// Everything was built from scratch: the first build, or `reason` why a rebuild could not
+    /// keep anything (the network's connectivity changed).
+    Full {
+        /// Why the rebuild was full (`None` for the first build).
+        reason: Option<String>,
+    },
+    /// Only the faces reached by the moved curves were built again.
+    Incremental {
+        /// How many faces were patched and meshed again.
+        faces: usize,
+        /// How many faces the hull has.
+        of: usize,
+    },
+}
+
+/// A hull surface that rebuilds incrementally (see the module documentation).
+#[derive(Clone, Debug)]
+pub struct LiveHull {
+    network: Network,
+    options: HullOptions,
+    stages: Stages,
+    surface: HullSurface,
+    measured: bool,
+    last: Rebuild,
+}
+
+impl LiveHull {
+    /// Build `network` in full, report included (as [`build_hull`](super::build_hull), whose
+    /// errors it returns).
+    pub fn new(network: &Network, options: &HullOptions) -> Result<LiveHull, Error> {
+        let stages = Stages::full(network, options)?;
+        let (patched, mesh, outward) = assemble(network, &stages)?;
+        let report = measure(network, options, &stages, &patched, &mesh)?;
+        Ok(LiveHull {
+            network: network.clone(),
+            options: *options,
+            surface: into_surface(patched, mesh, outward, report),
+            stages,
+            measured: true,
+            last: Rebuild::Full { reason: None },
+        })
+    }
+
+    /// Rebuild for `network`, the same hull with curves moved: incrementally when its
+    /// connectivity is unchanged, else in full. The mesh and patches are then exactly those of
+    /// [`build_hull`](super::build_hull) on `network`; the report is not measured again
+    /// ([`LiveHull::is_measured`] turns false) until [`LiveHull::settle`]. On an error nothing
+    /// changes: the hull keeps its previous surface.
+    pub fn rebuild(&mut self, network: &Network) -> Result<&Rebuild, Error> {
+        let (stages, last) = match self.stages.updated(&self.network, network, &self.options)? {
+            Ok((stages, faces)) => {
+                let of = stages.topology.faces.len();
+                (stages, Rebuild::Incremental { faces, of })
+            }
+            Err(reason) => (
+                Stages::full(network, &self.options)?,
+                Rebuild::Full {
+                    reason: Some(reason),
+                },
+            ),
+        };
+        let (patched, mesh, outward) = assemble(network, &stages)?;
+        let report = self.surface.report.clone();
+        self.surface = into_surface(patched, mesh, outward, report);
+        self.stages = stages;
+        self.network = network.clone();
+        self.measured = false;
+        self.last = last;
+        Ok(&self.last)
+    }
+
+    /// Measure the report of the current surface if a rebuild left it unmeasured (gaps,
+    /// normal jumps, creases, holes, folds, warnings): the report of a full build of the same
+    /// network. On an error (figures that overflow) the report stays unmeasured.
+    pub fn settle(&mut self) -> Result<&HullSurface, Error> {
+        if !self.measured {
+            let surface = &self.surface;
+            let index_of: std::collections::HashMap<usize, u32> = surface
+                .patch_faces
+                .iter()
+                .enumerate()
+                .map(|(i, &f)| (f, i as u32))
+                .collect();
+            let patched: Vec<PatchedFace> = surface
+                .patch_faces
+                .iter()
+                .zip(&surface.patches)
+                .zip(&surface.layouts)
+                .map(|((&face, patch), layout)| PatchedFace {
+                    face,
+                    patch: patch.clone(),
+                    layout: layout.clone(),
+                })
+                .collect();
+            let mut mesh = surface.mesh.clone();
+            for p in &mut mesh.face_patch {
+                *p = index_of[&(*p as usize)];
+            }
+            let report = measure(&self.network, &self.options, &self.stages, &patched, &mesh)?;
+            self.surface.report = report;
+            self.measured = true;
+        }
+        Ok(&self.surface)
+    }
+
+    /// The current surface. Its mesh and patches are always current; its report is the last
+    /// measured one ([`LiveHull::is_measured`] says whether that is of the current surface).
+    pub fn surface(&self) -> &HullSurface {
+        &self.surface
+    }
+
+    /// True when the surface's report was measured on the current surface.
+    pub fn is_measured(&self) -> bool {
+        self.measured
+    }
+
+    /// What the last build or rebuild did.
+    pub fn last_rebuild(&self) -> &Rebuild {
+        &self.last
+    }
+
+    /// The network the current surface was built from.
+    pub fn network(&self) -> &Network {
+        &self.network
+    }
+
+    /// The options the hull is built with.
+    pub fn options(&self) -> &HullOptions {
+        &self.options
+    }
+}

@@ -1,0 +1,207 @@
+//! The live rebuild (`LiveHull`): after moving control points, an incremental rebuild gives
+//! exactly the mesh, patches and (once settled) report of a full build of the same curves,
+//! builds again only the faces the move reaches, falls back to a full build when the
+//! connectivity changes, and loses nothing on a failed rebuild.
+
+use std::path::PathBuf;
+
+use batten_core::{
+    build_hull, tessellate_patches, HullOptions, LiveHull, Network, NetworkCurve, NurbsCurve,
+    Rebuild,
+};
+use glam::DVec3;
+
+fn examples() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+fn load(name: &str) -> Network {
+    let text = std::fs::read_to_string(examples().join(name)).expect("example file");
+    Network::from_json(&text).expect("valid network")
+}
+
+/// The network with control point `index` of curve `curve` moved by `by`.
+fn moved(net: &Network, curve: usize, index: usize, by: DVec3) -> Network {
+    let curves: Vec<NetworkCurve> = net
+        .curves()
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            if i != curve {
+                return c.clone();
+            }
+            let mut points = c.curve.control_points();
+            points[index] += by;
+            NetworkCurve {
+                curve: NurbsCurve::try_new(
+                    c.curve.degree(),
+                    c.curve.knots().to_vec(),
+                    points,
+                    c.curve.weights(),
+                )
+                .expect("a valid curve"),
+                ..c.clone()
+            }
+        })
+        .collect();
+    Network::try_new(net.name.clone(), curves).expect("a valid network")
+}
+
+fn options() -> HullOptions {
+    HullOptions::try_new(1e-4, 12).expect("options")
+}
+
+/// The index of the curve named `name`.
+fn curve(net: &Network, name: &str) -> usize {
+    net.curves()
+        .iter()
+        .position(|c| c.name == name)
+        .unwrap_or_else(|| panic!("no curve {name}"))
+}
+
+/// The live hull's surface equals a full build of `net`: the mesh and patches at once, the
+/// report once settled.
+fn assert_same_as_full(live: &mut LiveHull, net: &Network) {
+    let full = build_hull(net, live.options()).expect("full build");
+    assert!(
+        live.surface().mesh == full.mesh,
+        "mesh differs from a full build"
+    );
+    assert_eq!(
+        live.surface().patch_faces,
+        full.patch_faces,
+        "the same faces patched"
+    );
+    // The patches themselves, sampled where the mesh does not: another resolution.
+    let sample = |patches: &[batten_core::Patch]| tessellate_patches(patches, 5).expect("mesh");
+    assert!(
+        sample(&live.surface().patches) == sample(&full.patches),
+        "patches differ"
+    );
+    let settled = live.settle().expect("settles");
+    assert!(
+        settled.report == full.report,
+        "report differs from a full build"
+    );
+    assert!(live.is_measured(), "settled");
+}
+
+#[test]
+fn a_moved_station_point_rebuilds_its_faces_only_and_matches_a_full_build() {
+    let net = load("frigate_network.json");
+    let mut live = LiveHull::new(&net, &options()).expect("builds");
+    assert!(live.is_measured(), "settled");
+    assert_eq!(live.last_rebuild(), &Rebuild::Full { reason: None });
+    let faces = live.surface().patches.len();
+    // Move an interior control point of one station outwards, by less than the model
+    // tolerance: its crossings with the waterlines stay nodes (a larger move takes the
+    // station off them, which changes the connectivity: the test below).
+    let station = curve(&net, "st4");
+    let middle = net.curves()[station].curve.control_points().len() / 2;
+    let next = moved(&net, station, middle, DVec3::new(0.0, 4e-5, 0.0));
+    let did = live.rebuild(&next).expect("rebuilds").clone();
+    match did {
+        Rebuild::Incremental { faces: rebuilt, of } => {
+            assert_eq!(of, faces, "the count of all faces");
+            assert!(rebuilt > 0, "a moved station rebuilds its faces");
+            assert!(
+                rebuilt < faces,
+                "only the faces the station reaches are rebuilt: {rebuilt} of {faces}"
+            );
+        }
+        other => panic!("expected an incremental rebuild, got {other:?}"),
+    }
+    assert!(!live.is_measured(), "the report waits for settle");
+    assert_same_as_full(&mut live, &next);
+}
+
+#[test]
+fn a_sequence_of_drags_ends_where_a_full_build_does() {
+    let net = load("frigate_network.json");
+    let mut live = LiveHull::new(&net, &options()).expect("builds");
+    let mut current = net.clone();
+    // A deterministic walk: each step moves one interior control point of a station or a
+    // waterline a little (the curves on the centreplane stay there).
+    let movable: Vec<usize> = ["st1", "st2", "st4", "st6", "st8", "cwl", "wl_aft"]
+        .iter()
+        .map(|n| curve(&net, n))
+        .collect();
+    let mut seed: u64 = 0x5eed;
+    let mut next_rand = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 33) as usize
+    };
+    let mut incremental = 0;
+    for _ in 0..20 {
+        let c = movable[next_rand() % movable.len()];
+        let n = current.curves()[c].curve.control_points().len();
+        if n < 3 {
+            continue;
+        }
+        let i = 1 + next_rand() % (n - 2);
+        // Within the model tolerance of the crossings, so the connectivity stays.
+        let by = DVec3::new(0.0, 1e-5 * ((next_rand() % 5) as f64 - 2.0), 0.0);
+        current = moved(&current, c, i, by);
+        if let Rebuild::Incremental { .. } = live.rebuild(&current).expect("rebuilds") {
+            incremental += 1;
+        }
+        assert!(live.surface().mesh == build_hull(&current, &options()).expect("builds").mesh);
+    }
+    assert!(
+        incremental > 10,
+        "most small drags are incremental: {incremental} of 20"
+    );
+    assert_same_as_full(&mut live, &current);
+}
+
+#[test]
+fn a_connectivity_change_falls_back_to_a_full_build() {
+    let net = load("frigate_network.json");
+    let mut live = LiveHull::new(&net, &options()).expect("builds");
+    // A station moved 2 cm off the waterlines loses its crossings: the rebuild is full.
+    let st4 = curve(&net, "st4");
+    let middle = net.curves()[st4].curve.control_points().len() / 2;
+    let off = moved(&net, st4, middle, DVec3::new(0.0, 0.02, 0.0));
+    match live.rebuild(&off).expect("rebuilds") {
+        Rebuild::Full { reason: Some(why) } => assert!(why.contains("connectivity"), "{why}"),
+        other => panic!("expected a full rebuild, got {other:?}"),
+    }
+    assert_same_as_full(&mut live, &off);
+    // Without one curve the nodes and faces differ too, and the rebuild says why.
+    let fewer: Vec<NetworkCurve> = net.curves()[1..].to_vec();
+    let fewer = Network::try_new(net.name.clone(), fewer).expect("network");
+    match live.rebuild(&fewer) {
+        Ok(Rebuild::Full { reason: Some(why) }) => {
+            assert!(why.contains("curves"), "{why}");
+        }
+        Ok(other) => panic!("expected a full rebuild, got {other:?}"),
+        Err(e) => panic!("the smaller network builds too: {e}"),
+    }
+    assert_same_as_full(&mut live, &fewer);
+    // And back: the full network again, then an incremental move on it.
+    live.rebuild(&net).expect("rebuilds");
+    assert_same_as_full(&mut live, &net);
+    let deck = curve(&net, &net.curves()[0].name);
+    let next = moved(&net, deck, 1, DVec3::new(0.0, 0.01, 0.0));
+    live.rebuild(&next).expect("rebuilds");
+    assert_same_as_full(&mut live, &next);
+}
+
+#[test]
+fn a_failed_rebuild_keeps_the_previous_surface() {
+    let net = load("frigate_network.json");
+    let mut live = LiveHull::new(&net, &options()).expect("builds");
+    let before = live.surface().clone();
+    // One curve alone encloses nothing.
+    let lone = Network::try_new(net.name.clone(), net.curves()[..1].to_vec()).expect("network");
+    let err = live.rebuild(&lone).expect_err("no faces");
+    assert!(err.to_string().contains("no faces"), "{err}");
+    assert!(live.surface() == &before, "the surface is unchanged");
+    assert!(live.is_measured(), "and so is its report");
+    // The hull still rebuilds incrementally from where it was.
+    let next = moved(&net, 0, 1, DVec3::new(0.0, 0.01, 0.0));
+    live.rebuild(&next).expect("rebuilds");
+    assert_same_as_full(&mut live, &next);
+}
