@@ -84,6 +84,7 @@ __all__ = [
     "hydrostatics",
     "sectional_areas",
     "build",
+    "settle",
     "read_network",
     "DEFAULT_TOLERANCE",
     "ROLES",
@@ -540,7 +541,12 @@ def _surface_object(name: str):
 
 
 def build(
-    source, *, tolerance: float = DEFAULT_TOLERANCE, resolution: int = DEFAULT_RESOLUTION, mirror: bool = True
+    source,
+    *,
+    tolerance: float = DEFAULT_TOLERANCE,
+    resolution: int = DEFAULT_RESOLUTION,
+    mirror: bool = True,
+    live: bool = False,
 ) -> BuildResult:
     """Build the smooth hull surface of the curve network in ``source`` (H-rep paper): nodes
     where curves meet, faces found automatically, one Gregory (4 sides) or Charrot–Gregory
@@ -573,17 +579,42 @@ def build(
     ``objects`` (the names of the curve objects they came from, for selecting them),
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the
     patch error as ``{"kind", "message"}``, else None).
+
+    ``live=True`` (Live mode, scripts that move curves in a loop) keeps the hull between calls
+    and rebuilds it incrementally: when the curves' connectivity is unchanged only the faces
+    the moved curves reach are built again and only the mesh's vertex positions are
+    rewritten — the mesh is exactly that of a full build. The report then says
+    ``measured: False``: its quality figures (gaps, normal jumps, creases, holes, folds,
+    warnings) are those of the last measured build until :func:`settle` measures them; its
+    ``rebuild`` says what was done (``kind`` ``"full"`` or ``"incremental"``, ``faces``
+    rebuilt ``of`` all, and the ``reason`` a rebuild was full).
     """
     curves, object_of = _read_source(source)
     name = _source_name(source)
     with errors_named_by_object(object_of):
-        arrays, report, model = build_hull_model(curves, tolerance, resolution, name)
+        if live:
+            arrays, report, model = hull_models.live_build(name, curves, tolerance, resolution)
+        else:
+            arrays, report, model = build_hull_model(curves, tolerance, resolution, name)
+            hull_models.keep(name, curves, tolerance, resolution, model)
     positions, corners, sizes, patch = arrays
-    hull_models.keep(name, curves, tolerance, resolution, model)
-    obj = mesh_out.write_surface(
-        f"{name} surface", positions, corners, sizes, patch, obj=_surface_object(name), mirror=mirror
+    obj = _surface_object(name)
+    moved_only = (
+        live
+        and report["rebuild"]["kind"] == "incremental"
+        and mesh_out.update_positions(obj, positions, corners, sizes)
     )
+    if not moved_only:
+        obj = mesh_out.write_surface(
+            f"{name} surface", positions, corners, sizes, patch, obj=obj, mirror=mirror
+        )
     obj[SURFACE_TAG] = name
+    return BuildResult(obj, _build_report(report, object_of, mirror))
+
+
+def _build_report(report: dict, object_of, mirror: bool) -> dict:
+    """The core's build report as :func:`build` gives it: the volume keys named for what they
+    are, the objects of the curves named in warnings and knuckle edges."""
     report["mirror"] = mirror
     half = report.pop("volume")  # the core's: the drawn half surface to the centreplane
     report["enclosed_volume_half"] = half
@@ -592,7 +623,20 @@ def build(
     report["knuckle_edges"] = [
         {**k, "objects": objects_of([k["curve"]], object_of)} for k in report["knuckle_edges"]
     ]
-    return BuildResult(obj, report)
+    return report
+
+
+def settle(source, *, mirror: bool = True) -> dict | None:
+    """Measure the report of ``source``'s live hull (:func:`build` with ``live=True``) when a
+    rebuild left its quality figures unmeasured, and return it as :func:`build` does (with
+    ``measured: True``); None when there is nothing to measure. The mesh is not touched: it
+    is already exact."""
+    settled = hull_models.settle(_source_name(source))
+    if settled is None:
+        return None
+    _arrays, report, _model = settled
+    _curves, object_of = _read_source(source)
+    return _build_report(report, object_of, mirror)
 
 
 # --- Hydrostatics -------------------------------------------------------------------------------

@@ -11,17 +11,25 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-from batten_native import DEFAULT_RESOLUTION, DEFAULT_TOLERANCE, build_hull_model, network_to_json
+from batten_native import DEFAULT_RESOLUTION, DEFAULT_TOLERANCE, LiveHull, build_hull_model, network_to_json
 
 
 class _Kept(NamedTuple):
-    fingerprint: str
+    curves: list
     tolerance: float
     resolution: int
     model: object
+    #: The curves' fingerprint, made the first time a lookup needs it (one entry, or none).
+    fingerprint: list
 
 
 _kept: dict[str, _Kept] = {}
+
+#: The live hulls (:class:`batten_native.LiveHull`) of the sources built with ``live=True``,
+#: by source name: rebuilt incrementally while their curves move.
+_live: dict[str, LiveHull] = {}
+#: The curve names, in order, each live hull was built with.
+_live_names: dict[str, list[str]] = {}
 
 
 def fingerprint(name: str, curves: list) -> str:
@@ -30,8 +38,16 @@ def fingerprint(name: str, curves: list) -> str:
 
 
 def keep(name: str, curves: list, tolerance: float, resolution: int, model) -> None:
-    """Keep ``model``, built from ``curves`` with these settings, as ``name``'s surface."""
-    _kept[name] = _Kept(fingerprint(name, curves), tolerance, resolution, model)
+    """Keep ``model``, built from ``curves`` with these settings, as ``name``'s surface (the
+    curves' fingerprint is taken only when a lookup needs it: a live rebuild does not pay for
+    it)."""
+    _kept[name] = _Kept(curves, tolerance, resolution, model, [])
+
+
+def _fingerprint_of(name: str, kept: _Kept) -> str:
+    if not kept.fingerprint:
+        kept.fingerprint.append(fingerprint(name, kept.curves))
+    return kept.fingerprint[0]
 
 
 def model_for(name: str, curves: list):
@@ -39,18 +55,53 @@ def model_for(name: str, curves: list):
     built from, else built now with the last build's settings (or the defaults) and kept."""
     kept = _kept.get(name)
     key = fingerprint(name, curves)
-    if kept is not None and kept.fingerprint == key:
+    if kept is not None and _fingerprint_of(name, kept) == key:
         return kept.model
     tolerance = kept.tolerance if kept else DEFAULT_TOLERANCE
     resolution = kept.resolution if kept else DEFAULT_RESOLUTION
     _arrays, _report, model = build_hull_model(curves, tolerance, resolution, name)
-    _kept[name] = _Kept(key, tolerance, resolution, model)
+    _kept[name] = _Kept(curves, tolerance, resolution, model, [key])
     return model
 
 
+def live_build(name: str, curves: list, tolerance: float, resolution: int):
+    """``(arrays, report, model)`` of ``curves`` from ``name``'s live hull: rebuilt
+    incrementally when it was built with these settings and curve names, else built anew
+    and kept. The model is kept for hydrostatics as by :func:`keep`."""
+    live = _live.get(name)
+    names = [c.name for c in curves]
+    if (
+        live is not None
+        and live.tolerance == tolerance
+        and live.resolution == resolution
+        and _live_names.get(name) == names
+    ):
+        arrays, report, model = live.rebuild(curves)
+    else:
+        live = LiveHull(curves, tolerance, resolution, name)
+        arrays, report, model = live.result()
+        _live[name] = live
+        _live_names[name] = names
+    keep(name, curves, tolerance, resolution, model)
+    return arrays, report, model
+
+
+def settle(name: str):
+    """``(arrays, report, model)`` of ``name``'s live hull with its report measured, or None
+    when it has no live hull or its report is already measured."""
+    live = _live.get(name)
+    if live is None or live.measured:
+        return None
+    return live.settle()
+
+
 def forget(name: str | None = None) -> None:
-    """Drop the kept surface of ``name`` (all of them with ``None``)."""
+    """Drop the kept surface and live hull of ``name`` (all of them with ``None``)."""
     if name is None:
         _kept.clear()
+        _live.clear()
+        _live_names.clear()
     else:
         _kept.pop(name, None)
+        _live.pop(name, None)
+        _live_names.pop(name, None)

@@ -71,6 +71,31 @@ def write_surface(
     return obj
 
 
+def update_positions(obj, positions, face_vertices, face_sizes) -> bool:
+    """Move the vertices of ``obj``'s mesh to ``positions`` when the mesh already has exactly
+    these polygons (``face_vertices``, ``face_sizes``), as after a live rebuild that kept the
+    network's connectivity: nothing else of the mesh is written. False (and nothing changed)
+    when the polygons differ; then :func:`write_surface` is needed."""
+    mesh = obj.data if obj is not None else None
+    positions = np.asarray(positions, dtype=np.float64).reshape(-1, 3)
+    if (
+        mesh is None
+        or len(mesh.vertices) != len(positions)
+        or len(mesh.polygons) != len(face_sizes)
+        or len(mesh.loops) != len(face_vertices)
+    ):
+        return False
+    corners = np.empty(len(face_vertices), dtype=np.int32)
+    mesh.attributes[".corner_vert"].data.foreach_get("value", corners)
+    sizes = np.empty(len(face_sizes), dtype=np.int32)
+    mesh.polygons.foreach_get("loop_total", sizes)
+    if not (np.array_equal(corners, face_vertices) and np.array_equal(sizes, face_sizes)):
+        return False
+    mesh.attributes["position"].data.foreach_set("vector", positions.astype(np.float32).ravel())
+    mesh.update()
+    return True
+
+
 def _set_mirror(obj, mirror: bool) -> None:
     mod = obj.modifiers.get(MIRROR_MODIFIER)
     if mirror and mod is None:

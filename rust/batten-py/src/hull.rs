@@ -36,7 +36,7 @@ pub(crate) fn warning_dict<'py>(py: Python<'py>, w: &Warning) -> PyResult<Bound<
 
 /// Mesh arrays: positions (n, 3) float64, corner vertex indices (m,) int32, face sizes (k,)
 /// int32, the network face of each mesh face (k,) int32.
-type MeshArrays<'py> = (
+pub(crate) type MeshArrays<'py> = (
     Bound<'py, numpy::PyArray2<f64>>,
     Bound<'py, PyArray1<i32>>,
     Bound<'py, PyArray1<i32>>,
@@ -105,6 +105,23 @@ fn build<'py>(
     resolution: Option<&Bound<'py, PyAny>>,
     name: Option<&Bound<'py, PyAny>>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullSurface)> {
+    let (network, options) = network_and_options(&curves, tolerance, resolution, name)?;
+    let hull = py.detach(|| {
+        guard("building the hull surface", || {
+            build_hull(&network, &options).map_err(core_err)
+        })
+    })?;
+    let (arrays, d) = surface_outputs(py, &hull)?;
+    Ok((arrays, d, hull))
+}
+
+/// The parse of `build`'s arguments: the options and the network of `curves`.
+pub(crate) fn network_and_options(
+    curves: &[PyRef<'_, Curve>],
+    tolerance: f64,
+    resolution: Option<&Bound<'_, PyAny>>,
+    name: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(Network, HullOptions)> {
     let resolution =
         optional_whole(resolution, || "resolution".to_owned())?.unwrap_or(DEFAULT_RESOLUTION);
     let options = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
@@ -114,11 +131,14 @@ fn build<'py>(
     };
     let network = Network::try_new(name, curves.iter().map(|c| c.inner.clone()).collect())
         .map_err(core_err)?;
-    let hull = py.detach(|| {
-        guard("building the hull surface", || {
-            build_hull(&network, &options).map_err(core_err)
-        })
-    })?;
+    Ok((network, options))
+}
+
+/// A built surface's mesh arrays and report dict (see [`build_surface`]).
+pub(crate) fn surface_outputs<'py>(
+    py: Python<'py>,
+    hull: &HullSurface,
+) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
     let mesh = &hull.mesh;
     let positions: Vec<f64> = mesh.positions.iter().flatten().copied().collect();
     let rows = mesh.positions.len();
@@ -179,5 +199,5 @@ fn build<'py>(
     d.set_item("warnings", warnings)?;
     d.set_item("mesh_vertices", rows)?;
     d.set_item("mesh_faces", mesh.face_sizes.len())?;
-    Ok((arrays, d, hull))
+    Ok((arrays, d))
 }

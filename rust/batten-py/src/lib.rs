@@ -16,6 +16,7 @@ mod fair;
 mod hull;
 mod hull_model;
 mod hydro;
+mod live;
 mod network;
 mod sections;
 mod topology;
@@ -67,6 +68,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
     m.add_class::<hull_model::HullModel>()?;
+    m.add_class::<live::LiveHull>()?;
     m.add("DEFAULT_CUT_TOLERANCE", batten_core::DEFAULT_CUT_TOLERANCE)?;
     m.add(
         "DEFAULT_EXPORT_TOLERANCE",

@@ -238,6 +238,28 @@ def build_surface(
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
     name: str | None = None,
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
+_MeshArrays = tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]]
+@final
+class LiveHull:
+    """A hull kept between edits and rebuilt incrementally (the mesh exactly a full build's)."""
+
+    def __init__(
+        self,
+        curves: list[Curve],
+        tolerance: float = ...,  # DEFAULT_TOLERANCE
+        resolution: int | None = None,  # None: DEFAULT_RESOLUTION
+        name: str | None = None,
+    ) -> None: ...
+    def result(self) -> tuple[_MeshArrays, dict, HullModel]: ...
+    def rebuild(self, curves: list[Curve]) -> tuple[_MeshArrays, dict, HullModel]: ...
+    def settle(self) -> tuple[_MeshArrays, dict, HullModel]: ...
+    @property
+    def measured(self) -> bool: ...
+    @property
+    def tolerance(self) -> float: ...
+    @property
+    def resolution(self) -> int: ...
+
 def mesh_hydrostatics(
     positions: _ArrayLike,
     triangles: _ArrayLike,

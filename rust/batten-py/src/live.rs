@@ -1,0 +1,135 @@
+//! The live rebuild: a hull kept between edits and rebuilt incrementally (the core's
+//! `LiveHull`), for Blender's Live mode.
+
+use batten_core::{LiveHull as CoreLiveHull, Network, Rebuild, DEFAULT_TOLERANCE};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::curve::Curve;
+use crate::errors::{core_err, guard};
+use crate::hull::{network_and_options, surface_outputs, MeshArrays};
+use crate::hull_model::HullModel;
+
+/// A hull surface kept with everything its build computed: `rebuild(curves)` after the
+/// curves moved builds again only the faces they reach (when the network's connectivity is
+/// unchanged; else everything), with exactly the mesh of a full build; the report's quality
+/// figures are measured again by `settle()`.
+#[pyclass(module = "batten_native", name = "LiveHull")]
+pub(crate) struct LiveHull {
+    inner: CoreLiveHull,
+}
+
+/// The report dict of `hull` with how it was built: `measured` (False while the quality
+/// figures — gaps, normal jumps, creases, holes, folds, warnings — are those of the last
+/// settled build) and `rebuild` (`kind` "full" or "incremental", `faces` rebuilt, `of` all
+/// faces, `reason` a full rebuild was needed, or None).
+fn outputs<'py>(
+    py: Python<'py>,
+    hull: &CoreLiveHull,
+) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+    let surface = hull.surface();
+    let (arrays, report) = surface_outputs(py, surface)?;
+    report.set_item("measured", hull.is_measured())?;
+    let rebuild = PyDict::new(py);
+    match hull.last_rebuild() {
+        Rebuild::Full { reason } => {
+            rebuild.set_item("kind", "full")?;
+            rebuild.set_item("faces", surface.patches.len())?;
+            rebuild.set_item("of", surface.patches.len())?;
+            rebuild.set_item("reason", reason.as_deref())?;
+        }
+        Rebuild::Incremental { faces, of } => {
+            rebuild.set_item("kind", "incremental")?;
+            rebuild.set_item("faces", *faces)?;
+            rebuild.set_item("of", *of)?;
+            rebuild.set_item("reason", None::<&str>)?;
+        }
+    }
+    report.set_item("rebuild", rebuild)?;
+    Ok((arrays, report, HullModel::new(surface.clone())))
+}
+
+#[pymethods]
+impl LiveHull {
+    /// Build `curves` in full (as `build_hull_model`, whose errors it raises).
+    #[new]
+    #[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None))]
+    fn new(
+        py: Python<'_>,
+        curves: Vec<PyRef<'_, Curve>>,
+        tolerance: f64,
+        resolution: Option<&Bound<'_, PyAny>>,
+        name: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<LiveHull> {
+        let (network, options) = network_and_options(&curves, tolerance, resolution, name)?;
+        let inner = py.detach(|| {
+            guard("building the hull surface", || {
+                CoreLiveHull::new(&network, &options).map_err(core_err)
+            })
+        })?;
+        Ok(LiveHull { inner })
+    }
+
+    /// `(arrays, report, model)` of the current surface, as `build_hull_model` gives them,
+    /// the report with `measured` and `rebuild`.
+    fn result<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+        outputs(py, &self.inner)
+    }
+
+    /// Rebuild for `curves` (the same curves, moved; names and order as built) and return
+    /// `result()`. On an error nothing changes. The GIL is released.
+    fn rebuild<'py>(
+        &mut self,
+        py: Python<'py>,
+        curves: Vec<PyRef<'py, Curve>>,
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+        let network = Network::try_new(
+            self.inner.network().name.clone(),
+            curves.iter().map(|c| c.inner.clone()).collect(),
+        )
+        .map_err(core_err)?;
+        let inner = &mut self.inner;
+        py.detach(|| {
+            guard("rebuilding the hull surface", || {
+                inner.rebuild(&network).map(|_| ()).map_err(core_err)
+            })
+        })?;
+        outputs(py, &self.inner)
+    }
+
+    /// Measure the report's quality figures on the current surface if a rebuild left them
+    /// unmeasured, and return `result()`. The GIL is released.
+    fn settle<'py>(
+        &mut self,
+        py: Python<'py>,
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+        let inner = &mut self.inner;
+        py.detach(|| {
+            guard("measuring the hull surface", || {
+                inner.settle().map(|_| ()).map_err(core_err)
+            })
+        })?;
+        outputs(py, &self.inner)
+    }
+
+    /// True when the report's quality figures were measured on the current surface.
+    #[getter]
+    fn measured(&self) -> bool {
+        self.inner.is_measured()
+    }
+
+    /// The model tolerance (m) the hull is built with.
+    #[getter]
+    fn tolerance(&self) -> f64 {
+        self.inner.options().tolerance.get()
+    }
+
+    /// Tessellation intervals per side segment.
+    #[getter]
+    fn resolution(&self) -> usize {
+        self.inner.options().resolution
+    }
+}
