@@ -51,3 +51,9 @@ def empty_file(addon):
 @pytest.fixture
 def examples_dir() -> Path:
     return ROOT / "examples"
+
+
+@pytest.fixture
+def hulls_dir() -> Path:
+    """The real ships' sections (``../shared/hulls``, beside the project)."""
+    return ROOT.parent / "shared" / "hulls"

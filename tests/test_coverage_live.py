@@ -10,7 +10,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from batten import live
+from batten import live, scene_build
 
 
 @pytest.fixture
@@ -71,8 +71,14 @@ def test_an_edit_schedules_one_rebuild_and_the_timer_builds(hull, timers):
     assert not live._scheduled and not live._rebuilding
     obj = _surface()
     assert obj is not None and len(obj.data.polygons) == 32 * 4 * 4
-    assert json.loads(bpy.context.scene.batten.last_report)["faces"] == 32
-    assert len(timers) == 1, "the rebuild's own depsgraph updates schedule nothing"
+    report = json.loads(bpy.context.scene.batten.last_report)
+    assert report["faces"] == 32
+    assert report["measured"] and report["rebuild"]["kind"] == "full", "the first live build is full"
+    assert len(timers) == 2, "the rebuild's own depsgraph updates schedule nothing"
+    settle, interval = timers[1]
+    assert interval == scene_build.SECTIONS_SETTLE_SECONDS, "and the report is measured once edits pause"
+    assert settle() is None, "a one-shot timer"
+    assert not scene_build._settling
 
 
 def test_only_real_edits_of_hull_curves_schedule(hull, timers):
@@ -97,7 +103,7 @@ def test_the_timer_keeps_a_failure_and_the_previous_mesh(hull, timers):
     obj = _surface()
     before = _positions(obj).copy()
     hull.objects["keel"].data.splines[0].points[0].co = (float("nan"), 0, 0, 1)
-    live._scheduled.add(scene.name)
+    live._scheduled[scene.name] = lambda: None  # as the handler leaves it
     assert live.rebuild_scene(scene.name) is None, "no exception out of a timer"
     assert not live._scheduled and not live._rebuilding
     assert "keel" in json.loads(scene.batten.last_report)["error"]

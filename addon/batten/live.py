@@ -10,13 +10,14 @@ the transient "a rebuild is scheduled" flag lives here.
 import bpy
 
 from . import api, sections_draw
-from .scene_build import build_into_scene
+from .scene_build import build_into_scene, cancel_pending
 from .scene_hydro import hydrostatics_into_scene
 
 #: Seconds to wait after the last change before rebuilding.
 COALESCE_SECONDS = 0.05
 
-_scheduled: set[str] = set()
+#: The pending rebuild of each scene (its timer function), by scene name.
+_scheduled: dict[str, object] = {}
 #: True while a live rebuild runs: the depsgraph updates it causes itself (a new mesh changes
 #: the relations, which re-reports every hull curve) must not schedule another rebuild.
 _rebuilding = False
@@ -38,7 +39,7 @@ def rebuild_scene(scene_name: str):
     when they have been computed once (the panel then shows the figures of the new shape).
     Errors are kept in the scene's last report (and last hydrostatics); the previous mesh
     stays."""
-    _scheduled.discard(scene_name)
+    _scheduled.pop(scene_name, None)
     scene = bpy.data.scenes.get(scene_name)
     if scene is None or not scene.batten.live or scene.batten.source is None:
         return None
@@ -75,8 +76,13 @@ def _on_depsgraph_update(scene, depsgraph):
         for u in depsgraph.updates
     )
     if touched:
-        _scheduled.add(scene.name)
-        bpy.app.timers.register(lambda: rebuild_scene(scene.name), first_interval=COALESCE_SECONDS)
+        name = scene.name
+
+        def rebuild():
+            return rebuild_scene(name)
+
+        _scheduled[name] = rebuild
+        bpy.app.timers.register(rebuild, first_interval=COALESCE_SECONDS)
 
 
 def _curve_of(data, names) -> bool:
@@ -95,4 +101,8 @@ def unregister():
     """Remove the depsgraph handler."""
     if _on_depsgraph_update in bpy.app.handlers.depsgraph_update_post:
         bpy.app.handlers.depsgraph_update_post.remove(_on_depsgraph_update)
+    for pending in _scheduled.values():
+        if bpy.app.timers.is_registered(pending):
+            bpy.app.timers.unregister(pending)
     _scheduled.clear()
+    cancel_pending()

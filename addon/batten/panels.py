@@ -69,6 +69,11 @@ def _draw_report(layout, text: str) -> None:
     )
     col.label(text=f"Patches: {report['faces']} ({sides}-sided)")
     col.label(text=f"Open edges: {report['open_edges']}")
+    rebuild = report.get("rebuild")
+    if rebuild is not None and rebuild["kind"] == "incremental":
+        col.label(text=f"Live: {rebuild['faces']} of {rebuild['of']} patches rebuilt", icon="TIME")
+    if not report.get("measured", True):
+        col.label(text="Figures below: last measured, again when the edits pause", icon="INFO")
     col.label(text=f"Max gap: {report['max_gap'] * 1e3:.3f} mm")
     where = report.get("max_normal_angle_curve")
     on = f" (on {where})" if where else ""

@@ -20,6 +20,8 @@ SECTIONS_SETTLE_SECONDS = 0.5
 _cut_seconds: dict[str, float] = {}
 #: The pending deferred cut of each hull (its timer function), by hull collection name.
 _deferred: dict[str, object] = {}
+#: The pending measurement of each live hull's report (its timer function), by scene name.
+_settling: dict[str, object] = {}
 
 
 def build_into_scene(scene, *, live: bool = False) -> dict:
@@ -34,18 +36,66 @@ def build_into_scene(scene, *, live: bool = False) -> dict:
             tolerance=settings.tolerance,
             resolution=settings.resolution,
             mirror=settings.mirror,
+            live=live,
         )
     except api.BattenError as e:
         settings.last_report = json.dumps({"error": str(e)})
         raise
     report = result.report
-    report["markers"] = network_markers(report["node_positions"], report["node_kinds"], report["warnings"])
     try:
         refresh_sections(settings.source, live=live)
     except api.BattenError as e:
         report["sections_error"] = str(e)
-    settings.last_report = json.dumps(report)
+    _keep_report(settings, report)
+    if live:
+        _settle_later(scene.name)
     return report
+
+
+def _keep_report(settings, report: dict) -> None:
+    """Keep ``report`` in the scene's settings (JSON) with the overlay's markers."""
+    report["markers"] = network_markers(report["node_positions"], report["node_kinds"], report["warnings"])
+    settings.last_report = json.dumps(report)
+
+
+def _settle_later(scene_name: str) -> None:
+    """Measure the live hull's report once the rebuilds of ``scene_name`` have paused for
+    :data:`SECTIONS_SETTLE_SECONDS` (a live rebuild leaves its quality figures unmeasured),
+    and keep it in the scene's report."""
+    pending = _settling.pop(scene_name, None)
+    if pending is not None and bpy.app.timers.is_registered(pending):
+        bpy.app.timers.unregister(pending)
+
+    def later():
+        _settling.pop(scene_name, None)
+        scene = bpy.data.scenes.get(scene_name)
+        if scene is None or scene.batten.source is None:
+            return None
+        settings = scene.batten
+        try:
+            report = api.settle(settings.source, mirror=settings.mirror)
+        except api.BattenError as e:
+            settings.last_report = json.dumps({"error": str(e)})
+            return None
+        if report is not None:
+            sections_error = json.loads(settings.last_report or "{}").get("sections_error")
+            if sections_error:
+                report["sections_error"] = sections_error
+            _keep_report(settings, report)
+        return None
+
+    _settling[scene_name] = later
+    bpy.app.timers.register(later, first_interval=SECTIONS_SETTLE_SECONDS)
+
+
+def cancel_pending() -> None:
+    """Unregister every pending deferred cut and report measurement (Live switched off, the
+    add-on unregistered)."""
+    for pending in list(_deferred.values()) + list(_settling.values()):
+        if bpy.app.timers.is_registered(pending):
+            bpy.app.timers.unregister(pending)
+    _deferred.clear()
+    _settling.clear()
 
 
 def refresh_sections(source, *, live: bool = False) -> None:

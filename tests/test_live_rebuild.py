@@ -1,0 +1,133 @@
+"""The incremental live rebuild through the API (``api.build(..., live=True)``, ``api.settle``):
+moving control points rebuilds only the faces they reach and rewrites only the vertex
+positions, with exactly the mesh of a full build; the report's quality figures are measured
+again by ``settle``; a change of connectivity falls back to a full build and says why; a failed
+rebuild keeps the previous mesh."""
+
+import batten.api as api
+import bpy
+import numpy as np
+import pytest
+from batten import hull_models, live, scene_build
+from batten_native import build_surface
+
+RESOLUTION = 8
+
+
+def _positions(obj) -> np.ndarray:
+    pos = np.empty(3 * len(obj.data.vertices), dtype=np.float32)
+    obj.data.attributes["position"].data.foreach_get("vector", pos)
+    return pos.reshape(-1, 3)
+
+
+def _full(coll):
+    """A full build of the collection's curves now: mesh arrays and report."""
+    return build_surface(api.read_curves(coll), api.DEFAULT_TOLERANCE, RESOLUTION, coll.name)
+
+
+def _move(obj, index: int, dy: float) -> None:
+    point = obj.data.splines[0].points[index]
+    co = point.co.copy()
+    co.y += dy
+    point.co = co
+
+
+@pytest.fixture
+def frigate(examples_dir):
+    hull_models.forget()
+    coll = api.load_network(examples_dir / "frigate_network.json")
+    yield coll
+    hull_models.forget()
+
+
+def test_a_small_move_rebuilds_its_faces_and_writes_positions_only(frigate):
+    first = api.build(frigate, resolution=RESOLUTION, live=True)
+    assert first.report["measured"] and first.report["rebuild"]["kind"] == "full"
+    mesh = first.object.data
+    station = frigate.objects["st4"]
+    middle = len(station.data.splines[0].points) // 2
+    # Less than the model tolerance: the station stays on its waterlines (same connectivity).
+    _move(station, middle, 4e-5)
+    moved = api.build(frigate, resolution=RESOLUTION, live=True)
+    rebuild = moved.report["rebuild"]
+    assert rebuild["kind"] == "incremental", rebuild
+    assert 0 < rebuild["faces"] < rebuild["of"] == first.report["faces"]
+    assert not moved.report["measured"], "the quality figures wait for settle"
+    assert moved.object.data == mesh, "the same mesh, its positions rewritten"
+    (positions, corners, sizes, patch), report = _full(frigate)
+    assert np.array_equal(_positions(moved.object), positions.astype(np.float32))
+    assert not np.array_equal(_positions(moved.object), positions.astype(np.float32) * 0)
+    settled = api.settle(frigate)
+    assert settled["measured"]
+    for key in ("max_gap", "max_normal_angle_deg", "holes", "folds", "open_edges", "faces"):
+        assert settled[key] == report[key], key
+    assert [w["message"] for w in settled["warnings"]] == [w["message"] for w in report["warnings"]]
+    assert settled["enclosed_volume_half"] == report["volume"]
+    assert api.settle(frigate) is None, "nothing left to measure"
+
+
+def test_a_move_off_the_crossings_falls_back_to_a_full_build(frigate):
+    api.build(frigate, resolution=RESOLUTION, live=True)
+    station = frigate.objects["st4"]
+    _move(station, len(station.data.splines[0].points) // 2, 0.02)
+    result = api.build(frigate, resolution=RESOLUTION, live=True)
+    rebuild = result.report["rebuild"]
+    assert rebuild["kind"] == "full" and "connectivity" in rebuild["reason"], rebuild
+    (positions, _, sizes, _), _ = _full(frigate)
+    assert len(result.object.data.polygons) == len(sizes)
+    assert np.array_equal(_positions(result.object), positions.astype(np.float32))
+
+
+def test_a_failed_live_rebuild_keeps_the_mesh(frigate):
+    result = api.build(frigate, resolution=RESOLUTION, live=True)
+    before = _positions(result.object).copy()
+    keep = {"st4", "cwl"}
+    removed = [o for o in frigate.objects if o.name not in keep]
+    for obj in removed:
+        frigate.objects.unlink(obj)
+    with pytest.raises(api.BattenError):
+        api.build(frigate, resolution=RESOLUTION, live=True)
+    assert np.array_equal(_positions(result.object), before), "the previous mesh stays"
+    for obj in removed:
+        frigate.objects.link(obj)
+    again = api.build(frigate, resolution=RESOLUTION, live=True)
+    assert np.array_equal(_positions(again.object), before), "and rebuilds from where it was"
+
+
+def test_fifty_drags_on_kcs_end_in_the_full_build(hulls_dir):
+    hull_models.forget()
+    coll, _ = api.import_sections(hulls_dir / "kcs" / "network.json")
+    api.build(coll, resolution=RESOLUTION, live=True)
+    rng = np.random.default_rng(50)
+    stations = [o for o in coll.objects if o.name.startswith("st")]
+    kinds = []
+    for _ in range(50):
+        obj = stations[rng.integers(len(stations))]
+        n = len(obj.data.splines[0].points)
+        _move(obj, int(rng.integers(1, n - 1)), float(rng.uniform(-3e-5, 3e-5)))
+        kinds.append(api.build(coll, resolution=RESOLUTION, live=True).report["rebuild"]["kind"])
+    assert kinds.count("incremental") >= 45, kinds
+    surface = bpy.data.objects[f"{coll.name} surface"]
+    (positions, _, sizes, _), report = _full(coll)
+    assert len(surface.data.polygons) == len(sizes)
+    assert np.array_equal(_positions(surface), positions.astype(np.float32))
+    assert api.settle(coll)["max_normal_angle_deg"] == report["max_normal_angle_deg"]
+    hull_models.forget()
+
+
+def test_switching_live_off_leaves_no_timer_behind(frigate):
+    settings = bpy.context.scene.batten
+    settings.source = frigate
+    settings.live = True
+    scene_build.build_into_scene(bpy.context.scene, live=True)
+    frigate.objects["st4"].data.splines[0].points[2].co.y += 4e-5
+    bpy.context.view_layer.update()  # the edit reaches the handler: a rebuild is scheduled
+    pending = list(scene_build._settling.values()) + list(live._scheduled.values())
+    assert len(pending) == 2, "a rebuild and a measurement wait"
+    assert all(bpy.app.timers.is_registered(f) for f in pending)
+    live.unregister()
+    assert not scene_build._settling and not live._scheduled
+    assert not any(bpy.app.timers.is_registered(f) for f in pending), "no timer left behind"
+    assert live._on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post
+    live.register()
+    settings.live = False
