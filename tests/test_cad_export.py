@@ -12,6 +12,7 @@ from pathlib import Path
 import batten.api as api
 import numpy as np
 import pytest
+from helpers import wigley_without_keel
 
 rb = pytest.importorskip("cad_readback")
 
@@ -115,11 +116,37 @@ def test_an_unwritable_path_is_a_clear_error_and_leaves_no_file(tmp_path):
         with pytest.raises(api.ExportError, match="cannot be written"):
             export(coll, blocker / "hull.out")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"], "no partial or temporary file"
-    # A folder in the way of the file itself: the temporary file is removed again.
-    (tmp_path / "taken.igs").mkdir()
-    with pytest.raises(api.ExportError, match="cannot be written"):
-        api.export_iges(coll, tmp_path / "taken.igs")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file", "taken.igs"]
+
+
+@pytest.mark.parametrize("fmt", ["iges", "step", "3dm"])
+def test_a_folder_in_the_way_is_a_clear_error_and_leaves_no_file(fmt, tmp_path):
+    """The file's own name taken by a folder: the whole file was made (in a temporary file
+    beside it) and cannot replace it; the temporary file is removed again."""
+    coll = api.load_network(EXAMPLES / "wigley_lines.json")
+    taken = tmp_path / f"taken.{fmt}"
+    taken.mkdir()
+    with pytest.raises(api.ExportError, match=f"'{taken}': cannot be written"):
+        getattr(api, f"export_{fmt}")(coll, taken)
+    assert [p.name for p in tmp_path.iterdir()] == [taken.name], "no partial or temporary file"
+    assert taken.is_dir() and not any(taken.iterdir()), "the folder untouched"
+
+
+@pytest.mark.parametrize("fmt", ["iges", "step", "3dm"])
+def test_a_surface_with_a_hole_is_refused_by_its_curves_unless_allowed(fmt, tmp_path):
+    coll = wigley_without_keel()
+    report = api.build(coll, resolution=1).report
+    assert report["holes"] == 1, "the build reports the hole"
+    export = getattr(api, f"export_{fmt}")
+    path = tmp_path / f"hull.{fmt}"
+    path.write_text("an older export")
+    with pytest.raises(api.ExportError, match="has holes.*allow_holes.*'waterline 1.042' near"):
+        export(coll, path)
+    assert path.read_text() == "an older export", "nothing written over the old file"
+    assert [p.name for p in tmp_path.iterdir()] == [path.name], "no partial or temporary file"
+    assert export(coll, path, allow_holes=True) == path
+    # What exists: the 96 patches left of Wigley's 112 faces, each one face.
+    read = rb.rhino_surfaces(path) if fmt == "3dm" else rb.faces(rb.read_shape(path))
+    assert len(read) == _quads(coll) == 96, "every existing face written"
 
 
 def test_a_bad_tolerance_is_an_invalid_argument(tmp_path):

@@ -11,6 +11,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
+from helpers import wigley_without_keel
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -71,5 +72,13 @@ def test_an_unmirrored_surface_is_not_closed_silently():
     coll = api.load_network(EXAMPLES / "wigley_lines.json")
     api.build(coll, mirror=False)
     with pytest.raises(api.ExportError, match="not symmetric about the centreplane"):
+        api.closed_surface(coll)
+    assert not any(o.name.endswith(" closed") for o in bpy.data.objects), "nothing made"
+
+
+def test_a_surface_with_a_hole_is_not_closed_over_it():
+    coll = wigley_without_keel()
+    api.build(coll)
+    with pytest.raises(api.ExportError, match=r"a hole near \(.*, 1\.042\) m, below its top"):
         api.closed_surface(coll)
     assert not any(o.name.endswith(" closed") for o in bpy.data.objects), "nothing made"
