@@ -1133,9 +1133,16 @@ def lines_plan_scene(source, **options):
 def _export(source, path, fmt: str, tolerance: float, allow_holes: bool) -> Path:
     model = _hull_model(source)
     name = _source_name(source)
-    if fmt == "3dm":
-        return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
-    return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+    try:
+        if fmt == "3dm":
+            return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
+        return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+    except ExportError as e:
+        if not e.faces:
+            raise
+        faces = topology(source, tolerance=hull_models.kept_tolerance(name))["faces"]
+        around = "; ".join(f"face {f}: " + ", ".join(f"'{c}'" for c in faces[f]["curves"]) for f in e.faces)
+        raise ExportError(f"{e} — the curves around them: {around}", e.faces) from None
 
 
 def export_iges(

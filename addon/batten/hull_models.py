@@ -41,11 +41,17 @@ def model_for(name: str, curves: list):
     key = fingerprint(name, curves)
     if kept is not None and kept.fingerprint == key:
         return kept.model
-    tolerance = kept.tolerance if kept else DEFAULT_TOLERANCE
+    tolerance = kept_tolerance(name)
     resolution = kept.resolution if kept else DEFAULT_RESOLUTION
     _arrays, _report, model = build_hull_model(curves, tolerance, resolution, name)
     _kept[name] = _Kept(key, tolerance, resolution, model)
     return model
+
+
+def kept_tolerance(name: str) -> float:
+    """The model tolerance ``name``'s kept surface was built with (the default if none)."""
+    kept = _kept.get(name)
+    return kept.tolerance if kept else DEFAULT_TOLERANCE
 
 
 def forget(name: str | None = None) -> None:
