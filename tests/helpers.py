@@ -122,3 +122,13 @@ def noisy_arc(n=120, r=10.0, sigma=0.01, seed=4):
     pts = np.column_stack([r * np.cos(a), r * np.sin(a), np.zeros(n)])
     pts[1:-1, :2] += rng.normal(0.0, sigma, (n - 2, 2))
     return pts
+
+
+def wigley_without_keel():
+    """The Wigley example with its keel deleted: the stations end on nothing, so the row of
+    faces between the keel and the first waterline is missing, a hole along 'waterline 1.042'."""
+    import batten.api as api
+
+    coll = api.load_example("wigley_lines.json")
+    bpy.data.objects.remove(coll.objects["keel"])
+    return coll

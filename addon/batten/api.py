@@ -59,7 +59,7 @@ from batten_native import (
 )
 from batten_native import topology as _topology
 
-from . import cad_export, hull_models, sections_draw
+from . import cad_export, closed_mesh, hull_models, sections_draw
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
@@ -101,6 +101,7 @@ __all__ = [
     "example_files",
     "DEFAULT_EXPORT_TOLERANCE",
     "ExportError",
+    "closed_surface",
     "export_3dm",
     "export_iges",
     "export_network",
@@ -1176,9 +1177,16 @@ def lines_plan_scene(source, **options):
 def _export(source, path, fmt: str, tolerance: float, allow_holes: bool) -> Path:
     model = _hull_model(source)
     name = _source_name(source)
-    if fmt == "3dm":
-        return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
-    return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+    try:
+        if fmt == "3dm":
+            return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
+        return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+    except ExportError as e:
+        if not e.faces:
+            raise
+        faces = topology(source, tolerance=hull_models.kept_tolerance(name))["faces"]
+        around = "; ".join(f"face {f}: " + ", ".join(f"'{c}'" for c in faces[f]["curves"]) for f in e.faces)
+        raise ExportError(f"{e} — the curves around them: {around}", e.faces) from None
 
 
 def export_iges(
@@ -1213,3 +1221,22 @@ def export_3dm(
     NurbsSurface object per face, in metres; the faces, holes and errors as
     :func:`export_iges`."""
     return _export(source, path, "3dm", tolerance, allow_holes)
+
+
+def closed_surface(source, *, tolerance: float = DEFAULT_TOLERANCE):
+    """A closed mesh of the hull in ``source`` (a collection or its name, built first if it has
+    no surface object yet, or the surface mesh object itself) for Blender's own exporters
+    (File ▸ Export ▸ STL / Wavefront OBJ, "Selection Only"): a new object ``"<surface> closed"``
+    (replacing an older one) with the surface as evaluated (the Mirror modifier applied, both
+    halves) and planar lids on its open rim: the deck, and the transom (the rim's run in the
+    plane of its aft end, within ``tolerance``) where the hull has one. Every edge then has
+    two faces and the faces point out, so the mesh's volume is twice ``build``'s
+    enclosed_volume_half (up to the split of its quads into triangles).
+
+    An open loop below the top of the hull (a hole in the surface) raises ExportError saying
+    where, and makes nothing. Returns the object."""
+    if _is_mesh(source):
+        surface = source
+    else:
+        surface = _surface_object(_source_name(source)) or build(source).object
+    return closed_mesh.closed_copy(surface, tolerance)

@@ -57,7 +57,7 @@ def model_for(name: str, curves: list):
     key = fingerprint(name, curves)
     if kept is not None and _fingerprint_of(name, kept) == key:
         return kept.model
-    tolerance = kept.tolerance if kept else DEFAULT_TOLERANCE
+    tolerance = kept_tolerance(name)
     resolution = kept.resolution if kept else DEFAULT_RESOLUTION
     _arrays, _report, model = build_hull_model(curves, tolerance, resolution, name)
     _kept[name] = _Kept(curves, tolerance, resolution, model, [key])
@@ -93,6 +93,12 @@ def settle(name: str):
     if live is None or live.measured:
         return None
     return live.settle()
+
+
+def kept_tolerance(name: str) -> float:
+    """The model tolerance ``name``'s kept surface was built with (the default if none)."""
+    kept = _kept.get(name)
+    return kept.tolerance if kept else DEFAULT_TOLERANCE
 
 
 def forget(name: str | None = None) -> None:

@@ -35,8 +35,9 @@ pub use diagnostic::Diagnostic;
 pub use error::Error;
 pub use export::{
     cad_surface, iges_text, step_text, BsplineSurface, CadFace, CadHeader, CadSurface, ExportError,
-    ExportOptions, Timestamp, BOUNDARY_SHARE, DEFAULT_EXPORT_TOLERANCE, EXPORT_DEGREE, FACE_SHARE,
-    KNOT_MERGE, MAX_CURVE_SPANS, MAX_SURFACE_CELLS, MAX_SURFACE_SPANS,
+    ExportOptions, Timestamp, UnfittedFace, UnfittedFaces, BOUNDARY_SHARE,
+    DEFAULT_EXPORT_TOLERANCE, EXPORT_DEGREE, FACE_SHARE, KNOT_MERGE, MAX_CURVE_SPANS,
+    MAX_SURFACE_CELLS, MAX_SURFACE_SPANS,
 };
 pub use fair::{
     corner_indices, fair_points, fairness_metrics, FairError, FairOptions, FairReport, FairedCurve,

@@ -4,7 +4,7 @@
 
 use batten_core::{
     build_hull, cad_surface, iges_text, step_text, CadHeader, ExportError, ExportOptions,
-    HullOptions, Network,
+    HullOptions, Network, BOUNDARY_SHARE,
 };
 
 fn example(file: &str) -> Network {
@@ -63,4 +63,47 @@ fn a_bad_tolerance_is_refused() {
             "tolerance {tol} refused"
         );
     }
+}
+
+/// A tolerance no cubic edge reaches within the most spans (only straight ones fit): the
+/// patches are refused, each by its topology face with what its fits reached, in patch order,
+/// and the message says how many of how many.
+#[test]
+fn the_patches_whose_curves_cannot_be_fitted_are_named() {
+    let hull =
+        build_hull(&example("frigate_network.json"), &HullOptions::default()).expect("builds");
+    let options = ExportOptions {
+        tolerance: 1e-13,
+        allow_holes: false,
+    };
+    let Err(err @ ExportError::NotConverged { .. }) = cad_surface(&hull, &options) else {
+        panic!("a tolerance of 1e-13 m is refused as not converged");
+    };
+    let ExportError::NotConverged { faces, patches, .. } = &err else {
+        unreachable!("matched above");
+    };
+    let named: Vec<usize> = faces.0.iter().map(|u| u.face).collect();
+    assert!(
+        named.len() > hull.patches.len() / 2,
+        "most patches: {named:?} of {:?}",
+        hull.patch_faces
+    );
+    assert!(
+        named.windows(2).all(|w| w[0] < w[1]) && named.iter().all(|f| hull.patch_faces.contains(f)),
+        "patches' faces, in order: {named:?}"
+    );
+    assert_eq!(*patches, hull.patches.len(), "out of all patches");
+    assert!(
+        faces.0.iter().all(|u| u.deviation > BOUNDARY_SHARE * 1e-13),
+        "each with a deviation above its curves' share of the tolerance: {faces:?}"
+    );
+    let message = err.to_string();
+    assert!(
+        message.starts_with(&format!(
+            "{} of {} patches",
+            named.len(),
+            hull.patches.len()
+        )),
+        "{message}"
+    );
 }

@@ -11,7 +11,7 @@
 //! | [`Error::NoSurface`], [`Error::Mesh`] | `NoSurfaceError` |
 //! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
 //! | [`Error::Hydro`] (other than [`HydroError::InvalidInput`], an `InvalidArgumentError`) | `HydrostaticsError` |
-//! | [`ExportError`](batten_core::ExportError) (its own type: the export sits above the hull, which uses [`Error`]) | `ExportError`, `InvalidArgumentError` for a bad tolerance |
+//! | [`ExportError`](batten_core::ExportError) (its own type: the export sits above the hull, which uses [`Error`]) | `ExportError` (`.faces` set for patches that could not be fitted), `InvalidArgumentError` for a bad tolerance |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -50,12 +50,17 @@ pub(crate) fn core_err(err: impl Into<Error>) -> PyErr {
     }
 }
 
-/// An export error as `ExportError` (a bad tolerance as `InvalidArgumentError`).
+/// An export error as `ExportError` (`.faces` the topology faces that could not be fitted; a
+/// bad tolerance as `InvalidArgumentError`).
 pub(crate) fn export_err(err: batten_core::ExportError) -> PyErr {
     let message = format!("export: {err}");
     match err {
         batten_core::ExportError::Tolerance(_) => InvalidArgumentError::new_err(message),
-        _ => ExportError::new_err(message),
+        batten_core::ExportError::NotConverged { faces, .. } => {
+            let faces: Vec<usize> = faces.0.iter().map(|u| u.face).collect();
+            ExportError::new_err((message, faces))
+        }
+        batten_core::ExportError::Holes(_) => ExportError::new_err(message),
     }
 }
 

@@ -24,7 +24,7 @@ mod surface;
 mod text;
 
 pub use bspline::{BsplineSurface, EXPORT_DEGREE, KNOT_MERGE};
-pub use error::ExportError;
+pub use error::{ExportError, UnfittedFace, UnfittedFaces};
 pub use fit::{MAX_CURVE_SPANS, MAX_SURFACE_CELLS, MAX_SURFACE_SPANS};
 pub use iges::iges_text;
 pub use step::step_text;

@@ -1,11 +1,13 @@
 //! The hull's patches as B-spline faces for CAD: every shared edge fitted once, every patch
 //! side joined from its edges' curves, every quad of every patch fitted inside its sides.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use glam::DVec2;
 use rayon::prelude::*;
 
 use super::bspline::{join, sub_curve, BsplineSurface};
-use super::error::ExportError;
+use super::error::{ExportError, UnfittedFace, UnfittedFaces};
 use super::fit::{fit_curve, fit_surface, FitFailed, QuadBoundary};
 use super::quads::{quads, side_midpoint, Quad, QuadSide};
 use crate::curve::NurbsCurve;
@@ -131,17 +133,22 @@ fn fit_edge(
 }
 
 /// The side's curve on its side parameter `[0, 1]`: its edges' curves joined, each placed on
-/// its segment's interval and turned to run along the side.
+/// its segment's interval and turned to run along the side; else the deviation an edge's fit
+/// reached (infinite where the curves could not be joined).
 fn side_curve(
     patch: &Patch,
     side: usize,
     layout: &[LayoutSegment],
-    edges: &[Option<NurbsCurve>],
-) -> Option<NurbsCurve> {
+    edges: &[Option<Fitted<NurbsCurve>>],
+) -> Fitted<NurbsCurve> {
     let mut curves = Vec::with_capacity(layout.len());
     let mut breaks = vec![0.0];
     for (k, s) in layout.iter().enumerate() {
-        let c = edges[s.edge].as_ref()?;
+        let c = edges[s.edge]
+            .as_ref()
+            .ok_or(f64::INFINITY)?
+            .as_ref()
+            .map_err(|&d| d)?;
         curves.push(if s.forward { c.clone() } else { c.reversed() });
         breaks.push(if k + 1 == layout.len() {
             1.0
@@ -149,7 +156,7 @@ fn side_curve(
             patch.segment_side_parameter(side, k, 1.0)
         });
     }
-    join(&curves, &breaks)
+    join(&curves, &breaks).ok_or(f64::INFINITY)
 }
 
 /// The spokes of an N-sided patch: from the fitted side's midpoint to the centre, through the
@@ -190,6 +197,10 @@ fn quad_boundary(quad: &Quad, sides: &[NurbsCurve], spokes: &[NurbsCurve]) -> Op
     })
 }
 
+/// A fitted curve or face, or the largest deviation (m) its best fit reached (infinite where
+/// there was nothing to fit, e.g. a boundary curve f64 could not represent).
+type Fitted<T> = Result<T, f64>;
+
 /// What one patch needs fitted before its quads: its side curves and spokes.
 struct PatchCurves {
     sides: Vec<NurbsCurve>,
@@ -210,8 +221,12 @@ struct PatchCurves {
 ///    insertion, and neighbours therefore meet exactly (to rounding) on the shared curve.
 ///
 /// Edges, patches and quads are fitted in parallel. Errors: holes in the build (unless
-/// `allow_holes`), a tolerance that is not a positive finite number, a patch that could not be
-/// fitted within [`MAX_SURFACE_SPANS`](super::fit::MAX_SURFACE_SPANS) spans a side.
+/// `allow_holes`), a tolerance that is not a positive finite number, patches that could not
+/// be fitted within [`MAX_SURFACE_SPANS`](super::fit::MAX_SURFACE_SPANS) spans a side or
+/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells, with what each fit reached:
+/// every patch whose boundary curves could not be fitted (a patch whose shared edge could not
+/// be fitted fails with it), and of the faces those fitted before the first failing face
+/// stopped the rest.
 pub fn cad_surface(
     surface: &HullSurface,
     options: &ExportOptions,
@@ -226,40 +241,25 @@ pub fn cad_surface(
     }
     let patches = &surface.patches;
     let boundary_tol = BOUNDARY_SHARE * tol;
-    let face = |p: usize| surface.patch_faces[p];
-    let edges: Vec<Option<NurbsCurve>> = edge_owners(surface)
+    let edges: Vec<Option<Fitted<NurbsCurve>>> = edge_owners(surface)
         .into_par_iter()
-        .map(|owner| {
-            owner
-                .map(|o| {
-                    fit_edge(patches, o, boundary_tol).map_err(|e| ExportError::NotConverged {
-                        face: face(o.0),
-                        deviation: e.deviation,
-                    })
-                })
-                .transpose()
-        })
-        .collect::<Result<_, _>>()?;
-    let curves: Vec<PatchCurves> = patches
+        .map(|owner| owner.map(|o| fit_edge(patches, o, boundary_tol).map_err(|e| e.deviation)))
+        .collect();
+    let curves: Vec<Fitted<PatchCurves>> = patches
         .par_iter()
         .zip(&surface.layouts)
-        .enumerate()
-        .map(|(p, (patch, layout))| {
+        .map(|(patch, layout)| {
             let sides = (0..patch.sides())
                 .map(|si| side_curve(patch, si, &layout[si], &edges))
-                .collect::<Option<Vec<_>>>()
-                .ok_or(ExportError::Degenerate { face: face(p) })?;
-            let spokes =
-                spokes(patch, &sides, boundary_tol).map_err(|e| ExportError::NotConverged {
-                    face: face(p),
-                    deviation: e.deviation,
-                })?;
+                .collect::<Fitted<Vec<_>>>()?;
+            let spokes = spokes(patch, &sides, boundary_tol).map_err(|e| e.deviation)?;
             Ok(PatchCurves { sides, spokes })
         })
-        .collect::<Result<_, ExportError>>()?;
+        .collect();
     let jobs: Vec<(usize, usize, Quad)> = patches
         .iter()
         .enumerate()
+        .filter(|&(p, _)| curves[p].is_ok())
         .flat_map(|(p, patch)| {
             quads(patch.domain())
                 .into_iter()
@@ -267,33 +267,64 @@ pub fn cad_surface(
                 .map(move |(k, q)| (p, k, q))
         })
         .collect();
-    let faces: Vec<CadFace> = jobs
+    // A face that cannot be fitted refines up to MAX_SURFACE_CELLS (seconds each): once one
+    // has failed, the quads not yet started are left, so a failing export ends soon.
+    let failed = AtomicBool::new(false);
+    let fitted: Vec<(usize, Fitted<CadFace>)> = jobs
         .into_par_iter()
+        .filter(|_| !failed.load(Ordering::Relaxed))
         .map(|(p, k, quad)| {
-            let c = &curves[p];
-            let boundary = quad_boundary(&quad, &c.sides, &c.spokes)
-                .ok_or(ExportError::Degenerate { face: face(p) })?;
-            let patch = &patches[p];
-            let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
-            let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol, tol)
-                .map_err(|e| ExportError::NotConverged {
-                    face: face(p),
-                    deviation: e.deviation,
-                })?;
-            let surface_out = if surface.patches_outward {
-                fitted
-            } else {
-                fitted.reversed_u()
+            let fit = || {
+                let c = curves[p].as_ref().map_err(|&d| d)?;
+                let boundary = quad_boundary(&quad, &c.sides, &c.spokes).ok_or(f64::INFINITY)?;
+                let patch = &patches[p];
+                let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
+                let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol, tol)
+                    .map_err(|e| e.deviation)?;
+                Ok(CadFace {
+                    patch: p,
+                    face: surface.patch_faces[p],
+                    quad: k,
+                    surface: if surface.patches_outward {
+                        fitted
+                    } else {
+                        fitted.reversed_u()
+                    },
+                    deviation,
+                })
             };
-            Ok(CadFace {
-                patch: p,
-                face: face(p),
-                quad: k,
-                surface: surface_out,
+            let result = fit();
+            if result.is_err() {
+                failed.store(true, Ordering::Relaxed);
+            }
+            (p, result)
+        })
+        .collect();
+    let mut unfitted: Vec<Option<f64>> = curves.iter().map(|c| c.as_ref().err().copied()).collect();
+    let mut faces = Vec::with_capacity(fitted.len());
+    for (p, f) in fitted {
+        match f {
+            Ok(face) => faces.push(face),
+            Err(d) => unfitted[p] = Some(unfitted[p].map_or(d, |e| e.max(d))),
+        }
+    }
+    let unfitted: Vec<UnfittedFace> = unfitted
+        .into_iter()
+        .enumerate()
+        .filter_map(|(p, d)| {
+            d.map(|deviation| UnfittedFace {
+                face: surface.patch_faces[p],
                 deviation,
             })
         })
-        .collect::<Result<_, ExportError>>()?;
+        .collect();
+    if !unfitted.is_empty() {
+        return Err(ExportError::NotConverged {
+            faces: UnfittedFaces(unfitted),
+            patches: patches.len(),
+            tolerance: tol,
+        });
+    }
     let max_deviation = faces.iter().map(|f| f.deviation).fold(0.0, f64::max);
     Ok(CadSurface {
         faces,

@@ -47,7 +47,17 @@ class HydrostaticsError(BattenError):
 
 class ExportError(BattenError):
     """A file batten cannot write faithfully: the surface has holes (unless they are allowed),
-    a patch cannot be approximated within the tolerance, or the file cannot be written."""
+    patches cannot be approximated within the tolerance (``.faces``: their topology faces,
+    else empty), or the file cannot be written."""
+
+    faces: tuple[int, ...]
+
+    def __init__(self, message: str, faces=()) -> None:
+        super().__init__(message, tuple(faces))
+        self.faces = tuple(faces)
+
+    def __str__(self) -> str:
+        return str(self.args[0])
 
 
 class InternalError(BattenError):
