@@ -51,8 +51,36 @@ struct CurvePoint {
     point: DVec3,
 }
 
+/// The direction of the sweep in [`pairs_within`]: generic (components in the ratios of the
+/// plastic number's powers), so that no family of a hull's curves lies across it — a sweep
+/// along x compared every pair of points on one station, all of whose crossings share its x,
+/// which made a dense grid's clustering quadratic in its waterlines.
+const SWEEP: DVec3 = DVec3::new(0.7296, 0.5507, 0.4158);
+
+/// The pairs `(i, j)` of curve points within `tol` of each other, by a sweep along
+/// [`SWEEP`]: points within `tol` are within `tol` along any unit direction, so each point is
+/// compared only with those after it in the sweep until the sweep has moved past `tol`.
+fn pairs_within(points: &[CurvePoint], tol: f64) -> Vec<(usize, usize)> {
+    let along = SWEEP.normalize();
+    let mut order: Vec<(f64, usize)> = points.iter().map(|c| c.point.dot(along)).zip(0..).collect();
+    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut pairs = Vec::new();
+    for (k, &(s, i)) in order.iter().enumerate() {
+        let p = points[i].point;
+        for &(qs, j) in &order[k + 1..] {
+            if qs - s > tol {
+                break;
+            }
+            if (points[j].point - p).length() <= tol {
+                pairs.push((i, j));
+            }
+        }
+    }
+    pairs
+}
+
 /// Cluster curve ends and joins into nodes (union–find: joined pairs, and any two curve points
-/// within the tolerance, found by a sweep along x).
+/// within the tolerance, [`pairs_within`]).
 pub(super) fn cluster(
     network: &Network,
     prepared: &[Prepared],
@@ -104,19 +132,9 @@ pub(super) fn cluster(
         });
         uf.union(ia, ia + 1);
     }
-    // Any two curve points within the tolerance are one node: sweep along x.
-    let mut by_x: Vec<(f64, usize)> = incs.iter().map(|c| c.point.x).zip(0..).collect();
-    by_x.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    for (k, &(x, i)) in by_x.iter().enumerate() {
-        let p = incs[i].point;
-        for &(qx, j) in &by_x[k + 1..] {
-            if qx - x > tol {
-                break;
-            }
-            if (incs[j].point - p).length() <= tol {
-                uf.union(i, j);
-            }
-        }
+    // Any two curve points within the tolerance are one node.
+    for (i, j) in pairs_within(&incs, tol) {
+        uf.union(i, j);
     }
     // Groups, in order of their smallest member (curve ends come first, in curve order), as
     // runs of one flat array (counting sort by node).
