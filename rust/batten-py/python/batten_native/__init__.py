@@ -43,6 +43,7 @@ from ._native import (
     chines_from_knuckles,
     fair_points,
     fairness,
+    form_topology,
     mesh_hydrostatics,
     mesh_sectional_areas,
     network_from_json,
@@ -50,6 +51,7 @@ from ._native import (
     nodes_from_data,
     snap_to_nodes,
     topology,
+    transform_network,
 )
 
 __all__ = [
@@ -94,4 +96,6 @@ __all__ = [
     "nodes_from_data",
     "snap_to_nodes",
     "topology",
+    "form_topology",
+    "transform_network",
 ]
