@@ -6,9 +6,10 @@ mod common;
 
 use batten_core::{
     build_hull, fairness_metrics, form_topology, transform, transform_to, EdgeKind, FormError,
-    FormOptions, FormTopology, HullOptions, Network, NetworkCurve, NurbsCurve, Role, Target,
-    Tolerance, VertexMove,
+    FormOptions, FormTopology, HullOptions, Network, NurbsCurve, Role, Target, Tolerance,
+    VertexMove,
 };
+use common::nc;
 use glam::DVec3;
 
 /// Half breadth, depth and draft of the barge.
@@ -24,14 +25,6 @@ fn frigate() -> Network {
     let text =
         std::fs::read_to_string(examples().join("frigate_network.json")).expect("frigate file");
     Network::from_json(&text).expect("valid network")
-}
-
-fn nc(name: &str, role: Role, curve: NurbsCurve) -> NetworkCurve {
-    NetworkCurve {
-        name: name.to_owned(),
-        role,
-        curve,
-    }
 }
 
 /// A degree-2 curve of Bézier pieces (knots doubled between pieces), optional weights.

@@ -21,6 +21,7 @@
 use std::collections::BTreeMap;
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 
 use super::error::FormError;
 use super::identify::{EdgeKind, FormEdge, FormTopology};
@@ -58,8 +59,9 @@ pub struct Transformed {
 const FOOT_GRID: usize = 24;
 /// Gauss–Newton steps for a foot point (quadratic convergence: far more than needed).
 const FOOT_STEPS: usize = 30;
-/// A foot step shorter than this (domain units) has converged.
-const FOOT_CONVERGED: f64 = 1e-14;
+/// A foot step shorter than this (domain units) has converged: far below what moves a point
+/// by 1e-12 m on a hull-sized face.
+const FOOT_CONVERGED: f64 = 1e-13;
 /// A node whose curves lie farther apart than this fraction of the tolerance is re-attached.
 const REATTACH_FRACTION: f64 = 0.25;
 
@@ -116,11 +118,11 @@ pub fn transform(
     // 5. Face interiors.
     let faces = face_surfaces(network, form, &new_form_curves, tolerance)?;
     if !faces.is_empty() {
-        for (ci, pts) in points.iter_mut().enumerate() {
-            if !form.is_form_curve[ci] {
-                curve_moved(&faces, &curves[ci].curve, pts, tolerance.get());
-            }
-        }
+        points
+            .par_iter_mut()
+            .enumerate()
+            .filter(|(ci, _)| !form.is_form_curve[*ci])
+            .for_each(|(ci, pts)| curve_moved(&faces, &curves[ci].curve, pts, tolerance.get()));
     }
     let mut new_curves: Vec<NetworkCurve> = Vec::with_capacity(curves.len());
     for (ci, c) in curves.iter().enumerate() {
@@ -496,12 +498,7 @@ fn foot(f: &FaceSurfaces, p: DVec3, mut x: DVec2) -> (DVec2, f64) {
 /// point iteration), with the distance of that midpoint from the mean surface. The rule is
 /// the paper's to first order, and symmetric: the reverse change moves the point back.
 fn face_move(f: &FaceSurfaces, p: DVec3, keep: &[(DVec3, f64)]) -> (DVec3, f64) {
-    let (mut x, _) = f
-        .grid
-        .iter()
-        .map(|&(x, q)| (x, q.distance_squared(p)))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap_or((DVec2::from(f.before.domain().centre()), 0.0));
+    let (mut x, _) = grid_nearest(f, p);
     let delta_at = |x: DVec2| {
         let d = f.after.eval(x.to_array()) - f.before.eval(x.to_array());
         keep.iter()
@@ -516,7 +513,7 @@ fn face_move(f: &FaceSurfaces, p: DVec3, keep: &[(DVec3, f64)]) -> (DVec3, f64) 
         let next = delta_at(x);
         let change = (next - delta).length();
         delta = next;
-        if change <= MIDPOINT_CONVERGED * (1.0 + delta.length()) {
+        if change <= MIDPOINT_CONVERGED {
             break;
         }
     }
@@ -525,15 +522,36 @@ fn face_move(f: &FaceSurfaces, p: DVec3, keep: &[(DVec3, f64)]) -> (DVec3, f64) 
 
 /// Fixed-point steps of the midpoint rule (each contracts by the surface change's slope).
 const MIDPOINT_STEPS: usize = 60;
-/// Relative change of a move below which the midpoint rule has converged.
-const MIDPOINT_CONVERGED: f64 = 1e-15;
+/// Change of a move (m) below which the midpoint rule has converged: a thousandth of the
+/// 1e-9 m to which a transformation and its inverse cancel.
+const MIDPOINT_CONVERGED: f64 = 1e-12;
 
-/// Step 5 (§7.2.3): `p` moved by the nearest face (its midpoint nearest the mean surface),
-/// its move along each normal of `keep` set to the shift given there.
-fn face_moved(faces: &[FaceSurfaces], p: DVec3, keep: &[(DVec3, f64)]) -> DVec3 {
-    faces
+/// The grid point of face `f` nearest to `p`, with its squared distance.
+fn grid_nearest(f: &FaceSurfaces, p: DVec3) -> (DVec2, f64) {
+    f.grid
         .iter()
-        .map(|f| face_move(f, p, keep))
+        .map(|&(x, q)| (x, q.distance_squared(p)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((DVec2::from(f.before.domain().centre()), f64::INFINITY))
+}
+
+/// How many faces, nearest by their grids, are tried for a point.
+const CANDIDATE_FACES: usize = 2;
+
+/// Step 5 (§7.2.3): `p` moved by the nearest face (its midpoint nearest the mean surface; the
+/// faces tried are the nearest few by their grids), its move along each normal of `keep` set
+/// to the shift given there.
+fn face_moved(faces: &[FaceSurfaces], p: DVec3, keep: &[(DVec3, f64)]) -> DVec3 {
+    let mut order: Vec<(usize, f64)> = faces
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (i, grid_nearest(f, p).1))
+        .collect();
+    order.sort_by(|a, b| a.1.total_cmp(&b.1));
+    order
+        .iter()
+        .take(CANDIDATE_FACES)
+        .map(|&(i, _)| face_move(&faces[i], p, keep))
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map_or(p, |(d, _)| p + d)
 }
@@ -610,8 +628,7 @@ fn reattach(
             .iter()
             .position(|v| v.position.distance(node.position) <= tol);
         let parent = node.incidences.iter().find(|i| form.is_form_curve[i.curve]);
-        let mut slid: Option<(usize, f64)> = None;
-        // A node the move kept (a free curve's end still on its form curve) is left alone.
+        let mut slid: Option<usize> = None;
         let target = match (vertex, parent) {
             (Some(v), _) => form.vertices[v].position + tv[v],
             (None, Some(i)) => {
@@ -620,7 +637,7 @@ fn reattach(
                     .first()
                     .and_then(|&(n, d)| into_plane(c, i.t, n, d))
                     .unwrap_or(i.t);
-                slid = Some((i.curve, t));
+                slid = Some(i.curve);
                 c.point(t)
             }
             (None, None) => {
@@ -633,6 +650,7 @@ fn reattach(
                 constrain(mean, &child_planes)
             }
         };
+        // A node the move kept (a free curve's end still on its form curve) is left alone.
         let still_meet = vertex.is_none()
             && match parent {
                 Some(pi) => node.incidences.iter().all(|i| {
@@ -653,7 +671,7 @@ fn reattach(
                 }
             };
         for i in &node.incidences {
-            if slid.is_some_and(|(pc, _)| pc == i.curve) {
+            if slid == Some(i.curve) {
                 // The parent keeps its shape; the node slid along it.
                 continue;
             }
@@ -745,27 +763,19 @@ fn check_connections(
             before.curves()[b].name.clone(),
         ]
     };
-    if let Some((k, n)) = old
-        .iter()
-        .find(|(k, n)| new.get(k).copied().unwrap_or(0) < **n)
-    {
+    let count =
+        |m: &BTreeMap<(usize, usize), usize>, k: &(usize, usize)| m.get(k).copied().unwrap_or(0);
+    let changed = old
+        .keys()
+        .chain(new.keys())
+        .find(|k| count(&old, k) != count(&new, k));
+    if let Some(k) = changed {
         return Err(FormError::ConnectionLost {
             curves: names(k),
             detail: format!(
-                "they met {n} time(s) and now meet {} time(s)",
-                new.get(k).copied().unwrap_or(0)
-            ),
-        });
-    }
-    if let Some((k, n)) = new
-        .iter()
-        .find(|(k, n)| old.get(k).copied().unwrap_or(0) < **n)
-    {
-        return Err(FormError::ConnectionLost {
-            curves: names(k),
-            detail: format!(
-                "they met {} time(s) and now meet {n} time(s)",
-                old.get(k).copied().unwrap_or(0)
+                "they met {} time(s) and now meet {} time(s)",
+                count(&old, k),
+                count(&new, k)
             ),
         });
     }
