@@ -51,7 +51,8 @@ pub struct Transformed {
     pub vertex_translations: Vec<DVec3>,
     /// The curves re-attached at their nodes afterwards (step 6).
     pub reattached: Vec<String>,
-    /// The largest control-point move.
+    /// The largest control-point move by steps 4–5 (before re-attachment, which may insert
+    /// knots).
     pub max_move: f64,
 }
 
@@ -124,6 +125,18 @@ pub fn transform(
             .filter(|(ci, _)| !form.is_form_curve[*ci])
             .for_each(|(ci, pts)| curve_moved(&faces, &curves[ci].curve, pts, tolerance.get()));
     }
+    let max_move = curves
+        .iter()
+        .zip(&points)
+        .flat_map(|(c, pts)| {
+            c.curve
+                .control_points()
+                .into_iter()
+                .zip(pts.iter())
+                .map(|(p, q)| p.distance(*q))
+                .collect::<Vec<_>>()
+        })
+        .fold(0.0, f64::max);
     let mut new_curves: Vec<NetworkCurve> = Vec::with_capacity(curves.len());
     for (ci, c) in curves.iter().enumerate() {
         new_curves.push(NetworkCurve {
@@ -134,18 +147,6 @@ pub fn transform(
     }
     // 6. Re-attach, form curves first.
     let reattached = reattach(network, form, &tv, &mut new_curves, tolerance)?;
-    let max_move = curves
-        .iter()
-        .zip(&new_curves)
-        .flat_map(|(a, b)| {
-            a.curve
-                .control_points()
-                .into_iter()
-                .zip(b.curve.control_points())
-                .map(|(p, q)| p.distance(q))
-                .collect::<Vec<_>>()
-        })
-        .fold(0.0, f64::max);
     let new_network = Network::try_new(network.name.clone(), new_curves)?;
     check_connections(network, &new_network, tolerance)?;
     Ok(Transformed {
