@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::error::FormError;
-use super::measure::{measure, FormParameters};
+use super::parameters::FormParameters;
 use super::planes::{curve_planes, FormPlane};
 use crate::hull::snap_to_knot;
 use crate::network::{Network, NetworkCurve, Role};
@@ -92,7 +92,7 @@ pub struct FormTopology {
     pub parameters: FormParameters,
 }
 
-/// Options of [`form_topology`].
+/// Options of [`form_topology`](super::form_topology).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FormOptions {
     /// The model tolerance: when points coincide and curves lie in planes.
@@ -121,10 +121,14 @@ pub const BLEND_TANGENT_DEGREES: f64 = 1.0;
 /// role (keel, stem, transom, deck, midship, flat of side and bottom, knuckle) and, so that
 /// the form closes, every curve a form curve ends on (a station the knuckle ends on); their
 /// nodes are its vertices, their stretches between nodes its edges, the regions they enclose
-/// its faces. Then the parameters are measured ([`measure`]).
+/// its faces. The parameters are left at their defaults ([`form_topology`](super::form_topology)
+/// measures them).
 ///
 /// Errors only when a curve cannot be evaluated (naming it).
-pub fn form_topology(network: &Network, options: &FormOptions) -> Result<FormTopology, FormError> {
+pub(crate) fn identify(
+    network: &Network,
+    options: &FormOptions,
+) -> Result<FormTopology, FormError> {
     let tol = options.tolerance;
     let curves = network.curves();
     let is_form_curve = form_curves(network, tol)?;
@@ -200,16 +204,14 @@ pub fn form_topology(network: &Network, options: &FormOptions) -> Result<FormTop
             }
         })
         .collect();
-    let mut form = FormTopology {
+    Ok(FormTopology {
         is_form_curve,
         vertices,
         edges,
         faces,
         planes,
         parameters: FormParameters::default(),
-    };
-    form.parameters = measure(network, &form, options)?;
-    Ok(form)
+    })
 }
 
 /// Which curves carry the form: those with a role, then (until nothing changes) every curve a

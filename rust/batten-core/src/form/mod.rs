@@ -10,16 +10,29 @@
 mod error;
 mod identify;
 mod measure;
+mod parameters;
 mod parametric;
 mod planes;
 mod transform;
 
 pub use error::FormError;
 pub use identify::{
-    form_topology, EdgeKind, FormEdge, FormFace, FormOptions, FormTopology, FormVertex,
-    BLEND_TANGENT_DEGREES,
+    EdgeKind, FormEdge, FormFace, FormOptions, FormTopology, FormVertex, BLEND_TANGENT_DEGREES,
 };
-pub use measure::{Bilge, FormParameters, ParallelMiddleBody};
+pub use parameters::{Bilge, FormParameters, ParallelMiddleBody};
 pub use parametric::{parametric_moves, transform_to, Plan, Target};
 pub use planes::{FormPlane, PlaneKind};
 pub use transform::{transform, Transformed, VertexMove};
+
+/// The form topology of `network` (Bole, seed 002, §6: see [`identify`](identify::identify))
+/// with its parameters measured (§7.2.5, [`measure`](measure::measure)).
+///
+/// Errors only when a curve cannot be evaluated (naming it).
+pub fn form_topology(
+    network: &crate::network::Network,
+    options: &FormOptions,
+) -> Result<FormTopology, FormError> {
+    let mut form = identify::identify(network, options)?;
+    form.parameters = measure::measure(network, &form, options)?;
+    Ok(form)
+}

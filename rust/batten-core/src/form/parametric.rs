@@ -18,7 +18,7 @@ use glam::DVec3;
 
 use super::error::FormError;
 use super::identify::FormTopology;
-use super::measure::Bilge;
+use super::parameters::Bilge;
 use super::transform::{transform, Transformed, VertexMove};
 use crate::curve::NurbsCurve;
 use crate::network::{Network, NetworkCurve, Role};
@@ -281,7 +281,7 @@ fn below_bilge(g: &Bilge, pos: DVec3) -> bool {
 }
 
 /// Whether a PMB from `aft` to `fwd` fits inside the hull.
-fn check_fits(p: &super::measure::FormParameters, aft: f64, fwd: f64) -> Result<(), String> {
+fn check_fits(p: &super::parameters::FormParameters, aft: f64, fwd: f64) -> Result<(), String> {
     if fwd <= aft {
         return Err("the parallel middle body would vanish".into());
     }
