@@ -24,8 +24,8 @@ pub use parametric::{parametric_moves, transform_to, Plan, Target};
 pub use planes::{FormPlane, PlaneKind};
 pub use transform::{transform, Transformed, VertexMove};
 
-/// The form topology of `network` (Bole, seed 002, §6: see [`identify`](identify::identify))
-/// with its parameters measured (§7.2.5, [`measure`](measure::measure)).
+/// The form topology of `network` (Bole, seed 002, §6: form curves, vertices, edges, faces,
+/// planes) with its parameters measured (§7.2.5).
 ///
 /// Errors only when a curve cannot be evaluated (naming it).
 pub fn form_topology(
