@@ -56,10 +56,12 @@ from batten_native import (
     network_to_json,
     nodes_from_data,
     snap_to_nodes,
+    transform_network,
 )
+from batten_native import form_topology as _form_topology
 from batten_native import topology as _topology
 
-from . import cad_export, closed_mesh, hull_models, sections_draw
+from . import cad_export, closed_mesh, form_stack, hull_models, sections_draw
 from .atomic_write import write_atomically
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
@@ -115,6 +117,12 @@ __all__ = [
     "read_curves",
     "set_role",
     "topology",
+    "TransformResult",
+    "abandon",
+    "commit",
+    "form_topology",
+    "keep",
+    "transform",
 ]
 
 #: Display resolution (segments per span) of the curve objects batten draws.
@@ -1240,3 +1248,123 @@ def closed_surface(source, *, tolerance: float = DEFAULT_TOLERANCE):
     else:
         surface = _surface_object(_source_name(source)) or build(source).object
     return closed_mesh.closed_copy(surface, tolerance)
+
+
+# --- Form topology and transformations (seed 002) ------------------------------------------------
+
+
+def form_topology(source, *, tolerance: float = DEFAULT_TOLERANCE, draft: float | None = None) -> dict:
+    """The form topology of the hull in ``source`` (Bole, seed 002 §6): the form curves (every
+    curve with a role, and the curves those end on), its ``vertices`` (``position``, ``curves``,
+    ``planes``), ``edges`` (``curve``, ``t0``, ``t1``, ``start``, ``end``, ``kind``:
+    ``free_form``, ``straight`` or ``blend``), ``faces`` and ``planes``, and the ``parameters``
+    measured from it (§7.2.5): ``length``, ``breadth``, ``depth``, ``draft``,
+    ``waterline_breadth`` (at ``draft``, default the collection's design draft),
+    ``pmb_length``, ``pmb_position``, ``bilge_radius``, ``rise_of_floor``,
+    ``entrance_length``, ``run_length`` — None where the hull has no such feature, with
+    ``no_pmb_reason`` saying why there is no parallel middle body. Curve names are those of
+    :func:`read_curves`.
+    """
+    curves, object_of = _read_source(source)
+    draft = design_draft(source) if draft is None else draft
+    with errors_named_by_object(object_of):
+        return _form_topology(curves, tolerance, draft)
+
+
+class TransformResult(NamedTuple):
+    """What :func:`transform` returns: the copy (a new collection on the stack) and the report."""
+
+    collection: object
+    report: dict
+
+
+def transform(
+    source,
+    *,
+    breadth: float | None = None,
+    depth: float | None = None,
+    pmb_length: float | None = None,
+    pmb_position: float | None = None,
+    bilge_radius: float | None = None,
+    entrance_length: float | None = None,
+    run_length: float | None = None,
+    moves: Iterable[tuple[int, Iterable[float]]] | None = None,
+    tolerance: float = DEFAULT_TOLERANCE,
+    draft: float | None = None,
+    resolution: int = CURVE_RESOLUTION,
+) -> TransformResult:
+    """Transform the hull collection ``source`` (an original or a copy on its stack) through its
+    form topology (seed 002 §7.2) into a new copy on the stack (§9): the ``moves`` first —
+    ``(vertex, (dx, dy, dz))`` with vertex indices of :func:`form_topology` —, then each given
+    target value (metres) in the order of the signature. The original is not touched (until
+    :func:`commit`).
+
+    ``report``: ``steps`` (each ``what``, ``value``, ``reattached`` — curves re-attached at
+    their nodes —, ``max_move``), ``before`` and ``after`` (the measured parameters),
+    ``description``. Raises InvalidArgumentError for a target the hull cannot take (naming the
+    parameter: no parallel middle body, no arc in the midship section, a PMB that would not
+    fit …) and CurveError naming the curves when the change would break a connection; nothing
+    is created then.
+    """
+    if not isinstance(source, bpy.types.Collection):
+        raise InvalidArgumentError(f"transform needs a hull collection, got {type(source).__name__}")
+    targets = [
+        (name, float(value))
+        for name, value in (
+            ("breadth", breadth),
+            ("depth", depth),
+            ("pmb_length", pmb_length),
+            ("pmb_position", pmb_position),
+            ("bilge_radius", bilge_radius),
+            ("entrance_length", entrance_length),
+            ("run_length", run_length),
+        )
+        if value is not None
+    ]
+    move_list = [(int(v), tuple(float(c) for c in t)) for v, t in (moves or [])]
+    if not targets and not move_list:
+        raise InvalidArgumentError("transform: give a target value or moves")
+    original = form_stack.original_of(source)
+    curves, object_of = _read_source(source)
+    draft = design_draft(original) if draft is None else draft
+    with errors_named_by_object(object_of):
+        new_curves, report = transform_network(curves, targets, move_list, tolerance, draft)
+    description = ", ".join(
+        [f"{name} {value:g} m" for name, value in targets]
+        + ([f"{len(move_list)} vertex move(s)"] if move_list else [])
+    )
+    report["description"] = description
+    sources = form_stack.source_objects(source, object_of)
+    coll = form_stack.push_copy(original, new_curves, sources, description, resolution=resolution)
+    return TransformResult(coll, report)
+
+
+def commit(result) -> bpy.types.Collection:
+    """Apply the copy of ``result`` (a :class:`TransformResult` or a copy collection) to its
+    original: every original curve object gets the copy's splines (objects, names, roles,
+    materials kept; all or none), then the stack is dropped. Returns the original."""
+    copy = result.collection if isinstance(result, TransformResult) else result
+    original = form_stack.original_of(copy)
+    if original is copy:
+        raise InvalidArgumentError(f"collection '{copy.name}' is not a transformation copy")
+    curves, object_of = _read_source(copy)
+    curves_out.replace_splines_of(form_stack.replacements(copy, curves, object_of))
+    form_stack.drop_stack(original)
+    return original
+
+
+def abandon(source) -> int:
+    """Drop every copy on the transformation stack of ``source`` (an original or one of its
+    copies); the original stays as it is. Returns the number of copies removed."""
+    return form_stack.drop_stack(form_stack.original_of(source))
+
+
+def keep(result) -> bpy.types.Collection:
+    """Keep the copy of ``result`` (a :class:`TransformResult` or a copy collection) as a new
+    hull of its own, off the stack (seed 002 §9); the original and the other copies stay.
+    Returns the collection."""
+    copy = result.collection if isinstance(result, TransformResult) else result
+    if form_stack.original_of(copy) is copy:
+        raise InvalidArgumentError(f"collection '{copy.name}' is not a transformation copy")
+    form_stack.release(copy)
+    return copy

@@ -13,6 +13,7 @@ mod diagnostic;
 mod error;
 mod export;
 mod fair;
+mod form;
 mod hull;
 mod hydro;
 mod network;
@@ -44,6 +45,12 @@ pub use fair::{
     FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
     MAX_FAIR_DEGREE,
 };
+pub use form::{
+    form_topology, Bilge, EdgeKind, FormEdge, FormError, FormFace, FormOptions, FormParameters,
+    FormPlane, FormTopology, FormVertex, ParallelMiddleBody, Plan, PlaneKind, Target, Transformed,
+    VertexMove, BLEND_TANGENT_DEGREES,
+};
+pub use form::{parametric_moves, transform, transform_to};
 pub use hull::{
     build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
     LiveHull, Rebuild, Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES, KNUCKLE_EDGE_SAMPLES,

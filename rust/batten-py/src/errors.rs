@@ -64,6 +64,20 @@ pub(crate) fn export_err(err: batten_core::ExportError) -> PyErr {
     }
 }
 
+/// A form-topology error: a lost connection as `CurveError` naming its first curve (the
+/// message names both), a network error as [`core_err`], everything else (a parameter the hull
+/// cannot take, a bad move) as `InvalidArgumentError`.
+pub(crate) fn form_err(err: batten_core::FormError) -> PyErr {
+    match err {
+        batten_core::FormError::Network(e) => core_err(e),
+        batten_core::FormError::ConnectionLost { ref curves, .. } => {
+            let first = curves.first().cloned().unwrap_or_default();
+            CurveError::new_err((format!("transform: {err}"), first))
+        }
+        e => InvalidArgumentError::new_err(format!("transform: {e}")),
+    }
+}
+
 /// A curve kernel error as `CurveError`, naming the curve.
 pub(crate) fn curve_err(name: &str, err: CoreCurveError) -> PyErr {
     core_err(err.named(name))

@@ -13,6 +13,7 @@ mod curve;
 mod errors;
 mod export;
 mod fair;
+mod form;
 mod hull;
 mod hull_model;
 mod hydro;
@@ -65,6 +66,8 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
+    m.add_function(wrap_pyfunction!(form::form_topology, m)?)?;
+    m.add_function(wrap_pyfunction!(form::transform_network, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
     m.add_class::<hull_model::HullModel>()?;

@@ -46,7 +46,7 @@ impl EdgeInfo {
 /// derivatives describe the wrong side of the corner and the patch folds. Points that
 /// coincide within the tolerance are the same point, so the knot is the node. The node
 /// position itself is kept ([`SideSegment::with_nodes`]).
-fn snap_to_knot(curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
+pub(crate) fn snap_to_knot(curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
     let (a, b) = curve.domain();
     let at = curve.point(t);
     curve
@@ -61,7 +61,7 @@ fn snap_to_knot(curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
 
 /// The designer curve restricted to `[t0, t1]` (split at interior ends; the parameterisation
 /// is kept). Falls back to the whole curve if a split is refused.
-fn edge_curve(curve: &NurbsCurve, t0: f64, t1: f64) -> NurbsCurve {
+pub(crate) fn edge_curve(curve: &NurbsCurve, t0: f64, t1: f64) -> NurbsCurve {
     let (a, b) = curve.domain();
     let mut c = curve.clone();
     if t0 > a && t0 < b {

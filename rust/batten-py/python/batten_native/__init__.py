@@ -44,6 +44,7 @@ from ._native import (
     chines_from_knuckles,
     fair_points,
     fairness,
+    form_topology,
     mesh_hydrostatics,
     mesh_sectional_areas,
     network_from_json,
@@ -51,6 +52,7 @@ from ._native import (
     nodes_from_data,
     snap_to_nodes,
     topology,
+    transform_network,
 )
 
 __all__ = [
@@ -96,4 +98,6 @@ __all__ = [
     "nodes_from_data",
     "snap_to_nodes",
     "topology",
+    "form_topology",
+    "transform_network",
 ]

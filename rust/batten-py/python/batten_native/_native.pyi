@@ -39,6 +39,8 @@ __all__ = [
     "nodes_from_data",
     "snap_to_nodes",
     "topology",
+    "form_topology",
+    "transform_network",
 ]
 __version__: Final[str]
 DEFAULT_TOLERANCE: Final[float]
@@ -159,6 +161,18 @@ def fair_points(
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
+def form_topology(
+    curves: list[Curve],
+    tolerance: float = ...,  # DEFAULT_TOLERANCE
+    draft: float | None = None,
+) -> dict: ...
+def transform_network(
+    curves: list[Curve],
+    targets: list[tuple[str, float]],
+    moves: list[tuple[int, tuple[float, float, float]]],
+    tolerance: float = ...,  # DEFAULT_TOLERANCE
+    draft: float | None = None,
+) -> tuple[list[Curve], dict]: ...
 SEA_WATER_DENSITY: float
 
 @final
