@@ -2,6 +2,7 @@
 form, the collection of section curves and its refresh on rebuild, and bad input."""
 
 import csv
+import json
 import math
 from pathlib import Path
 
@@ -151,11 +152,29 @@ def test_offsets_table_refuses_nan_and_leaves_no_file(wigley, tmp_path):
         api.offsets_table(wigley, tmp_path, stations=3)  # a folder, not a file
 
 
+#: Warnings a round-tripped network must not have: the file is a consistent network.
+INCONSISTENT = {"dangling_end", "unused_edges", "near_miss", "hole", "unclosed_region", "face_not_patched"}
+
+
 def _round_trip(coll, tmp_path, draft, **kwargs):
     path = api.export_sections(coll, tmp_path / "sections.json", **kwargs)
     again, _ = api.import_sections(path, collection="round trip")
-    api.build(again)
+    report = api.build(again).report
+    inconsistent = [(w["kind"], w["message"]) for w in report["warnings"] if w["kind"] in INCONSISTENT]
+    assert not inconsistent, inconsistent
+    assert report["holes"] == 0, report["holes"]
     return api.hydrostatics(coll, draft), api.hydrostatics(again, draft)
+
+
+def test_the_exported_sections_end_on_points_of_the_boundary_curves(wigley, tmp_path):
+    # Every station and waterline end is a point of the keel's, stem's or deck's polyline in
+    # the file (a chord across the curve would miss it): measured within 1e-6 m.
+    data = json.loads(api.export_sections(wigley, tmp_path / "s.json", stations=11, waterlines=6).read_text())
+    cut = [c for c in data["curves"] if c["kind"] in ("station", "waterline")]
+    boundary = np.array([p for c in data["curves"] if c not in cut for p in c["points"]])
+    ends = np.array([c["points"][k] for c in cut for k in (0, -1)])
+    gaps = np.linalg.norm(ends[:, None, :] - boundary[None, :, :], axis=2).min(axis=1)
+    assert len(ends) == 2 * 15 and gaps.max() <= 2e-6, gaps.max()
 
 
 def test_wigley_sections_round_trip_within_0_1_percent(wigley, tmp_path):
@@ -163,7 +182,22 @@ def test_wigley_sections_round_trip_within_0_1_percent(wigley, tmp_path):
     assert after["volume"] == pytest.approx(before["volume"], rel=1e-3)
 
 
+def test_frigate_sections_round_trip_with_its_transom_and_a_straight_keel(examples_dir, tmp_path):
+    # 40 stations end on the frigate's straight keel (one cubic span: its move through their
+    # ends once failed), the station at the AP lies in the transom's plane (left out of the
+    # file: the transom keeps its role). Measured: volume -0.0029 % at 4 m.
+    coll = api.load_network(examples_dir / "frigate_network.json")
+    api.build(coll)
+    before, after = _round_trip(coll, tmp_path, 4.0, stations=40, waterlines=12)
+    assert after["volume"] == pytest.approx(before["volume"], rel=1e-3)
+
+
 def test_kcs_sections_round_trip_within_0_1_percent(tmp_path):
+    # The file's stations end on the profile's and deck's points (the profile's corner at the
+    # transom and the deck's at its top were cut by chords by up to 0.23 m), the chine ends on
+    # the sections, and the station piece cut where KCS's surface folds at the counter
+    # (x 5.9 m) is left out: no dangling end, near miss or hole (before: 6 dangling ends, 2
+    # holes). Measured: volume -0.040 % (before: +0.050 %).
     coll, _ = api.import_sections(HULLS / "kcs" / "network.json")
     api.build(coll)
     before, after = _round_trip(coll, tmp_path, api.design_draft(coll), stations=40, waterlines=12)

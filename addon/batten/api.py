@@ -63,6 +63,7 @@ from batten_native import topology as _topology
 
 from . import cad_export, closed_mesh, form_stack, hull_models, sections_draw
 from .atomic_write import write_atomically
+from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
 from .fit_data import fit_data
@@ -438,7 +439,7 @@ def import_sections(
     within = [tolerance] * len(sections)
     for round_ in range(SNAP_ROUNDS + 1):
         curves = [c for c, _ in fits]
-        knuckles = [_corner_points(c, r) for c, r in fits]
+        knuckles = _off_given_chines([_corner_points(c, r) for c, r in fits], curves, tolerance)
         chines = chines_from_knuckles(curves, knuckles, tolerance)
         # A chine's own data are the knuckles it joins.
         points = [sec.points for sec in data] + [
@@ -492,6 +493,14 @@ def _corner_points(curve: Curve, report: dict) -> np.ndarray:
     """The knuckle points of a faired curve, (k, 3): where its fit kept corners."""
     t = report["corner_parameters"]
     return np.asarray(curve.evaluate(t), dtype=float).reshape(-1, 3) if t else np.zeros((0, 3))
+
+
+def _off_given_chines(knuckles: list[np.ndarray], curves: list[Curve], within: float) -> list[np.ndarray]:
+    """The knuckle points not on a chine the file gives (within ``within`` m of it): a chine of
+    the file joins those itself, and joining them again would draw it twice."""
+    given = [c for c in curves if c.role == "knuckle"]
+    off = [[k for k in ks if all(g.nearest(k)[1] > within for g in given)] for ks in knuckles]
+    return [np.asarray(ks, dtype=float).reshape(-1, 3) for ks in off]
 
 
 def _chain_points(chine: Curve, knuckles: list[np.ndarray], within: float) -> np.ndarray:
@@ -961,8 +970,10 @@ OFFSETS_TOLERANCE = 1e-4
 #: :func:`export_sections` writes beside the sections.
 KIND_OF_ROLE = {"keel": "profile", "stem": "stem", "transom": "transom", "deck": "deck", "knuckle": "chine"}
 
-#: Points per curve of the hull's boundary curves in :func:`export_sections`.
-EXPORT_CURVE_SAMPLES = 200
+#: A section's end or corner within this distance (m) of a boundary curve lies on it, for
+#: :func:`export_sections` (the sections' points are polished onto the patches, whose edges are
+#: the curves: measured within 1e-6 m on KCS).
+EXPORT_MEET_DISTANCE = 1e-4
 
 
 def _station_xs(source, model, stations) -> tuple[list[float], list[str]]:
@@ -1024,25 +1035,37 @@ def export_sections(
     :func:`import_sections` reads (``shared/hulls``' JSON): its stations (``stations`` as in
     :func:`offsets_table`) and waterlines (as in :func:`sections`) cut from the exact surface
     within ``tolerance`` (m), every piece a curve of dense points, and the hull's boundary
-    curves (keel/profile, stem, transom, deck, chines: the curves with those roles, sampled),
-    with ``Lpp`` and ``T`` when the collection carries them (AP at x = 0 is then assumed, as
-    the format has it). Returns the path; NetworkFileError when it cannot be written."""
+    curves (keel/profile, stem, transom, deck, chines: the curves with those roles), with
+    ``Lpp`` and ``T`` when the collection carries them (AP at x = 0 is then assumed, as the
+    format has it). The file is a consistent network (:mod:`batten.boundary_samples`): a
+    boundary curve has among its points every section end and corner on it, a chine ends on
+    a section or a boundary curve, and a section piece along a boundary curve, or one ending
+    inside faces (cut where the surface folds, which the build reports), is left out.
+    Returns the path; NetworkFileError when it cannot be written."""
     model = _hull_model(source)
     xs, _ = _station_xs(source, model, stations)
     cut = sections(source, stations=xs, waterlines=waterlines, tolerance=tolerance)
+    network = read_curves(source)
+    boundary = [c for c in network if c.role in KIND_OF_ROLE]
     curves = []
     for family, kind in (("stations", "station"), ("waterlines", "waterline")):
         for s in cut[family]:
             for k, pts in enumerate(s.polylines):
+                if along_boundary(pts, boundary, EXPORT_MEET_DISTANCE) or is_stray(
+                    pts, network, EXPORT_MEET_DISTANCE
+                ):
+                    continue
                 name = s.name if k == 0 else f"{s.name} ({k + 1})"
                 curves.append({"name": name, "kind": kind, "points": np.round(pts, 6).tolist()})
-    for c in read_curves(source):
-        kind = KIND_OF_ROLE.get(c.role)
-        if kind is None:
-            continue
-        t0, t1 = c.domain
-        pts = c.evaluate(np.linspace(t0, t1, EXPORT_CURVE_SAMPLES))
-        curves.append({"name": c.name, "kind": kind, "points": np.round(pts, 6).tolist()})
+    anchors = section_anchors(
+        [p for f in ("stations", "waterlines") for s in cut[f] for p in s.polylines],
+        [c for f in ("stations", "waterlines") for s in cut[f] for c in s.corners],
+    )
+    for c in boundary:
+        others = [o for o in boundary if o is not c]
+        trim = c.role == "knuckle"
+        pts = boundary_points(c, anchors, others, EXPORT_MEET_DISTANCE, trim_free_ends=trim)
+        curves.append({"name": c.name, "kind": KIND_OF_ROLE[c.role], "points": np.round(pts, 6).tolist()})
     data = {"name": _source_name(source), "curves": curves}
     lpp, _fp = _datums(source, None, None)
     if lpp is not None:

@@ -36,7 +36,8 @@ pub enum Diagnostic {
         /// The gap between them.
         gap: f64,
     },
-    /// Two curves coincide over their whole length; the second (by name) is left out.
+    /// Two curves coincide over their whole length; a free one is left out beside one with a
+    /// role, else the second by name.
     DuplicateCurve {
         /// The kept and the left-out curve.
         curves: [String; 2],

@@ -1084,6 +1084,26 @@ fn a_curve_meeting_nothing_is_isolated() {
 }
 
 #[test]
+fn a_free_curve_along_a_transom_is_the_one_left_out() {
+    // A station cut in the transom's plane (a sections file's station at the AP) duplicates
+    // the transom: the transom keeps its role, whatever the names' order.
+    let station = lifted("a station", Role::Free, &[(0.0, -DRAFT), (0.0, 0.0)]);
+    let t = build(&with(grid_curves(1, 1), vec![station]));
+    let d = t.diagnostics_of("duplicate_curve");
+    assert_eq!(d.len(), 1, "{:?}", t.diagnostics);
+    assert_eq!(
+        d[0].curves(),
+        ["transom", "a station"],
+        "kept, then left out"
+    );
+    assert_eq!(
+        summary(&t).2,
+        summary(&build(&network(grid_curves(1, 1)))).2,
+        "faces"
+    );
+}
+
+#[test]
 fn a_duplicate_curve_is_reported_and_left_out() {
     let mut dup = lifted("st1_copy", Role::Free, &[(5.0, 0.0), (5.0, -DRAFT)]);
     dup.curve = dup.curve.reversed();

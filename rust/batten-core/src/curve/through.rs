@@ -6,7 +6,9 @@
 //! A knot is inserted first at every interior target parameter that is not yet a knot (Boehm,
 //! no change of shape; in the middle of the span instead when the target is near a knot),
 //! which gives each target a control point of its own, so the change stays local to the spans
-//! around its target.
+//! around its target. Where the knots put mid-span leave the targets dependent (more of them
+//! in a few spans than control points there), a knot halfway between any two neighbouring
+//! targets that no knot separates gives each one a span of its own.
 //!
 //! Continuity at a knot follows from its multiplicity whatever the control points, except at a
 //! knot of multiplicity `degree`, where the curve is only C0 by its knots and smooth (G1) only
@@ -171,44 +173,71 @@ impl NurbsCurve {
                 curve = curve.insert_knot(at, 1)?;
             }
         }
-        let mut rows: Vec<(usize, [f64; MAX_ORDER])> = unique
-            .iter()
-            .map(|&(t, _)| rational_basis(&curve, t))
-            .collect();
-        let mut residual: Vec<DVec3> = unique.iter().map(|&(t, q)| q - curve.point(t)).collect();
-        for row in smooth_joint_rows(&curve) {
-            rows.push(row);
-            residual.push(DVec3::ZERO);
-        }
-        let m = rows.len();
-        let n = curve.control_point_count();
-        // Every row is a window of `width` coefficients from its first control point.
-        let width = curve.order().max(JOINT_ROW_WIDTH);
-        let window = |first: usize| first..(first + width).min(n);
-        let mut gram = vec![0.0; m * m];
-        for i in 0..m {
-            for j in 0..m {
-                let (fi, ri) = &rows[i];
-                let (fj, rj) = &rows[j];
-                let (a, b) = (window(*fi), window(*fj));
-                let (lo, hi) = (a.start.max(b.start), a.end.min(b.end));
-                gram[i * m + j] = (lo..hi).map(|c| ri[c - fi] * rj[c - fj]).sum();
+        match constrained_move(&curve, &unique) {
+            // A knot put mid-span can leave two targets in one span, and then more targets near
+            // there than control points to meet them: a knot halfway between any two
+            // neighbours with none between them gives every target a span of its own.
+            Err(CurveError::TargetsDependent) => {
+                constrained_move(&separated(curve, &unique)?, &unique)
             }
+            moved => moved,
         }
-        let lambda = cholesky_solve(gram, m, residual).ok_or(CurveError::TargetsDependent)?;
-        let mut points = curve.control_points();
-        for ((first, r), l) in rows.iter().zip(&lambda) {
-            for c in window(*first) {
-                points[c] += r[c - first] * *l;
-            }
-        }
-        NurbsCurve::try_new(
-            curve.degree(),
-            curve.knots().to_vec(),
-            points,
-            curve.weights(),
-        )
     }
+}
+
+/// `curve` with a knot halfway between any two neighbouring `targets` (sorted) that no knot
+/// separates.
+fn separated(mut curve: NurbsCurve, targets: &[(f64, DVec3)]) -> Result<NurbsCurve, CurveError> {
+    for pair in targets.windows(2) {
+        let (t, u) = (pair[0].0, pair[1].0);
+        let knots = curve.knots();
+        if knots.partition_point(|&k| k <= t) == knots.partition_point(|&k| k < u) {
+            curve = curve.insert_knot(0.5 * (t + u), 1)?;
+        }
+    }
+    Ok(curve)
+}
+
+/// Fowler & Bartels' least move of the control points of `curve` (its knots as they are) that
+/// meets the sorted, distinct `targets`, keeping its smooth joints smooth.
+fn constrained_move(curve: &NurbsCurve, unique: &[(f64, DVec3)]) -> Result<NurbsCurve, CurveError> {
+    let mut rows: Vec<(usize, [f64; MAX_ORDER])> = unique
+        .iter()
+        .map(|&(t, _)| rational_basis(curve, t))
+        .collect();
+    let mut residual: Vec<DVec3> = unique.iter().map(|&(t, q)| q - curve.point(t)).collect();
+    for row in smooth_joint_rows(curve) {
+        rows.push(row);
+        residual.push(DVec3::ZERO);
+    }
+    let m = rows.len();
+    let n = curve.control_point_count();
+    // Every row is a window of `width` coefficients from its first control point.
+    let width = curve.order().max(JOINT_ROW_WIDTH);
+    let window = |first: usize| first..(first + width).min(n);
+    let mut gram = vec![0.0; m * m];
+    for i in 0..m {
+        for j in 0..m {
+            let (fi, ri) = &rows[i];
+            let (fj, rj) = &rows[j];
+            let (a, b) = (window(*fi), window(*fj));
+            let (lo, hi) = (a.start.max(b.start), a.end.min(b.end));
+            gram[i * m + j] = (lo..hi).map(|c| ri[c - fi] * rj[c - fj]).sum();
+        }
+    }
+    let lambda = cholesky_solve(gram, m, residual).ok_or(CurveError::TargetsDependent)?;
+    let mut points = curve.control_points();
+    for ((first, r), l) in rows.iter().zip(&lambda) {
+        for c in window(*first) {
+            points[c] += r[c - first] * *l;
+        }
+    }
+    NurbsCurve::try_new(
+        curve.degree(),
+        curve.knots().to_vec(),
+        points,
+        curve.weights(),
+    )
 }
 
 #[cfg(test)]
@@ -305,6 +334,34 @@ mod tests {
             before > 0.1 && after > 0.1,
             "the corner stays: {before} → {after}"
         );
+    }
+
+    #[test]
+    fn many_targets_on_one_span_are_all_met() {
+        // The frigate's keel fitted as one cubic Bézier span (a straight line), moved through
+        // the ends of 39 stations 3.08 m apart and the stem at 114 m: the knots inserted near
+        // other knots once left two targets in one span and the targets dependent.
+        let line = NurbsCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 114.0, 114.0, 114.0, 114.0],
+            (0..4)
+                .map(|i| DVec3::new(38.0 * i as f64, 0.0, 0.0))
+                .collect(),
+            None,
+        )
+        .expect("line");
+        let step = 114.0 / 37.05;
+        let mut targets: Vec<(f64, DVec3)> = (0..38)
+            .map(|k| {
+                let x = step * k as f64;
+                (x, DVec3::new(x, 0.0, 1e-4 * (k % 3) as f64))
+            })
+            .collect();
+        targets.push((114.0, DVec3::new(114.0, 0.0, 0.0)));
+        let moved = line.through(&targets).expect("every target met");
+        for (t, q) in targets {
+            assert!(moved.point(t).distance(q) < 1e-12, "target at {t} missed");
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::super::NetworkCurve;
+use super::super::{NetworkCurve, Role};
 use super::{Hit, Prepared};
 use crate::curve::NurbsCurve;
 use crate::diagnostic::Diagnostic;
@@ -58,6 +58,17 @@ pub(super) fn self_hits(
             location,
             gap: h.gap,
         });
+    }
+}
+
+/// Of two duplicate curves, whether `a` is kept rather than `b`: a curve with a role (a
+/// transom, a keel, a chine) over a free one drawn along it (a station cut in the transom's
+/// plane), else the first by name.
+fn keeps_over(a: &NetworkCurve, b: &NetworkCurve) -> bool {
+    match (a.role == Role::Free, b.role == Role::Free) {
+        (false, true) => true,
+        (true, false) => false,
+        _ => a.name <= b.name,
     }
 }
 
@@ -151,14 +162,14 @@ pub(super) fn sort_out_pair(
                     && is_end(pb.curve, t_hi, tol)
                     && (pb.curve.point(t_lo) - pb.curve.point(t_hi)).length() > tol;
                 if a_covered && b_covered {
-                    let drop = if curves[ca].name <= curves[cb].name {
-                        cb
+                    let (keep, drop) = if keeps_over(&curves[ca], &curves[cb]) {
+                        (ca, cb)
                     } else {
-                        ca
+                        (cb, ca)
                     };
                     out.excluded[drop] = true;
                     out.diagnostics.push(Diagnostic::DuplicateCurve {
-                        curves: names(),
+                        curves: [curves[keep].name.clone(), curves[drop].name.clone()],
                         location: from,
                     });
                     return;
