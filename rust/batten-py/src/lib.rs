@@ -18,6 +18,7 @@ mod hull_model;
 mod hydro;
 mod network;
 mod sections;
+mod surface_fair;
 mod topology;
 
 use pyo3::prelude::*;
@@ -63,6 +64,12 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_fair::fair_sections, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_fair::section_noise, m)?)?;
+    m.add(
+        "DEFAULT_SURFACE_FAIR_TOLERANCE",
+        batten_core::DEFAULT_SURFACE_FAIR_TOLERANCE,
+    )?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;

@@ -158,6 +158,31 @@ def fair_points(
     role: str = "free",
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
+def fair_sections(
+    curves: list[Curve],
+    *,
+    tolerance: float = ...,  # DEFAULT_SURFACE_FAIR_TOLERANCE
+    families: list[str] = ...,  # ["stations", "waterlines"]
+    fixed_roles: list[str] | None = None,  # None: keel, stem, transom, deck, midship, fos, fob, knuckle
+    fixed_curves: list[str] = ...,
+    fixed_points: list[tuple[float, float, float]] = ...,
+    curve_tolerances: list[tuple[str, float]] = ...,
+    filter: str = "cubic",
+    max_rounds: int = ...,
+    bias_target: float | None = None,
+    model_tolerance: float = ...,  # DEFAULT_TOLERANCE
+) -> tuple[list[Curve], dict]: ...
+def section_noise(
+    curves: list[Curve],
+    amplitude: float,
+    seed: int,
+    *,
+    families: list[str] = ...,
+    fixed_roles: list[str] | None = None,
+    fixed_curves: list[str] = ...,
+    model_tolerance: float = ...,
+) -> list[Curve]: ...
+DEFAULT_SURFACE_FAIR_TOLERANCE: float
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
 SEA_WATER_DENSITY: float
 

@@ -1,0 +1,187 @@
+"""Surface fairing through families of sections (seed 003) beside Taubin lambda|mu smoothing of
+the surface mesh (the paper's discrete peer, Taubin 1995), on the same noisy input.
+
+The paper's test (Pla et al. 1998, section 5): a clean hull's stations and waterlines are moved
+along their normals by noise uniform in +-30 % of the tolerance (10 mm), carried along at the
+nodes so the network stays exact (``batten_native.section_noise``), then faired within the
+tolerance (``batten_native.fair_sections``, both families). Hulls: the Wigley lines
+(examples/wigley_lines.json), the frigate (examples/frigate_network.json) and, when
+../shared/hulls is there, KCS as ``api.import_sections`` builds it.
+
+Reported per hull: the largest distance from the clean hull (curves at equal parameters; for
+the meshes, vertex to vertex of the same tessellation), the hull's curvature variation
+Sigma int kappa'^2 ds over its sections and their inflections (clean, noisy, faired), the change of
+the enclosed volume against the clean hull, the fairing time (best of 3; run the release
+build); then Taubin's smoothing of the noisy surface mesh (lambda = 0.5, mu = -0.53, boundary
+vertices kept, the pass count that brings it nearest the clean hull, at most 50) beside
+batten's faired surface mesh: largest distance from the clean mesh and the mesh's curvature
+variation (the summed squared differences of the umbrella Laplacian's length across edges).
+
+    PYTHONPATH=build/native/release:addon .venv/bin/python blender_scripts/bench_fairing_surface.py
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import batten_native as bn
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+KCS = ROOT.parent / "shared" / "hulls" / "kcs" / "network.json"
+TOL = 0.01
+NOISE = 0.3 * TOL
+SEED = 3
+TAUBIN_LAMBDA, TAUBIN_MU, TAUBIN_PASSES = 0.5, -0.53, 50
+
+
+def best(fn, repeat=3):
+    out, times = None, []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return out, min(times)
+
+
+def apart(a: list, b: list) -> float:
+    """Largest distance between two lists of curves at equal parameters."""
+    worst = 0.0
+    for ca, cb in zip(a, b, strict=True):
+        t = np.linspace(*ca.domain, 201)
+        worst = max(worst, float(np.linalg.norm(np.asarray(ca.evaluate(t)) - np.asarray(cb.evaluate(t)), axis=1).max()))
+    return worst
+
+
+def figures(curves: list) -> dict:
+    """The hull's fairness figures as fair_sections measures them (no round made)."""
+    return bn.fair_sections(curves, tolerance=TOL, max_rounds=0)[1]["before"]
+
+
+def mesh(curves: list, model_tolerance: float):
+    (positions, corners, sizes, _), report, _ = bn.build_hull_model(curves, model_tolerance)
+    return np.asarray(positions), np.asarray(corners), np.asarray(sizes), report["volume"]
+
+
+def edges_of(corners, sizes) -> np.ndarray:
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    pairs = []
+    for s, n in zip(starts, sizes, strict=True):
+        f = corners[s : s + n]
+        pairs.append(np.column_stack([f, np.roll(f, -1)]))
+    e = np.sort(np.concatenate(pairs), axis=1)
+    return np.unique(e, axis=0)
+
+
+def umbrella(p, edges, n) -> np.ndarray:
+    """The umbrella Laplacian: the mean of a vertex's neighbours minus the vertex."""
+    total = np.zeros_like(p)
+    count = np.zeros(n)
+    np.add.at(total, edges[:, 0], p[edges[:, 1]])
+    np.add.at(total, edges[:, 1], p[edges[:, 0]])
+    np.add.at(count, edges[:, 0], 1)
+    np.add.at(count, edges[:, 1], 1)
+    return total / count[:, None] - p
+
+
+def boundary(corners, sizes, n) -> np.ndarray:
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    pairs = []
+    for s, k in zip(starts, sizes, strict=True):
+        f = corners[s : s + k]
+        pairs.append(np.column_stack([f, np.roll(f, -1)]))
+    e = np.sort(np.concatenate(pairs), axis=1)
+    uniq, count = np.unique(e, axis=0, return_counts=True)
+    fixed = np.zeros(n, dtype=bool)
+    fixed[uniq[count == 1].ravel()] = True
+    return fixed
+
+
+def mesh_variation(p, edges) -> float:
+    h = np.linalg.norm(umbrella(p, edges, len(p)), axis=1)
+    return float(np.sum((h[edges[:, 0]] - h[edges[:, 1]]) ** 2))
+
+
+def taubin(p, edges, fixed, clean):
+    """Taubin's lambda|mu passes on the free vertices; the pass nearest the clean mesh."""
+    q = p.copy()
+    best_q, best_d = q.copy(), float(np.linalg.norm(q - clean, axis=1).max())
+    for k in range(TAUBIN_PASSES):
+        for f in (TAUBIN_LAMBDA, TAUBIN_MU):
+            step = f * umbrella(q, edges, len(q))
+            step[fixed] = 0.0
+            q = q + step
+        d = float(np.linalg.norm(q - clean, axis=1).max())
+        if d < best_d:
+            best_q, best_d = q.copy(), d
+    return best_q, best_d
+
+
+def kcs_curves():
+    """KCS as api.import_sections draws it (needs bpy)."""
+    import batten.api as api
+
+    coll, _ = api.import_sections(KCS)
+    return api.read_curves(coll)
+
+
+def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE) -> None:
+    noisy = bn.section_noise(clean, NOISE, SEED, model_tolerance=model_tolerance)
+    (faired, report), seconds = best(
+        lambda: bn.fair_sections(noisy, tolerance=TOL, model_tolerance=model_tolerance)
+    )
+    fc, fn, ff = figures(clean), report["before"], report["after"]
+    print(f"\n== {name}: {report['sections']}, {report['moves']} moves in {report['rounds']} rounds, "
+          f"converged {report['converged']}, {seconds * 1e3:.0f} ms")
+    print(f"  from the clean hull: noisy {apart(clean, noisy) * 1e3:.2f} mm, "
+          f"faired {apart(clean, faired) * 1e3:.2f} mm; from the noisy input {report['max_deviation'] * 1e3:.2f} mm "
+          f"(tolerance {TOL * 1e3:.0f} mm)")
+    print(f"  Sigma int kappa'^2 ds: clean {fc['curvature_variation']:.4g}, noisy {fn['curvature_variation']:.4g}, "
+          f"faired {ff['curvature_variation']:.4g} (noisy/faired {fn['curvature_variation'] / ff['curvature_variation']:.1f}x, "
+          f"faired/clean {ff['curvature_variation'] / fc['curvature_variation']:.2f}x)")
+    print(f"  inflections: clean {fc['inflections']}, noisy {fn['inflections']}, faired {ff['inflections']}")
+    try:
+        pc, corners, sizes, vc = mesh(clean, model_tolerance)
+        pn, _, _, vn = mesh(noisy, model_tolerance)
+        pf, _, _, vf = mesh(faired, model_tolerance)
+    except bn.BattenError as e:
+        print(f"  (no surface: {e})")
+        return
+    print(f"  enclosed volume: noisy {100 * (vn - vc) / vc:+.4f} %, faired {100 * (vf - vc) / vc:+.4f} % of the clean")
+    if not (len(pc) == len(pn) == len(pf)):
+        print("  (meshes differ in structure: no vertex-to-vertex comparison)")
+        return
+    edges = edges_of(corners, sizes)
+    fixed = boundary(corners, sizes, len(pc))
+    pt, dt = taubin(pn, edges, fixed, pc)
+    dn = float(np.linalg.norm(pn - pc, axis=1).max())
+    df = float(np.linalg.norm(pf - pc, axis=1).max())
+    dtn = float(np.linalg.norm(pt - pn, axis=1).max())
+    mc, mn, mf, mt = (mesh_variation(p, edges) for p in (pc, pn, pf, pt))
+    print("  surface mesh        from clean   from noisy   curvature variation")
+    print(f"    noisy              {dn * 1e3:7.2f} mm                 {mn:.4g}")
+    print(f"    batten (sections)  {df * 1e3:7.2f} mm   {float(np.linalg.norm(pf - pn, axis=1).max()) * 1e3:7.2f} mm   {mf:.4g}")
+    print(f"    Taubin lambda|mu   {dt * 1e3:7.2f} mm   {dtn * 1e3:7.2f} mm   {mt:.4g}")
+    print(f"    clean                                         {mc:.4g}")
+
+
+def main() -> None:
+    for file in ("wigley_lines.json", "frigate_network.json"):
+        _, curves = bn.network_from_json((ROOT / "examples" / file).read_text())
+        run(file, curves)
+    if KCS.exists() and "--no-kcs" not in sys.argv:
+        try:
+            import bpy  # noqa: F401
+        except ImportError:
+            print("\n(KCS needs bpy for api.import_sections)")
+            return
+        run("KCS (import_sections)", kcs_curves())
+
+
+if __name__ == "__main__":
+    main()
