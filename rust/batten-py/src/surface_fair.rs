@@ -2,9 +2,8 @@
 //! noise test `section_noise`.
 
 use batten_core::{
-    HullFairness, Network, Role, SectionFairness, SectionFamily, SectionFilter,
-    SurfaceFairOptions, Tolerance, DEFAULT_SURFACE_FAIR_ROUNDS, DEFAULT_SURFACE_FAIR_TOLERANCE,
-    DEFAULT_TOLERANCE,
+    HullFairness, Network, Role, SectionFairness, SectionFamily, SectionFilter, SurfaceFairOptions,
+    Tolerance, DEFAULT_SURFACE_FAIR_ROUNDS, DEFAULT_SURFACE_FAIR_TOLERANCE, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
 use pyo3::prelude::*;

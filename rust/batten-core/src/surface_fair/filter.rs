@@ -42,6 +42,12 @@ const FOOT_SLANT: f64 = 1.0;
 /// sections).
 const NORMAL_LINE_STEPS: usize = 8;
 
+/// A neighbour's point counts only if it lies within this many times the planes' distance of
+/// the section's point (in the plane): the surface between neighbouring sections may be as
+/// steep as 84° to their planes (a flared bow between waterlines), not steeper; a point
+/// farther off belongs to another part of the neighbour (its other end, a bulb).
+const MAX_SPREAD: f64 = 10.0;
+
 /// Which filtered section the sections are relaxed toward.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SectionFilter {
@@ -66,7 +72,8 @@ impl SectionFilter {
 /// filtered section along the normal, and the section's RMS and largest bias (m).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct SectionBias {
-    /// Per control point: `(F − C)·n n`, zero where the point has no neighbours.
+    /// Per control point: `(F − C)·n n`, zero at the ends and where the point has no
+    /// neighbours.
     pub moves: Vec<DVec3>,
     /// Root mean square of the biases over the points that have one (m).
     pub rms: f64,
@@ -112,7 +119,9 @@ fn across_nodes(nodes: &Nodes, k: usize, t: f64, i: usize) -> Option<f64> {
     Some(sa + (t - ta) / (tb - ta) * (sb - sa))
 }
 
-/// The parameter on curve `i` of its first node on a curve (other than `k`) through `node`.
+/// The parameter on curve `i` of its node on a curve (other than `k`) through `node`: of
+/// several (a waterline ending twice on the profile, a station crossing a bulb's waterline
+/// twice), the one nearest `node`.
 fn matching_node(nodes: &Nodes, node: usize, k: usize, i: usize) -> Option<f64> {
     let crossing = || {
         nodes.incidences[node]
@@ -120,12 +129,20 @@ fn matching_node(nodes: &Nodes, node: usize, k: usize, i: usize) -> Option<f64> 
             .map(|&(c, _)| c)
             .filter(|&c| c != k)
     };
+    let here = nodes.positions[node];
     nodes.on_curve[i]
         .iter()
-        .find(|&&(_, m)| {
+        .filter(|&&(_, m)| {
             nodes.incidences[m]
                 .iter()
                 .any(|&(c, _)| c != i && crossing().any(|x| x == c))
+        })
+        .min_by(|a, b| {
+            let (da, db) = (
+                nodes.positions[a.1].distance(here),
+                nodes.positions[b.1].distance(here),
+            );
+            da.total_cmp(&db)
         })
         .map(|&(s, _)| s)
 }
@@ -179,7 +196,9 @@ pub(crate) fn section_bias(
     let after: Vec<usize> = (group + 1..family.groups.len()).take(reach).collect();
     let mut moves = vec![DVec3::ZERO; curve.control_point_count()];
     let (mut sum, mut count, mut max) = (0.0, 0usize, 0.0f64);
-    for (j, t) in greville(curve).into_iter().enumerate() {
+    let last = curve.control_point_count() - 1;
+    // The end points stay (on the keel, the deck, the stem), so they have no bias.
+    for (j, t) in greville(curve).into_iter().enumerate().take(last).skip(1) {
         let d = curve.derivs(t);
         let mut tangent = d.d1;
         tangent[axis] = 0.0;
@@ -220,7 +239,11 @@ pub(crate) fn section_bias(
                         }),
                 };
                 let Some(mut q) = q else { break };
+                let spread = (family.groups[g].offset - offset).abs();
                 q[axis] = offset;
+                if q.distance(d.point) > MAX_SPREAD * spread + accuracy {
+                    break;
+                }
                 let along = (q - d.point).dot(n);
                 found.push((family.groups[g].offset, along));
             }

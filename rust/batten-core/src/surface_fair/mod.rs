@@ -174,16 +174,18 @@ fn setup(network: &Network, options: &SurfaceFairOptions) -> Result<Setup, Error
     let model = options.model_tolerance.get();
     // Every curve in a family's plane is a neighbour in the filter; only the movable ones move.
     // Sections of the families not faired are carried along where a faired one moves a node.
+    // A section is in its plane to within the tolerance: an imported section moved through its
+    // nodes may leave the plane by a little of it (and keeps that, moving only in the plane).
     let planes: Vec<Option<(SectionFamily, f64)>> = curves
         .iter()
-        .map(|c| plane_of(&c.curve, &SectionFamily::ALL, model))
+        .map(|c| plane_of(&c.curve, &SectionFamily::ALL, tol))
         .collect();
     let movable: Vec<bool> = curves
         .iter()
         .enumerate()
         .map(|(i, c)| !fixed.contains(&i) && !options.fixed_roles.contains(&c.role))
         .collect();
-    let families = group_families(&planes, &options.families, model);
+    let families = group_families(&planes, &options.families, tol);
     let mut place = vec![None; curves.len()];
     for (f, family) in families.iter().enumerate() {
         for (g, group) in family.groups.iter().enumerate() {

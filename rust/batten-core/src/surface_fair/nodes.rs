@@ -29,6 +29,9 @@ pub(crate) struct Nodes {
     pub freedom: Vec<Freedom>,
     /// Per node: the curves through it and their parameters.
     pub incidences: Vec<Vec<(usize, f64)>>,
+    /// Per node: where it is (as found; the fairing moves it, but not by more than a
+    /// tolerance, which tells nodes apart well enough).
+    pub positions: Vec<DVec3>,
     /// Per curve: its nodes as `(parameter, node)`, in order.
     pub on_curve: Vec<Vec<(f64, usize)>>,
 }
@@ -78,6 +81,7 @@ pub(crate) fn nodes(
         .collect();
     Nodes {
         freedom,
+        positions: junctions.nodes.iter().map(|n| n.position).collect(),
         incidences,
         on_curve,
     }
