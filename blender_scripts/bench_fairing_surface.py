@@ -65,9 +65,9 @@ def apart(a: list, b: list) -> float:
     return worst
 
 
-def figures(curves: list) -> dict:
+def figures(curves: list, fixed: list) -> dict:
     """The hull's fairness figures as fair_sections measures them (no round made)."""
-    return bn.fair_sections(curves, tolerance=TOL, max_rounds=0)[1]["before"]
+    return bn.fair_sections(curves, tolerance=TOL, fixed_curves=fixed, max_rounds=0)[1]["before"]
 
 
 def mesh(curves: list, model_tolerance: float):
@@ -75,14 +75,18 @@ def mesh(curves: list, model_tolerance: float):
     return np.asarray(positions), np.asarray(corners), np.asarray(sizes), report["volume"]
 
 
-def edges_of(corners, sizes) -> np.ndarray:
+def face_edges(corners, sizes) -> np.ndarray:
+    """Every side of every face as a sorted vertex pair (a shared edge twice)."""
     starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
     pairs = []
     for s, n in zip(starts, sizes, strict=True):
         f = corners[s : s + n]
         pairs.append(np.column_stack([f, np.roll(f, -1)]))
-    e = np.sort(np.concatenate(pairs), axis=1)
-    return np.unique(e, axis=0)
+    return np.sort(np.concatenate(pairs), axis=1)
+
+
+def edges_of(corners, sizes) -> np.ndarray:
+    return np.unique(face_edges(corners, sizes), axis=0)
 
 
 def umbrella(p, edges, n) -> np.ndarray:
@@ -97,13 +101,8 @@ def umbrella(p, edges, n) -> np.ndarray:
 
 
 def boundary(corners, sizes, n) -> np.ndarray:
-    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-    pairs = []
-    for s, k in zip(starts, sizes, strict=True):
-        f = corners[s : s + k]
-        pairs.append(np.column_stack([f, np.roll(f, -1)]))
-    e = np.sort(np.concatenate(pairs), axis=1)
-    uniq, count = np.unique(e, axis=0, return_counts=True)
+    """The vertices on the mesh's open boundary (edges of one face)."""
+    uniq, count = np.unique(face_edges(corners, sizes), axis=0, return_counts=True)
     fixed = np.zeros(n, dtype=bool)
     fixed[uniq[count == 1].ravel()] = True
     return fixed
@@ -143,18 +142,20 @@ def kcs_curves():
     return api.read_curves(coll)
 
 
-def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE) -> None:
-    noisy = bn.section_noise(clean, NOISE, SEED, model_tolerance=model_tolerance)
+def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE, fixed=()) -> None:
+    fixed = list(fixed)
+    noisy = bn.section_noise(clean, NOISE, SEED, fixed_curves=fixed, model_tolerance=model_tolerance)
     (faired, report), seconds = best(
-        lambda: bn.fair_sections(noisy, tolerance=TOL, model_tolerance=model_tolerance)
+        lambda: bn.fair_sections(noisy, tolerance=TOL, fixed_curves=fixed, model_tolerance=model_tolerance)
     )
-    fc, fn, ff = figures(clean), report["before"], report["after"]
+    fc, fn, ff = figures(clean, fixed), report["before"], report["after"]
     print(
         f"\n== {name}: {report['sections']}, {report['moves']} moves in {report['rounds']} rounds, "
         f"converged {report['converged']}, {seconds * 1e3:.0f} ms"
     )
     print(
-        f"  from the clean hull: noisy {apart(clean, noisy) * 1e3:.2f} mm, faired {apart(clean, faired) * 1e3:.2f} mm;"
+        f"  from the clean hull: noisy {apart(clean, noisy) * 1e3:.2f} mm,"
+        f" faired {apart(clean, faired) * 1e3:.2f} mm;"
         f" from the noisy input {report['max_deviation'] * 1e3:.2f} mm (tolerance {TOL * 1e3:.0f} mm)"
     )
     kc, kn, kf = (f["curvature_variation"] for f in (fc, fn, ff))
@@ -171,7 +172,8 @@ def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE) -
         print(f"  (no surface: {e})")
         return
     print(
-        f"  enclosed volume: noisy {100 * (vn - vc) / vc:+.4f} %, faired {100 * (vf - vc) / vc:+.4f} % of the clean"
+        f"  enclosed volume: noisy {100 * (vn - vc) / vc:+.4f} %,"
+        f" faired {100 * (vf - vc) / vc:+.4f} % of the clean"
     )
     tc, tn = cKDTree(pc), cKDTree(pn)
     edges = edges_of(corners_n, sizes_n)
@@ -187,7 +189,8 @@ def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE) -
     print("  surface mesh        from clean   from noisy   curvature variation")
     print(f"    noisy              {from_mesh(pn, tc) * 1e3:7.2f} mm                 {mn:.4g}")
     print(
-        f"    batten (sections)  {from_mesh(pf, tc) * 1e3:7.2f} mm   {from_mesh(pf, tn) * 1e3:7.2f} mm   {mf:.4g}"
+        f"    batten (sections)  {from_mesh(pf, tc) * 1e3:7.2f} mm"
+        f"   {from_mesh(pf, tn) * 1e3:7.2f} mm   {mf:.4g}"
     )
     print(f"    Taubin lambda|mu   {dt * 1e3:7.2f} mm   {from_mesh(pt, tn) * 1e3:7.2f} mm   {mt:.4g}")
     print(f"    clean                                         {mc:.4g}")
@@ -203,7 +206,11 @@ def main() -> None:
         except ImportError:
             print("\n(KCS needs bpy for api.import_sections)")
             return
-        run("KCS (import_sections)", kcs_curves())
+        curves = kcs_curves()
+        # The profile, the upper edge and the chines are the outline: fixed by name (the drawn
+        # objects of import_sections carry role free).
+        outline = [c.name for c in curves if c.name.startswith(("profile", "deck", "chine"))]
+        run("KCS (import_sections)", curves, fixed=outline)
 
 
 if __name__ == "__main__":

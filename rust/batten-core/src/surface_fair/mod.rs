@@ -308,22 +308,8 @@ pub fn fair_sections(
             bias_target: target,
         },
     );
-    let curves = network
-        .curves()
-        .iter()
-        .enumerate()
-        .map(|(i, c)| NetworkCurve {
-            name: c.name.clone(),
-            role: c.role,
-            curve: if setup.state.moves[i] > 0 {
-                setup.state.curves[i].clone()
-            } else {
-                c.curve.clone()
-            },
-        })
-        .collect();
     Ok(SurfaceFairing {
-        network: Network::try_new(network.name.clone(), curves)?,
+        network: moved_network(network, &setup.state)?,
         report,
     })
 }
@@ -446,6 +432,12 @@ pub fn section_noise(
             setup.state.apply(&plan, 1.0)?;
         }
     }
+    moved_network(network, &setup.state)
+}
+
+/// `network` with the curves that moved in `state` as they are now (the others exactly as
+/// given: a curve that never moved keeps its own knots).
+fn moved_network(network: &Network, state: &State) -> Result<Network, Error> {
     let curves = network
         .curves()
         .iter()
@@ -453,8 +445,8 @@ pub fn section_noise(
         .map(|(i, c)| NetworkCurve {
             name: c.name.clone(),
             role: c.role,
-            curve: if setup.state.moves[i] > 0 {
-                setup.state.curves[i].clone()
+            curve: if state.moves[i] > 0 {
+                state.curves[i].clone()
             } else {
                 c.curve.clone()
             },
