@@ -186,6 +186,7 @@ pub(crate) fn fair_sections<'py>(
 #[pyo3(signature = (curves, amplitude, seed, *,
     families=vec!["stations".to_owned(), "waterlines".to_owned()], fixed_roles=None,
     fixed_curves=Vec::new(), model_tolerance=DEFAULT_TOLERANCE))]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn section_noise(
     py: Python<'_>,
     curves: Vec<PyRef<'_, Curve>>,

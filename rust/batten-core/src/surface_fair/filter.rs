@@ -81,6 +81,17 @@ pub(crate) struct SectionBias {
     pub max: f64,
 }
 
+/// The network as the filter reads it: every curve, its Bézier decomposition, and the nodes.
+#[derive(Clone, Copy)]
+pub(crate) struct Sections<'a> {
+    /// Every curve of the network.
+    pub curves: &'a [NurbsCurve],
+    /// Their Bézier decompositions (for closest points).
+    pub decomps: &'a [BezierDecomposition],
+    /// Where they meet.
+    pub nodes: &'a Nodes,
+}
+
 /// Greville abscissae of `curve`: where each control point pulls hardest.
 pub(crate) fn greville(curve: &NurbsCurve) -> Vec<f64> {
     let p = curve.degree();
@@ -173,20 +184,21 @@ fn on_normal_line(
     q
 }
 
-/// The bias of the section `k` (a curve of plane `group` in `family`; module doc); `curves`
-/// and `decomps` are every curve of the network and its Bézier decomposition, `nodes` where
-/// they meet, `accuracy` (m) that of the closest
-/// points.
+/// The bias of the section `k` (a curve of plane `group` in `family`; module doc) in the
+/// `network`; `accuracy` (m) is that of the closest points.
 pub(crate) fn section_bias(
     family: &Family,
     group: usize,
     k: usize,
-    curves: &[NurbsCurve],
-    decomps: &[BezierDecomposition],
-    nodes: &Nodes,
+    network: Sections<'_>,
     filter: SectionFilter,
     accuracy: f64,
 ) -> SectionBias {
+    let Sections {
+        curves,
+        decomps,
+        nodes,
+    } = network;
     let curve = &curves[k];
     let axis = family.family.axis();
     let normal_axis = DVec3::AXES[axis];

@@ -61,7 +61,7 @@ pub(crate) fn least_change(wish: &[DVec3], rows: &[Row], order: usize) -> Option
     if m == 0 {
         return Some(wish.to_vec());
     }
-    let width = order.max(JOINT_ROW_WIDTH).min(MAX_ORDER);
+    let width = order.clamp(JOINT_ROW_WIDTH, MAX_ORDER);
     let window = |first: usize| first..(first + width).min(n);
     let mut gram = vec![0.0; m * m];
     let mut rhs = Vec::with_capacity(m);

@@ -8,7 +8,7 @@ use crate::curve::{BezierDecomposition, NurbsCurve};
 use crate::error::Error;
 
 use super::families::Family;
-use super::filter::{section_bias, SectionBias, SectionFilter};
+use super::filter::{section_bias, SectionBias, SectionFilter, Sections};
 use super::least_change::{joint_rows, least_change, point_row, Row};
 use super::nodes::{Freedom, Nodes};
 
@@ -74,9 +74,11 @@ impl State {
             family,
             group,
             curve,
-            &self.curves,
-            &self.decomps,
-            &self.nodes,
+            Sections {
+                curves: &self.curves,
+                decomps: &self.decomps,
+                nodes: &self.nodes,
+            },
             filter,
             self.model_tolerance,
         )
