@@ -5,7 +5,8 @@ The paper's test (Pla et al. 1998, section 5): a clean hull's stations and water
 along their normals by noise uniform in +-30 % of the tolerance (10 mm), carried along at the
 nodes so the network stays exact (``batten_native.section_noise``), then faired within the
 tolerance (``batten_native.fair_sections``, both families). Hulls: the Wigley lines
-(examples/wigley_lines.json), the frigate (examples/frigate_network.json) and, when
+(examples/wigley_lines.json), the frigate (examples/frigate_network.json), the Wigley hull at 21
+stations and 8 waterlines (examples/wigley.py) and, when
 ../shared/hulls is there, KCS as ``api.import_sections`` builds it.
 
 Reported per hull: the largest distance from the clean hull (curves at equal parameters; for
@@ -220,10 +221,23 @@ def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE, f
     print(f"    clean                                         {mc:.4g}")
 
 
+def fine_wigley() -> list:
+    """The Wigley hull of examples/wigley.py with 21 stations at L/22 and 8 waterlines at T/8."""
+    import json
+
+    sys.path.insert(0, str(ROOT / "examples"))
+    import wigley
+
+    xs = [wigley.L * k / 22.0 for k in range(-10, 11)]
+    zs = [wigley.T * k / 8.0 for k in range(1, 9)]
+    return bn.network_from_json(json.dumps(wigley.network(xs, zs, "wigley 21x8")))[1]
+
+
 def main() -> None:
     for file in ("wigley_lines.json", "frigate_network.json"):
         _, curves = bn.network_from_json((ROOT / "examples" / file).read_text())
         run(file, curves)
+    run("Wigley, 21 stations x 8 waterlines", fine_wigley())
     if KCS.exists() and "--no-kcs" not in sys.argv:
         try:
             import bpy  # noqa: F401
