@@ -16,6 +16,7 @@ __all__ = [
     "DEFAULT_RESOLUTION",
     "DEFAULT_SECTION_MODEL_TOLERANCE",
     "DEFAULT_SECTION_TOLERANCE",
+    "DEFAULT_SURFACE_FAIR_TOLERANCE",
     "DEFAULT_TOLERANCE",
     "MAX_RESOLUTION",
     "ROLES",
@@ -31,12 +32,14 @@ __all__ = [
     "check_lengths",
     "chines_from_knuckles",
     "fair_points",
+    "fair_sections",
     "fairness",
     "mesh_hydrostatics",
     "mesh_sectional_areas",
     "network_from_json",
     "network_to_json",
     "nodes_from_data",
+    "section_noise",
     "snap_to_nodes",
     "topology",
 ]
@@ -182,7 +185,7 @@ def section_noise(
     fixed_curves: list[str] = ...,
     model_tolerance: float = ...,
 ) -> list[Curve]: ...
-DEFAULT_SURFACE_FAIR_TOLERANCE: float
+DEFAULT_SURFACE_FAIR_TOLERANCE: Final[float]
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
 SEA_WATER_DENSITY: float
 
