@@ -32,6 +32,7 @@ from batten_native import (
     DEFAULT_RESOLUTION,
     DEFAULT_SECTION_MODEL_TOLERANCE,
     DEFAULT_SECTION_TOLERANCE,
+    DEFAULT_SURFACE_FAIR_TOLERANCE,
     DEFAULT_TOLERANCE,
     ROLES,
     SEA_WATER_DENSITY,
@@ -51,6 +52,7 @@ from batten_native import (
     check_lengths,
     chines_from_knuckles,
     fair_points,
+    fair_sections,
     fairness,
     network_from_json,
     network_to_json,
@@ -111,6 +113,9 @@ __all__ = [
     "export_step",
     "fair_curve",
     "fair_curves",
+    "fair_surface",
+    "DEFAULT_SURFACE_FAIR_TOLERANCE",
+    "SURFACE_FAIR_FIXED_ROLES",
     "fairness",
     "import_sections",
     "load_example",
@@ -364,6 +369,96 @@ def fair_curve(
     return fair_curves(
         obj, tolerance=tolerance, noise=noise, degree=degree, corner_angle_deg=corner_angle_deg
     )
+
+
+#: The roles whose curves :func:`fair_surface` keeps as they are by default: the outline (keel,
+#: stem, transom, deck), the midship section, the flat of side and bottom, and the knuckle lines.
+SURFACE_FAIR_FIXED_ROLES = ("keel", "stem", "transom", "deck", "midship", "fos", "fob", "knuckle")
+
+
+def fair_surface(
+    source,
+    *,
+    tolerance: float = DEFAULT_SURFACE_FAIR_TOLERANCE,
+    families=("stations", "waterlines"),
+    fixed=SURFACE_FAIR_FIXED_ROLES,
+    fixed_points=(),
+    curve_tolerances: dict | None = None,
+    max_rounds: int = 12,
+    filter: str = "cubic",
+    bias_target: float | None = None,
+    model_tolerance: float = DEFAULT_TOLERANCE,
+) -> dict:
+    """Fair the hull in ``source`` through its families of plane sections, as loftsmen did
+    (seed 003, Pla et al. 1998 §4): in each family (``"stations"``, ``"waterlines"``,
+    ``"buttocks"``: the network's curves in planes x, z, y = const) the section of largest bias
+    against its filtered section (``filter``: ``"cubic"`` through two neighbours on each side,
+    or the paper's ``"equidistant"``) is moved toward it as far as every constraint allows, and
+    again, family after family, for at most ``max_rounds`` rounds or until no section's RMS bias
+    exceeds ``bias_target`` (m; default 1 % of the tolerance). A node moved on a station moves on
+    its waterline too, so the network stays exact and the surface rebuilds from it.
+
+    Constraints: every point stays within ``tolerance`` (m) of where it was (or the curve
+    object's own value in ``curve_tolerances``, ``{object name: m}``); the curves named in
+    ``fixed`` — roles (default :data:`SURFACE_FAIR_FIXED_ROLES`) or curve object names (user
+    locks) — are not touched; every curve's ends stay (so the perpendiculars, the DWL's ends and
+    the outline), and nodes within ``model_tolerance`` of ``fixed_points``; sections stay in
+    their planes; knuckle points stay knuckles.
+
+    The curve objects that moved are rewritten in place (all or none, as :func:`fair_curves`;
+    a failure changes nothing; the operator's undo restores them). Returns the report: ``rounds``,
+    ``moves``, ``converged``, ``max_deviation`` (m), ``sections`` (per family, its movable
+    sections), ``before`` / ``after`` (the hull's ``curvature_variation`` Σ∫κ′² ds, 1/m³,
+    ``inflections``, ``max_bias`` m) and ``curves``: per curve ``curve``, ``object``,
+    ``family``, ``offset``, ``moves``, ``tolerance``, ``max_deviation``, ``before``, ``after``.
+    InvalidArgumentError for a bad family, filter, role, tolerance or an unknown name.
+    """
+    curves, object_of = _read_source(source)
+    by_object: dict[str, list[str]] = {}
+    for c in curves:
+        by_object.setdefault(object_of[c.name], []).append(c.name)
+    fixed_roles, fixed_curves = [], []
+    for item in [fixed] if isinstance(fixed, str) else list(fixed):
+        if item in ROLES:
+            fixed_roles.append(item)
+        elif item in by_object:
+            fixed_curves.extend(by_object[item])
+        elif item in object_of:
+            fixed_curves.append(item)
+        else:
+            raise InvalidArgumentError(f"fixed: '{item}' is no role and no curve of '{_source_name(source)}'")
+    per_curve = []
+    for obj_name, tol in (curve_tolerances or {}).items():
+        if obj_name not in by_object:
+            raise InvalidArgumentError(f"curve_tolerances: no curve object '{obj_name}'")
+        per_curve.extend((name, float(tol)) for name in by_object[obj_name])
+    with errors_named_by_object(object_of):
+        faired, report = fair_sections(
+            curves,
+            tolerance=tolerance,
+            families=[families] if isinstance(families, str) else list(families),
+            fixed_roles=fixed_roles,
+            fixed_curves=fixed_curves,
+            fixed_points=[tuple(map(float, p)) for p in fixed_points],
+            curve_tolerances=per_curve,
+            filter=filter,
+            max_rounds=max_rounds,
+            bias_target=bias_target,
+            model_tolerance=model_tolerance,
+        )
+    moved = {c["curve"] for c in report["curves"] if c["moves"] > 0}
+    new_of = {c.name: c for c in faired}
+    objects = {o.name: o for o in curve_objects(source)}
+    curves_out.replace_splines_of(
+        [
+            (objects[obj_name], [new_of[n] for n in names])
+            for obj_name, names in by_object.items()
+            if moved.intersection(names)
+        ]
+    )
+    for c in report["curves"]:
+        c["object"] = object_of[c["curve"]]
+    return report
 
 
 #: Rounds of fitting and snapping :func:`import_sections` makes at most, and how much closer

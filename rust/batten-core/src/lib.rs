@@ -19,6 +19,7 @@ mod hydro;
 mod network;
 mod patch;
 mod sections;
+mod surface_fair;
 mod tolerance;
 mod topo;
 mod union_find;
@@ -41,9 +42,9 @@ pub use export::{
     MAX_SURFACE_CELLS, MAX_SURFACE_SPANS,
 };
 pub use fair::{
-    corner_indices, fair_points, fairness_metrics, FairError, FairOptions, FairReport, FairedCurve,
-    FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD,
-    MAX_FAIR_DEGREE,
+    corner_indices, curvature_variation, fair_points, fairness_metrics, FairError, FairOptions,
+    FairReport, FairedCurve, FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD,
+    INFLECTION_THRESHOLD, MAX_FAIR_DEGREE,
 };
 pub use form::{
     form_topology, Bilge, EdgeKind, FormEdge, FormError, FormFace, FormOptions, FormParameters,
@@ -73,6 +74,11 @@ pub use patch::{
 };
 pub use sections::{
     knuckle_lines, KnuckleLine, SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,
+};
+pub use surface_fair::{
+    fair_sections, section_noise, HullFairness, SectionFairness, SectionFamily, SectionFilter,
+    SectionReport, SurfaceFairOptions, SurfaceFairReport, SurfaceFairing, DEFAULT_BIAS_SHARE,
+    DEFAULT_FIXED_ROLES, DEFAULT_SURFACE_FAIR_ROUNDS, DEFAULT_SURFACE_FAIR_TOLERANCE,
 };
 pub use tolerance::{InvalidTolerance, Tolerance};
 pub use topo::{

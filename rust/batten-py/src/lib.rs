@@ -20,6 +20,7 @@ mod hydro;
 mod live;
 mod network;
 mod sections;
+mod surface_fair;
 mod topology;
 
 use pyo3::prelude::*;
@@ -65,6 +66,12 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(errors::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fair_points, m)?)?;
     m.add_function(wrap_pyfunction!(fair::fairness, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_fair::fair_sections, m)?)?;
+    m.add_function(wrap_pyfunction!(surface_fair::section_noise, m)?)?;
+    m.add(
+        "DEFAULT_SURFACE_FAIR_TOLERANCE",
+        batten_core::DEFAULT_SURFACE_FAIR_TOLERANCE,
+    )?;
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     m.add_function(wrap_pyfunction!(form::form_topology, m)?)?;
     m.add_function(wrap_pyfunction!(form::transform_network, m)?)?;

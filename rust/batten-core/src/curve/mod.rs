@@ -17,6 +17,7 @@ mod nearest;
 mod nurbs;
 mod piece;
 mod through;
+pub(crate) use through::{cholesky_solve, rational_basis, smooth_joint_rows, JOINT_ROW_WIDTH};
 
 pub(crate) use arclen::GL8;
 pub use basis::MAX_DEGREE;

@@ -42,7 +42,7 @@ const DEPENDENT_PIVOT: f64 = 1e-12;
 
 /// The `(first index, values)` of the rational basis `R_i(t) = N_i(t)·w_i / Σ N_j(t)·w_j`
 /// that is non-zero at `t`: how a change of the Cartesian control points moves `C(t)`.
-fn rational_basis(curve: &NurbsCurve, t: f64) -> (usize, [f64; MAX_ORDER]) {
+pub(crate) fn rational_basis(curve: &NurbsCurve, t: f64) -> (usize, [f64; MAX_ORDER]) {
     let p = curve.degree();
     let cw = curve.homogeneous_points();
     let span = find_span(curve.knots(), p, cw.len(), t);
@@ -58,7 +58,7 @@ fn rational_basis(curve: &NurbsCurve, t: f64) -> (usize, [f64; MAX_ORDER]) {
 
 /// Solve `M x = b` for a symmetric positive definite `M` (row-major `m × m`) by Cholesky,
 /// three right-hand sides at once; `None` when a pivot shows the rows dependent.
-fn cholesky_solve(mut m: Vec<f64>, n: usize, mut b: Vec<DVec3>) -> Option<Vec<DVec3>> {
+pub(crate) fn cholesky_solve(mut m: Vec<f64>, n: usize, mut b: Vec<DVec3>) -> Option<Vec<DVec3>> {
     for j in 0..n {
         let diag = m[j * n + j] - (0..j).map(|k| m[j * n + k] * m[j * n + k]).sum::<f64>();
         // Also refuses a NaN pivot.
@@ -84,14 +84,14 @@ fn cholesky_solve(mut m: Vec<f64>, n: usize, mut b: Vec<DVec3>) -> Option<Vec<DV
 }
 
 /// Coefficients in a smooth-joint row (the control points before, at and after the joint).
-const JOINT_ROW_WIDTH: usize = 3;
+pub(crate) const JOINT_ROW_WIDTH: usize = 3;
 
 /// One constraint row per smooth joint of multiplicity `degree` (module doc): with `P` the
 /// control point on the curve at the joint and `r = |P₊ − P| / |P − P₋|`, the row
 /// `r·ΔP₋ − (1 + r)·ΔP + ΔP₊ = 0` keeps `P₊ − P = r (P − P₋)`. For a rational curve the
 /// Cartesian points keep the ratio while the weights stay, which keeps the tangent direction
 /// but not exactly G1 of the homogeneous curve; the fits this serves are polynomial.
-fn smooth_joint_rows(curve: &NurbsCurve) -> Vec<(usize, [f64; MAX_ORDER])> {
+pub(crate) fn smooth_joint_rows(curve: &NurbsCurve) -> Vec<(usize, [f64; MAX_ORDER])> {
     let p = curve.degree();
     let knots = curve.knots();
     let pts = curve.control_points();

@@ -36,7 +36,10 @@ use glam::DVec3;
 
 pub use clean::corner_indices;
 pub use error::FairError;
-pub use metrics::{fairness_metrics, FairnessMetrics, EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD};
+pub use metrics::{
+    curvature_variation, fairness_metrics, FairnessMetrics, EXTREMUM_THRESHOLD,
+    INFLECTION_THRESHOLD,
+};
 
 use crate::curve::NurbsCurve;
 use crate::defaults::{

@@ -164,3 +164,84 @@ pub(crate) fn box_barge(aft_keel: bool) -> Network {
     ));
     Network::try_new("box", c).expect("names")
 }
+
+/// The main dimensions of the Wigley hull of `examples/wigley.py` (m).
+pub(crate) mod wigley_dims {
+    /// Length.
+    pub(crate) const L: f64 = 100.0;
+    /// Beam.
+    pub(crate) const B: f64 = 10.0;
+    /// Draught.
+    pub(crate) const T: f64 = 6.25;
+    /// Freeboard.
+    pub(crate) const F: f64 = 2.5;
+}
+
+/// A NURBS curve of `degree` through the control points `pts` on `knots` (non-rational).
+pub(crate) fn poly(degree: usize, knots: Vec<f64>, pts: &[[f64; 3]]) -> NurbsCurve {
+    let pts = pts.iter().map(|p| DVec3::from(*p)).collect();
+    NurbsCurve::try_new(degree, knots, pts, None).expect("valid curve")
+}
+
+/// The Wigley hull of `examples/wigley.py` with `stations` stations (odd) at spacing
+/// `L / (stations + 1)` and `waterlines` waterlines at `T·k / waterlines` (the last is the design
+/// waterline): exact quadratic stations (wall-sided above `T`) and waterlines.
+pub(crate) fn wigley(stations: usize, waterlines: usize) -> Network {
+    use wigley_dims::{B, F, L, T};
+    let half = |x: f64| 0.5 * B * (1.0 - (2.0 * x / L).powi(2));
+    let depth = |z: f64| 1.0 - ((T - z) / T).powi(2);
+    let deck = T + F;
+    let mut c = Vec::new();
+    let m = (stations as i64 - 1) / 2;
+    for k in -m..=m {
+        let x = L * k as f64 / (stations + 1) as f64;
+        let h = half(x);
+        c.push(nc(
+            &format!("station {x:+.2}"),
+            Role::Free,
+            poly(
+                2,
+                vec![0., 0., 0., 1., 1., 2., 2., 2.],
+                &[
+                    [x, 0., 0.],
+                    [x, h, T / 2.],
+                    [x, h, T],
+                    [x, h, T + F / 2.],
+                    [x, h, deck],
+                ],
+            ),
+        ));
+    }
+    let wl = |z: f64, g: f64| {
+        poly(
+            2,
+            vec![0., 0., 0., 1., 1., 1.],
+            &[[-L / 2., 0., z], [0., B * g, z], [L / 2., 0., z]],
+        )
+    };
+    for k in 1..=waterlines {
+        let z = T * k as f64 / waterlines as f64;
+        c.push(nc(
+            &format!("waterline {z:.4}"),
+            Role::Free,
+            wl(z, depth(z)),
+        ));
+    }
+    c.push(nc("deck edge", Role::Deck, wl(deck, 1.0)));
+    c.push(nc(
+        "keel",
+        Role::Keel,
+        line([-L / 2., 0., 0.], [L / 2., 0., 0.]),
+    ));
+    c.push(nc(
+        "stem",
+        Role::Stem,
+        line([L / 2., 0., 0.], [L / 2., 0., deck]),
+    ));
+    c.push(nc(
+        "stern",
+        Role::Transom,
+        line([-L / 2., 0., 0.], [-L / 2., 0., deck]),
+    ));
+    Network::try_new("wigley", c).expect("unique names")
+}

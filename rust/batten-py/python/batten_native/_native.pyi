@@ -16,6 +16,7 @@ __all__ = [
     "DEFAULT_RESOLUTION",
     "DEFAULT_SECTION_MODEL_TOLERANCE",
     "DEFAULT_SECTION_TOLERANCE",
+    "DEFAULT_SURFACE_FAIR_TOLERANCE",
     "DEFAULT_TOLERANCE",
     "MAX_RESOLUTION",
     "ROLES",
@@ -31,12 +32,14 @@ __all__ = [
     "check_lengths",
     "chines_from_knuckles",
     "fair_points",
+    "fair_sections",
     "fairness",
     "mesh_hydrostatics",
     "mesh_sectional_areas",
     "network_from_json",
     "network_to_json",
     "nodes_from_data",
+    "section_noise",
     "snap_to_nodes",
     "topology",
     "form_topology",
@@ -160,6 +163,31 @@ def fair_points(
     role: str = "free",
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
+def fair_sections(
+    curves: list[Curve],
+    *,
+    tolerance: float = ...,  # DEFAULT_SURFACE_FAIR_TOLERANCE
+    families: list[str] = ...,  # ["stations", "waterlines"]
+    fixed_roles: list[str] | None = None,  # None: keel, stem, transom, deck, midship, fos, fob, knuckle
+    fixed_curves: list[str] = ...,
+    fixed_points: list[tuple[float, float, float]] = ...,
+    curve_tolerances: list[tuple[str, float]] = ...,
+    filter: str = "cubic",
+    max_rounds: int = ...,
+    bias_target: float | None = None,
+    model_tolerance: float = ...,  # DEFAULT_TOLERANCE
+) -> tuple[list[Curve], dict]: ...
+def section_noise(
+    curves: list[Curve],
+    amplitude: float,
+    seed: int,
+    *,
+    families: list[str] = ...,
+    fixed_roles: list[str] | None = None,
+    fixed_curves: list[str] = ...,
+    model_tolerance: float = ...,
+) -> list[Curve]: ...
+DEFAULT_SURFACE_FAIR_TOLERANCE: Final[float]
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
 def form_topology(
     curves: list[Curve],
