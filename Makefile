@@ -86,9 +86,14 @@ package: native
 	$(VPY) blender_scripts/build_extension.py --wheel-dir $(WHEEL_DIR) --out $(EXT_DIR)
 
 ## Test builds (dev) carry the test hooks (`_panic_for_tests`); release builds never do.
+## Both are linked by zig (the pinned `ziglang`, found as `python3 -m ziglang` on the venv's
+## PATH) against glibc 2.28, Blender's own Linux baseline: a manylinux_2_28 wheel, whatever
+## glibc builds it (blender_scripts/build_extension.py checks it with auditwheel).
+MANYLINUX := manylinux_2_28
 native: venv
 	rm -rf $(WHEEL_DIR) $(NATIVE_DIR)
-	$(VPY) -m maturin build --quiet --profile $(PROFILE) $(if $(filter dev,$(PROFILE)),--features test-hooks) --out $(WHEEL_DIR)
+	PATH="$(abspath $(VENV))/bin:$$PATH" $(VPY) -m maturin build --quiet --profile $(PROFILE) \
+	  --zig --compatibility $(MANYLINUX) $(if $(filter dev,$(PROFILE)),--features test-hooks) --out $(WHEEL_DIR)
 	$(VPY) -m zipfile -e $(WHEEL_DIR)/*.whl $(NATIVE_DIR)
 
 venv: $(VENV)/.installed
