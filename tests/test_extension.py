@@ -41,13 +41,13 @@ SCRIPT = textwrap.dedent(
     assert bpy.ops.batten.build() == {"FINISHED"}
     import json
     print("PATCHES", json.loads(bpy.context.scene.batten.last_report)["faces"])
-    hull = next(o for o in bpy.data.objects if o.type == "MESH")
+    hull = next(o for o in bpy.data.objects if o.type == "MESH" and o.name != "Cube")
     print("QUADS", len(hull.data.polygons))
     bpy.ops.preferences.addon_disable(module="bl_ext.user_default.batten")
     left = [
         *(n for n in dir(bpy.types) if n.startswith("BATTEN_") or n.endswith("_batten")),
         *(n for n in ("Object", "Scene") if hasattr(getattr(bpy.types, n), "batten")),
-        *(f.__module__ for h in vars(bpy.app.handlers).values() if isinstance(h, list)
+        *(f.__module__ for n in dir(bpy.app.handlers) if isinstance(h := getattr(bpy.app.handlers, n), list)
           for f in h if "batten" in getattr(f, "__module__", "")),
     ]
     print("DISABLED", "bl_ext.user_default.batten" not in bpy.context.preferences.addons, left)
