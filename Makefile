@@ -14,7 +14,7 @@ OUT ?= out
 # local runs stay random. Failures found either way persist in tests/*.proptest-regressions.
 CI_PROPTEST_SEED := 12
 
-.PHONY: demo test fuzz extension package native venv sysdeps lint fmt bench clean
+.PHONY: demo test test-compat fuzz extension package native venv sysdeps lint fmt bench clean
 
 demo: venv sysdeps
 	$(MAKE) --no-print-directory native PROFILE=release
@@ -26,6 +26,34 @@ test: venv sysdeps lint
 	PYTHONPATH=build/native/dev $(VPY) -m pytest -q tests/plain
 	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \
 	  PYTHONPATH=build/native/dev:addon $(VPY) -m pytest -q --ignore=tests/plain tests
+
+## The older Blenders the extension supports (issue 20; blender_manifest.toml
+## blender_version_min): the bpy suite on the latest bpy of each LTS line, each in its own
+## venv (.venv-bpy42, .venv-bpy45) made on demand from requirements-dev.txt with its bpy pin
+## swapped. `make test` stays on requirements-dev.txt's bpy; COMPAT=42 runs one version;
+## `make test-bpy42` runs one on what the last `make test` built (as .ci/run does).
+BPY_42 := 4.2.23
+BPY_45 := 4.5.15
+COMPAT ?= 42 45
+
+test-compat: venv sysdeps
+	$(MAKE) --no-print-directory package PROFILE=dev
+	$(foreach v,$(COMPAT),$(MAKE) --no-print-directory test-bpy$(v) &&) true
+
+test-bpy%: .venv-bpy%/.installed
+	BATTEN_EXTENSION_ZIP="$$(ls $(abspath build/extension/dev)/batten-*.zip)" \
+	  PYTHONPATH=build/native/dev:addon .venv-bpy$*/bin/python -m pytest -q --ignore=tests/plain tests
+
+.venv-bpy%/.installed: requirements-dev.txt
+	test -n "$(BPY_$*)" || { echo "no bpy version for $* (BPY_$* in the Makefile)" >&2; exit 1; }
+	test -x .venv-bpy$*/bin/python || $(PYTHON) -m venv .venv-bpy$*
+	grep -v '^bpy==' requirements-dev.txt > .venv-bpy$*/requirements.txt
+	.venv-bpy$*/bin/python -m pip install --quiet --upgrade pip
+	.venv-bpy$*/bin/python -m pip install --quiet -r .venv-bpy$*/requirements.txt bpy==$(BPY_$*)
+	touch $@
+
+# Kept after a run (make would delete a pattern rule's intermediate file).
+.PRECIOUS: .venv-bpy%/.installed
 
 ## Fuzzing (issue 21): the core's proptest targets (rust/batten-core/tests/fuzz) and the
 ## hypothesis tests (tests/plain/test_fuzz_native.py, tests/test_fuzz_api.py) with a long
@@ -58,9 +86,14 @@ package: native
 	$(VPY) blender_scripts/build_extension.py --wheel-dir $(WHEEL_DIR) --out $(EXT_DIR)
 
 ## Test builds (dev) carry the test hooks (`_panic_for_tests`); release builds never do.
+## Both are linked by zig (the pinned `ziglang`, found as `python3 -m ziglang` on the venv's
+## PATH) against glibc 2.28, Blender's own Linux baseline: a manylinux_2_28 wheel, whatever
+## glibc builds it (blender_scripts/build_extension.py checks it with auditwheel).
+MANYLINUX := manylinux_2_28
 native: venv
 	rm -rf $(WHEEL_DIR) $(NATIVE_DIR)
-	$(VPY) -m maturin build --quiet --profile $(PROFILE) $(if $(filter dev,$(PROFILE)),--features test-hooks) --out $(WHEEL_DIR)
+	PATH="$(abspath $(VENV))/bin:$$PATH" $(VPY) -m maturin build --quiet --profile $(PROFILE) \
+	  --zig --compatibility $(MANYLINUX) $(if $(filter dev,$(PROFILE)),--features test-hooks) --out $(WHEEL_DIR)
 	$(VPY) -m zipfile -e $(WHEEL_DIR)/*.whl $(NATIVE_DIR)
 
 venv: $(VENV)/.installed

@@ -24,9 +24,15 @@ ROOT = Path(__file__).resolve().parent.parent
 #: The packages the add-on needs beside batten_native, bundled as wheels: ezdxf (writes the
 #: lines plan's DXF) and its dependencies (numpy is Blender's own), rhino3dm (writes .3dm).
 BUNDLED = ("ezdxf", "fonttools", "pyparsing", "typing_extensions", "rhino3dm")
-#: Blender 5.0's Python and the extension's platform (blender_manifest.toml ``platforms``):
-#: CPython 3.11 on linux-x64, as any of the manylinux tags its glibc takes.
+#: The oldest glibc the extension runs on: Blender's own Linux builds need 2.28. The
+#: batten_native wheel is linked against it (the Makefile's ``maturin build --zig
+#: --compatibility manylinux_2_28``) and every wheel staged must load there.
+GLIBC = (2, 28)
+#: Blender's Python (3.11 in 4.2 to 5.0) and the extension's platform (blender_manifest.toml
+#: ``platforms``): CPython 3.11 on linux-x64, as the manylinux tags that glibc 2.28 takes.
 PLATFORMS = ("manylinux_2_28_x86_64", "manylinux_2_17_x86_64", "manylinux2014_x86_64")
+#: The files beside the add-on in the zip: its licence and its documentation.
+DOCS = ("LICENSE", "README.md")
 WHEEL_TAGS = (
     "--python-version", "3.11", "--implementation", "cp",
     *(arg for p in PLATFORMS for arg in ("--platform", p)),
@@ -68,6 +74,43 @@ def bundled_wheels(cache: Path) -> list[Path]:
     return wheels
 
 
+def oldest_glibc(wheel: Path) -> tuple[int, int] | None:
+    """The oldest glibc ``wheel`` installs on by its platform tags (its file name's last
+    field; the least that any of its tags needs: ``manylinux_2_17_x86_64.manylinux2014_x86_64``
+    needs 2.17); None for a pure-Python wheel (``any``)."""
+    legacy = {"manylinux1": (2, 5), "manylinux2010": (2, 12), "manylinux2014": (2, 17)}
+    needs = []
+    for tag in wheel.stem.split("-")[-1].split("."):
+        if tag == "any":
+            return None
+        if m := re.fullmatch(r"manylinux_(\d+)_(\d+)_x86_64", tag):
+            needs.append((int(m[1]), int(m[2])))
+        elif (m := re.fullmatch(r"(manylinux\w+?)_x86_64", tag)) and m[1] in legacy:
+            needs.append(legacy[m[1]])
+        else:
+            sys.exit(f"build_extension: {wheel.name} is not for manylinux x86_64 ({tag})")
+    return min(needs)
+
+
+def check_glibc(wheels: list[Path]) -> None:
+    """Exit unless every wheel loads on :data:`GLIBC`: its tags say so, and for
+    batten_native ``auditwheel show`` (the symbols it links) agrees."""
+    for w in wheels:
+        need = oldest_glibc(w)
+        if need is not None and need > GLIBC:
+            sys.exit(f"build_extension: {w.name} needs glibc {need[0]}.{need[1]} (> {GLIBC[0]}.{GLIBC[1]})")
+    native = next(w for w in wheels if w.name.startswith("batten_native-"))
+    shown = subprocess.run(
+        [sys.executable, "-m", "auditwheel", "show", str(native)], check=True, capture_output=True, text=True
+    ).stdout
+    print(shown.strip())
+    tag = re.search(
+        r'consistent\s+with\s+the\s+following\s+platform\s+tag:\s*"manylinux_(\d+)_(\d+)_x86_64"', shown
+    )
+    if tag is None or (int(tag[1]), int(tag[2])) > GLIBC:
+        sys.exit(f"build_extension: auditwheel finds {native.name} needs a glibc newer than 2.28")
+
+
 def blender_ext_tool() -> Path:
     """Path of blender_ext.py inside the installed bpy package (found without importing bpy)."""
     spec = importlib.util.find_spec("bpy")
@@ -101,8 +144,11 @@ def main() -> None:
     )
     (stage / "wheels").mkdir()
     staged = [wheel, *bundled_wheels(args.wheel_dir.parent / "bundled")]
+    check_glibc(staged)
     for w in staged:
         shutil.copy2(w, stage / "wheels" / w.name)
+    for doc in DOCS:
+        shutil.copy2(ROOT / doc, stage / doc)
     examples = ROOT / "examples"
     if examples.is_dir():
         shutil.copytree(examples, stage / "examples", ignore=shutil.ignore_patterns("*.py", "__pycache__"))

@@ -71,6 +71,7 @@ from .file_text import file_path, read_text
 from .fit_data import fit_data
 from .object_names import blender_name, errors_named_by_object, objects_of, with_objects
 from .offsets import table_text
+from .progress import Progress
 from .sections import Section, all_sections, finite_offsets, planes
 from .sections import cut as _cut_sections
 
@@ -530,7 +531,11 @@ def import_sections(
         report["curve"] = sec.name
         return curve, report
 
-    fits = [fit(sec, tolerance) for sec in data]
+    fits = []
+    with Progress("fitting sections", len(data)) as progress:
+        for sec in data:
+            fits.append(fit(sec, tolerance))
+            progress.step()
     within = [tolerance] * len(sections)
     for round_ in range(SNAP_ROUNDS + 1):
         curves = [c for c, _ in fits]

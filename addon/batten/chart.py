@@ -11,8 +11,6 @@ bottom left, as in Blender images.
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -196,38 +194,107 @@ class Canvas:
         self.texts.append(_Text(float(x), float(y), text, size, color, align, valign))
 
     def save_png(self, path) -> Path:
-        """Write the image with its text to ``path`` (PNG, RGBA); returns the path."""
-        import blf
-        import bpy
-        import imbuf
+        """Write the image with its text to ``path`` (PNG, RGBA); returns the path. The text
+        is drawn by Blender's font engine into the image where it can
+        (:data:`batten.compat.BLF_DRAWS_INTO_IMBUF`), else filled from the same font's glyph
+        outlines into the pixels (:mod:`batten.glyph_outlines`)."""
+        from . import compat
 
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(suffix=".png", prefix=".batten_chart_")
-        os.close(fd)
-        image = bpy.data.images.new(".batten chart", self.width, self.height, alpha=True)
-        try:
-            image.pixels.foreach_set(self.pixels.ravel())
-            image.filepath_raw, image.file_format = tmp, "PNG"
-            image.save()
-            buffer = imbuf.load(tmp)
-        finally:
-            bpy.data.images.remove(image)
-            os.unlink(tmp)
-        font = 0  # Blender's default font: has the ship symbols (∇, Δ, ², ³, °)
-        with blf.bind_imbuf(font, buffer):
-            for t in self.texts:
-                blf.size(font, t.size)
-                w, _h = blf.dimensions(font, t.text)
-                cap = blf.dimensions(font, "0")[1]
-                x = t.x - {"left": 0.0, "center": 0.5 * w, "right": w}[t.align]
-                y = t.y - {"baseline": 0.0, "center": 0.5 * cap, "top": cap}[t.valign]
-                blf.color(font, *t.color)
-                blf.position(font, round(x), round(y), 0)
-                blf.draw_buffer(font, t.text)
-        imbuf.write(buffer, filepath=str(path))
-        buffer.free()
+        if compat.BLF_DRAWS_INTO_IMBUF:
+            _write_pixels(self.pixels, path)
+            _draw_texts_with_blf(path, self._placed_texts())
+        else:
+            _write_pixels(self._pixels_with_glyphs(), path)
         return path
+
+    def _placed_texts(self) -> list[tuple[_Text, int, int]]:
+        """Each queued text with the pixel its pen starts at (baseline left), after its
+        alignment, measured by Blender's font engine."""
+        import blf
+
+        placed = []
+        for t in self.texts:
+            blf.size(FONT, t.size)
+            w, _h = blf.dimensions(FONT, t.text)
+            cap = blf.dimensions(FONT, "0")[1]
+            placed.append((t, *_aligned(t, w, cap)))
+        return placed
+
+    def _pixels_with_glyphs(self) -> np.ndarray:
+        """A copy of the pixels with the queued texts filled in from glyph outlines, scaled
+        so that a digit is as tall as Blender's font engine draws it at the text's size."""
+        import blf
+
+        from .glyph_outlines import GlyphOutlines, fill_coverage
+
+        out = Canvas(self.width, self.height)
+        out.pixels[:] = self.pixels
+        with GlyphOutlines() as glyphs:
+            digit = glyphs.edges("0")[..., 1]
+            digit_height = digit.max() - digit.min()
+            for t in self.texts:
+                blf.size(FONT, t.size)
+                cap = blf.dimensions(FONT, "0")[1]
+                edges = glyphs.edges(t.text) * (cap / digit_height)
+                if not len(edges):
+                    continue
+                edges += _aligned(t, edges[..., 0].max(), cap)
+                lo = np.floor(edges.reshape(-1, 2).min(axis=0)).astype(int)
+                hi = np.ceil(edges.reshape(-1, 2).max(axis=0)).astype(int)
+                x0, y0 = max(lo[0], 0), max(lo[1], 0)
+                x1, y1 = min(hi[0], self.width), min(hi[1], self.height)
+                if x1 > x0 and y1 > y0:
+                    out._paint(fill_coverage(edges, (y1 - y0, x1 - x0), (x0, y0)), t.color, (x0, y0))
+        return out.pixels
+
+
+def _aligned(t: _Text, width: float, cap: float) -> tuple[int, int]:
+    """The pixel where the pen starts (baseline left) for ``t`` ``width`` pixels wide whose
+    digits are ``cap`` pixels tall, after its alignment."""
+    x = t.x - {"left": 0.0, "center": 0.5 * width, "right": width}[t.align]
+    y = t.y - {"baseline": 0.0, "center": 0.5 * cap, "top": cap}[t.valign]
+    return round(x), round(y)
+
+
+#: Blender's default font, in ``blf`` and for text objects: it has the ship symbols
+#: (∇, Δ, ², ³, °).
+FONT = 0
+
+
+def _write_pixels(pixels: np.ndarray, path: Path) -> None:
+    """Save an RGBA pixel array (row 0 at the bottom) as the PNG ``path``, through a
+    throwaway Blender image."""
+    import bpy
+
+    height, width = pixels.shape[:2]
+    image = bpy.data.images.new(".batten chart", width, height, alpha=True)
+    try:
+        image.pixels.foreach_set(pixels.ravel())
+        image.filepath_raw, image.file_format = str(path), "PNG"
+        image.save()
+    finally:
+        bpy.data.images.remove(image)
+
+
+def _draw_texts_with_blf(path: Path, placed) -> None:
+    """Draw ``placed`` texts with Blender's font engine into the PNG ``path`` (read into an
+    image buffer, drawn, written back)."""
+    import blf
+    import imbuf
+
+    buffer = imbuf.load(str(path))
+    try:
+        with blf.bind_imbuf(FONT, buffer):
+            for t, x, y in placed:
+                blf.size(FONT, t.size)
+                blf.color(FONT, *t.color)
+                blf.position(FONT, x, y, 0)
+                blf.draw_buffer(FONT, t.text)
+        imbuf.write(buffer, filepath=str(path))
+    finally:
+        buffer.free()
 
 
 def _cover_segments(coverage: np.ndarray, origin, ends: np.ndarray, half: float) -> None:
