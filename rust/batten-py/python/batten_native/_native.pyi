@@ -28,6 +28,7 @@ __all__ = [
     "cad_faces",
     "cad_text",
     "HullModel",
+    "LiveHull",
     "SEA_WATER_DENSITY",
     "check_lengths",
     "chines_from_knuckles",
@@ -285,13 +286,13 @@ _MeshArrays = tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDAr
 class LiveHull:
     """A hull kept between edits and rebuilt incrementally (the mesh exactly a full build's)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         curves: list[Curve],
         tolerance: float = ...,  # DEFAULT_TOLERANCE
         resolution: int | None = None,  # None: DEFAULT_RESOLUTION
         name: str | None = None,
-    ) -> None: ...
+    ) -> LiveHull: ...
     def result(self) -> tuple[_MeshArrays, dict, HullModel]: ...
     def rebuild(self, curves: list[Curve]) -> tuple[_MeshArrays, dict, HullModel]: ...
     def settle(self) -> tuple[_MeshArrays, dict, HullModel]: ...
