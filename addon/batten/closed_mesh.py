@@ -12,6 +12,7 @@ from batten_native import ExportError
 #: The suffix of the closed copy's name (``"<surface> closed"``).
 CLOSED_SUFFIX = " closed"
 
+
 def _remove_fins(bm, tolerance: float) -> None:
     """Remove the faces lying in the centreplane (every vertex within ``tolerance`` of y = 0):
     where the surface touches it (a quad at the corner of a keel and a stern post lying

@@ -188,7 +188,9 @@ def section_noise(
     fixed_curves: list[str] = ...,
     model_tolerance: float = ...,
 ) -> list[Curve]: ...
+
 DEFAULT_SURFACE_FAIR_TOLERANCE: Final[float]
+
 def topology(curves: list[Curve], tolerance: float = ...) -> dict: ...  # DEFAULT_TOLERANCE
 def form_topology(
     curves: list[Curve],
@@ -202,6 +204,7 @@ def transform_network(
     tolerance: float = ...,  # DEFAULT_TOLERANCE
     draft: float | None = None,
 ) -> tuple[list[Curve], dict]: ...
+
 SEA_WATER_DENSITY: float
 
 @final
@@ -281,7 +284,9 @@ def build_surface(
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
     name: str | None = None,
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
+
 _MeshArrays = tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]]
+
 @final
 class LiveHull:
     """A hull kept between edits and rebuilt incrementally (the mesh exactly a full build's)."""
@@ -325,6 +330,7 @@ def mesh_sectional_areas(
     lpp: float | None = None,
     fp: float | None = None,
 ) -> tuple[_F64, _F64]: ...
+
 @final
 class MeshHull:
     """A triangle mesh built once as a hull, for its hydrostatics at many flotations."""
