@@ -131,3 +131,16 @@ def test_switching_live_off_leaves_no_timer_behind(frigate):
     assert live._on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post
     live.register()
     settings.live = False
+
+
+def test_sections_and_exports_read_a_measured_report_after_a_live_rebuild(frigate):
+    api.build(frigate, resolution=RESOLUTION, live=True)
+    station = frigate.objects["st4"]
+    _move(station, len(station.data.splines[0].points) // 2, 4e-5)
+    assert not api.build(frigate, resolution=RESOLUTION, live=True).report["measured"]
+    kept = hull_models._kept[frigate.name]
+    api.hydrostatics(frigate, 4.0)
+    assert hull_models._kept[frigate.name] is kept, "hydrostatics need only the exact patches"
+    api.sections(frigate, stations=3)
+    assert hull_models._kept[frigate.name].measured, "sections read the knuckle edges: measured"
+    assert api.settle(frigate) is None, "the live hull is measured too"

@@ -800,12 +800,14 @@ def _mesh_hull(obj) -> MeshHull:
     return MeshHull(positions[first], inverse.reshape(-1)[tris].reshape(-1, 3))
 
 
-def _hull_model(source):
+def _hull_model(source, *, measured: bool = True):
     """The exact surface of the hull in ``source`` (a collection or its name), built if its
-    curves changed since the last build, with errors naming the curve objects."""
+    curves changed since the last build, with errors naming the curve objects. ``measured``
+    False: the patches and mesh suffice (hydrostatics), and a live rebuild's surface whose
+    report is not yet measured will do."""
     curves, object_of = _read_source(source)
     with errors_named_by_object(object_of):
-        return hull_models.model_for(_source_name(source), curves)
+        return hull_models.model_for(_source_name(source), curves, measured=measured)
 
 
 def _datums(source, lpp, fp):
@@ -868,7 +870,7 @@ def hydrostatics(
     """
     if _is_mesh(source):
         return _mesh_hull(source).hydrostatics(draft, trim=trim, heel=heel, density=density, lpp=lpp, fp=fp)
-    model = _hull_model(source)
+    model = _hull_model(source, measured=False)
     lpp, fp = _datums(source, lpp, fp)
     return model.hydrostatics(draft, trim, heel, density, lpp, fp, live)
 
@@ -904,7 +906,7 @@ def sectional_areas(
         if not isinstance(stations, int | np.integer):
             raise InvalidArgumentError("a mesh's sectional areas take a count of stations")
         return _mesh_hull(source).sectional_areas(draft, int(stations), trim=trim, heel=heel, lpp=lpp, fp=fp)
-    model = _hull_model(source)
+    model = _hull_model(source, measured=False)
     lpp, fp = _datums(source, lpp, fp)
     xs = _stations(model, draft, stations, lpp, fp)
     return xs, model.sectional_areas(draft, xs.tolist(), trim, heel, lpp, fp)
@@ -926,7 +928,7 @@ def curves_of_form(
     drafts = [float(d) for d in drafts]
     if not drafts:
         raise InvalidArgumentError("drafts must hold at least one draft")
-    model = _hull_model(source)
+    model = _hull_model(source, measured=False)
     lpp, fp = _datums(source, lpp, fp)
     if fp is None:
         at = design if design is not None else design_draft(source)
@@ -955,7 +957,7 @@ def float_to(
     Raises InvalidArgumentError for a displacement that is not positive or more than the hull
     holds below its open top; HydrostaticsError when no equilibrium is found or the water reaches
     a hole."""
-    model = _hull_model(source)
+    model = _hull_model(source, measured=False)
     lpp, fp = _datums(source, lpp, fp)
     level = model.level_draft(displacement, density)
     return model.float_to(displacement, lcg, level, vcg, density, lpp, fp)

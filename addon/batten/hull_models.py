@@ -21,6 +21,9 @@ class _Kept(NamedTuple):
     model: object
     #: The curves' fingerprint, made the first time a lookup needs it (one entry, or none).
     fingerprint: list
+    #: False for a live rebuild's surface whose report (warnings, knuckle edges) is not yet
+    #: measured: its patches and mesh are exact, its report is the last measured one.
+    measured: bool = True
 
 
 _kept: dict[str, _Kept] = {}
@@ -37,11 +40,11 @@ def fingerprint(name: str, curves: list) -> str:
     return network_to_json(name, curves)
 
 
-def keep(name: str, curves: list, tolerance: float, resolution: int, model) -> None:
+def keep(name: str, curves: list, tolerance: float, resolution: int, model, measured: bool = True) -> None:
     """Keep ``model``, built from ``curves`` with these settings, as ``name``'s surface (the
     curves' fingerprint is taken only when a lookup needs it: a live rebuild does not pay for
-    it)."""
-    _kept[name] = _Kept(curves, tolerance, resolution, model, [])
+    it); ``measured`` False when its report waits for :func:`settle`."""
+    _kept[name] = _Kept(curves, tolerance, resolution, model, [], measured)
 
 
 def _fingerprint_of(name: str, kept: _Kept) -> str:
@@ -50,12 +53,17 @@ def _fingerprint_of(name: str, kept: _Kept) -> str:
     return kept.fingerprint[0]
 
 
-def model_for(name: str, curves: list):
+def model_for(name: str, curves: list, *, measured: bool = True):
     """The surface of ``curves`` under ``name``: the kept one when the curves are those it was
-    built from, else built now with the last build's settings (or the defaults) and kept."""
+    built from, else built now with the last build's settings (or the defaults) and kept.
+    ``measured`` asks for a surface whose report is measured (sections and exports read its
+    knuckle edges and warnings): a live rebuild's is measured first (:func:`settle`)."""
     kept = _kept.get(name)
     key = fingerprint(name, curves)
     if kept is not None and _fingerprint_of(name, kept) == key:
+        if measured and not kept.measured:
+            settle(name)
+            return _kept[name].model
         return kept.model
     tolerance = kept_tolerance(name)
     resolution = kept.resolution if kept else DEFAULT_RESOLUTION
@@ -82,17 +90,22 @@ def live_build(name: str, curves: list, tolerance: float, resolution: int):
         arrays, report, model = live.result()
         _live[name] = live
         _live_names[name] = names
-    keep(name, curves, tolerance, resolution, model)
+    keep(name, curves, tolerance, resolution, model, measured=report["measured"])
     return arrays, report, model
 
 
 def settle(name: str):
-    """``(arrays, report, model)`` of ``name``'s live hull with its report measured, or None
-    when it has no live hull or its report is already measured."""
+    """``(arrays, report, model)`` of ``name``'s live hull with its report measured (and that
+    surface kept in place of the unmeasured one), or None when it has no live hull or its
+    report is already measured."""
     live = _live.get(name)
     if live is None or live.measured:
         return None
-    return live.settle()
+    settled = live.settle()
+    kept = _kept.get(name)
+    if kept is not None and not kept.measured:
+        _kept[name] = kept._replace(model=settled[2], measured=True)
+    return settled
 
 
 def kept_tolerance(name: str) -> float:
