@@ -144,3 +144,13 @@ def test_sections_and_exports_read_a_measured_report_after_a_live_rebuild(frigat
     api.sections(frigate, stations=3)
     assert hull_models._kept[frigate.name].measured, "sections read the knuckle edges: measured"
     assert api.settle(frigate) is None, "the live hull is measured too"
+
+
+def test_a_live_rebuild_follows_the_mirror_setting(frigate):
+    api.build(frigate, resolution=RESOLUTION, live=True)
+    station = frigate.objects["st4"]
+    _move(station, len(station.data.splines[0].points) // 2, 4e-5)
+    result = api.build(frigate, resolution=RESOLUTION, live=True, mirror=False)
+    assert result.report["rebuild"]["kind"] == "incremental"
+    assert not result.object.modifiers, "mirror off: no Mirror modifier"
+    assert result.report["enclosed_volume"] == result.report["enclosed_volume_half"]

@@ -722,7 +722,9 @@ def build(
         and report["rebuild"]["kind"] == "incremental"
         and mesh_out.update_positions(obj, positions, corners, sizes)
     )
-    if not moved_only:
+    if moved_only:
+        mesh_out.set_mirror(obj, mirror)
+    else:
         obj = mesh_out.write_surface(
             f"{name} surface", positions, corners, sizes, patch, obj=obj, mirror=mirror
         )

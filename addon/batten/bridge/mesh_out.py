@@ -67,7 +67,7 @@ def write_surface(
         if old.users == 0:
             bpy.data.meshes.remove(old)
         new_mesh.name = name
-    _set_mirror(obj, mirror)
+    set_mirror(obj, mirror)
     return obj
 
 
@@ -96,7 +96,8 @@ def update_positions(obj, positions, face_vertices, face_sizes) -> bool:
     return True
 
 
-def _set_mirror(obj, mirror: bool) -> None:
+def set_mirror(obj, mirror: bool) -> None:
+    """Give ``obj`` the Mirror modifier about the centreplane (``mirror``) or take it away."""
     mod = obj.modifiers.get(MIRROR_MODIFIER)
     if mirror and mod is None:
         mod = obj.modifiers.new(MIRROR_MODIFIER, "MIRROR")
