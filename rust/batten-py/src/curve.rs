@@ -1,6 +1,6 @@
 //! `batten_native.Curve`: a named designer curve (NURBS) with its role.
 
-use batten_core::{CurveError, KnotLayout, NetworkCurve, NurbsCurve, Role};
+use batten_core::{CurveError, KnotLayout, Network, NetworkCurve, NurbsCurve, Role};
 use glam::DVec3;
 use numpy::{
     AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyArrayLike2, PyArrayMethods,
@@ -9,7 +9,7 @@ use numpy::{
 use pyo3::prelude::*;
 
 use crate::args::{optional_text, optional_whole, role_or_free, rows, text, values, whole};
-use crate::errors::{arg_err, curve_err, guard};
+use crate::errors::{arg_err, core_err, curve_err, guard};
 
 /// The parameters `ts` for evaluating curve `name`: every one finite (a NaN or infinite
 /// parameter is a `CurveError` naming the curve; finite ones outside the domain are clamped by
@@ -96,6 +96,22 @@ pub(crate) fn points_array<'py>(
     pts: &[DVec3],
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     to_array2(py, pts.iter().flat_map(|p| p.to_array()).collect(), 3)
+}
+
+/// The network named `name` of `curves` (names must be non-empty and unique: a
+/// `NetworkFileError` otherwise).
+pub(crate) fn network_of(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
+    Network::try_new(name, curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)
+}
+
+/// The curves of `network`, in order, as Python `Curve`s.
+pub(crate) fn curves_of(network: &Network) -> Vec<Curve> {
+    network
+        .curves()
+        .iter()
+        .cloned()
+        .map(|inner| Curve { inner })
+        .collect()
 }
 
 impl Curve {

@@ -8,12 +8,8 @@ use glam::DVec3;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::curve::Curve;
+use crate::curve::{curves_of, network_of, Curve};
 use crate::errors::{arg_err, core_err, form_err, guard};
-
-fn network_of(curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
-    Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)
-}
 
 fn options(tolerance: f64, draft: Option<f64>) -> PyResult<FormOptions> {
     if draft.is_some_and(|d| !d.is_finite()) {
@@ -171,7 +167,7 @@ pub(crate) fn form_topology<'py>(
     draft: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let opts = options(tolerance, draft)?;
-    let network = network_of(&curves)?;
+    let network = network_of("", &curves)?;
     let form = py.detach(|| {
         guard("finding the form topology", || {
             core_form_topology(&network, &opts).map_err(form_err)
@@ -213,7 +209,7 @@ pub(crate) fn transform_network<'py>(
     draft: Option<f64>,
 ) -> PyResult<(Vec<Curve>, Bound<'py, PyDict>)> {
     let opts = options(tolerance, draft)?;
-    let network = network_of(&curves)?;
+    let network = network_of("", &curves)?;
     let targets = targets
         .iter()
         .map(|(n, v)| target(n, *v))
@@ -268,11 +264,5 @@ pub(crate) fn transform_network<'py>(
     report.set_item("steps", step_dicts)?;
     report.set_item("before", parameters_dict(py, &network, &before)?)?;
     report.set_item("after", parameters_dict(py, &result, &after)?)?;
-    let curves = result
-        .curves()
-        .iter()
-        .cloned()
-        .map(|inner| Curve { inner })
-        .collect();
-    Ok((curves, report))
+    Ok((curves_of(&result), report))
 }

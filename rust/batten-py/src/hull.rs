@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{optional_whole, text};
-use crate::curve::Curve;
+use crate::curve::{network_of, Curve};
 use crate::errors::{core_err, guard, NoSurfaceError};
 use crate::hull_model::HullModel;
 
@@ -129,8 +129,7 @@ pub(crate) fn network_and_options(
         Some(n) => text(n, || "the network name".to_owned())?,
         None => String::new(),
     };
-    let network = Network::try_new(name, curves.iter().map(|c| c.inner.clone()).collect())
-        .map_err(core_err)?;
+    let network = network_of(&name, curves)?;
     Ok((network, options))
 }
 

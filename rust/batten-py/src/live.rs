@@ -1,11 +1,11 @@
 //! The live rebuild: a hull kept between edits and rebuilt incrementally (the core's
 //! `LiveHull`), for Blender's Live mode.
 
-use batten_core::{LiveHull as CoreLiveHull, Network, Rebuild, DEFAULT_TOLERANCE};
+use batten_core::{LiveHull as CoreLiveHull, Rebuild, DEFAULT_TOLERANCE};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::curve::Curve;
+use crate::curve::{network_of, Curve};
 use crate::errors::{core_err, guard};
 use crate::hull::{network_and_options, surface_outputs, MeshArrays};
 use crate::hull_model::HullModel;
@@ -86,11 +86,7 @@ impl LiveHull {
         py: Python<'py>,
         curves: Vec<PyRef<'py, Curve>>,
     ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
-        let network = Network::try_new(
-            self.inner.network().name.clone(),
-            curves.iter().map(|c| c.inner.clone()).collect(),
-        )
-        .map_err(core_err)?;
+        let network = network_of(&self.inner.network().name, &curves)?;
         let inner = &mut self.inner;
         py.detach(|| {
             guard("rebuilding the hull surface", || {

@@ -1,19 +1,14 @@
 //! Network files: JSON text to and from lists of `Curve`.
 
-use batten_core::{Network, NetworkCurve, SnapData, Tolerance};
+use batten_core::{Network, SnapData, Tolerance};
 use glam::DVec3;
 use numpy::{PyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{self, text};
-use crate::curve::{points_array, Curve};
+use crate::curve::{curves_of, network_of, points_array, Curve};
 use crate::errors::{arg_err, core_err, guard};
-
-fn to_network(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
-    let curves = curves.iter().map(|c| c.inner.clone()).collect();
-    Network::try_new(name, curves).map_err(core_err)
-}
 
 /// The network of `curves` (a list of `Curve`) as batten's versioned JSON text.
 #[pyfunction]
@@ -24,7 +19,7 @@ pub(crate) fn network_to_json(
     curves: Vec<PyRef<'_, Curve>>,
 ) -> PyResult<String> {
     let name = text(name, || "the network name".to_owned())?;
-    let network = to_network(&name, &curves)?;
+    let network = network_of(&name, &curves)?;
     py.detach(|| guard("writing network", || Ok(network.to_json())))
 }
 
@@ -41,13 +36,7 @@ pub(crate) fn network_from_json(
             Network::from_json(&text).map_err(core_err)
         })
     })?;
-    let curves = network
-        .curves()
-        .iter()
-        .cloned()
-        .map(|inner: NetworkCurve| Curve { inner })
-        .collect();
-    Ok((network.name.clone(), curves))
+    Ok((network.name.clone(), curves_of(&network)))
 }
 
 /// Check names are unique and no curve is shorter than `tolerance` (a zero-length curve);
@@ -60,7 +49,7 @@ pub(crate) fn check_lengths(
     tolerance: f64,
 ) -> PyResult<()> {
     let tol = Tolerance::try_new(tolerance).map_err(core_err)?;
-    let network = to_network("", &curves)?;
+    let network = network_of("", &curves)?;
     py.detach(|| {
         guard("checking curves", || {
             network.check_lengths(tol).map_err(core_err)
@@ -85,7 +74,7 @@ pub(crate) fn snap_to_nodes<'py>(
     tolerance: Option<f64>,
 ) -> PyResult<(Vec<Curve>, Vec<Bound<'py, PyDict>>)> {
     let capture = Tolerance::try_new(capture).map_err(core_err)?;
-    let network = to_network("", &curves)?;
+    let network = network_of("", &curves)?;
     let data: Option<Vec<Vec<DVec3>>> = points
         .map(|all| {
             all.iter()
@@ -125,14 +114,7 @@ pub(crate) fn snap_to_nodes<'py>(
             Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;
-    let curves = snapped
-        .network
-        .curves()
-        .iter()
-        .cloned()
-        .map(|inner| Curve { inner })
-        .collect();
-    Ok((curves, reports))
+    Ok((curves_of(&snapped.network), reports))
 }
 
 /// `obj` as points: an (n, 3) array-like, or an empty sequence for none; anything else is an
@@ -168,7 +150,7 @@ pub(crate) fn chines_from_knuckles<'py>(
     tolerance: f64,
 ) -> PyResult<Vec<Curve>> {
     let tol = Tolerance::try_new(tolerance).map_err(core_err)?;
-    let network = to_network("", &curves)?;
+    let network = network_of("", &curves)?;
     let knuckles = knuckles
         .iter()
         .zip(&curves)

@@ -2,19 +2,15 @@
 //! noise test `section_noise`.
 
 use batten_core::{
-    HullFairness, Network, Role, SectionFairness, SectionFamily, SectionFilter, SurfaceFairOptions,
+    HullFairness, Role, SectionFairness, SectionFamily, SectionFilter, SurfaceFairOptions,
     Tolerance, DEFAULT_SURFACE_FAIR_ROUNDS, DEFAULT_SURFACE_FAIR_TOLERANCE, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::curve::Curve;
+use crate::curve::{curves_of, network_of, Curve};
 use crate::errors::{arg_err, core_err, guard};
-
-fn to_network(curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
-    Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)
-}
 
 /// The options from Python's arguments, each bad value an InvalidArgumentError naming it.
 #[allow(clippy::too_many_arguments)]
@@ -131,7 +127,7 @@ pub(crate) fn fair_sections<'py>(
         bias_target,
         model_tolerance,
     )?;
-    let network = to_network(&curves)?;
+    let network = network_of("", &curves)?;
     let faired = py.detach(|| {
         guard("fairing the sections", || {
             batten_core::fair_sections(&network, &opts).map_err(core_err)
@@ -168,14 +164,7 @@ pub(crate) fn fair_sections<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("curves", per_curve)?;
-    let out = faired
-        .network
-        .curves()
-        .iter()
-        .cloned()
-        .map(|inner| Curve { inner })
-        .collect();
-    Ok((out, d))
+    Ok((curves_of(&faired.network), d))
 }
 
 /// The paper's test input (Pla et al. 1998 §5, `batten_core::section_noise`): every movable
@@ -209,16 +198,11 @@ pub(crate) fn section_noise(
         None,
         model_tolerance,
     )?;
-    let network = to_network(&curves)?;
+    let network = network_of("", &curves)?;
     let noisy = py.detach(|| {
         guard("adding noise to the sections", || {
             batten_core::section_noise(&network, amplitude, seed, &opts).map_err(core_err)
         })
     })?;
-    Ok(noisy
-        .curves()
-        .iter()
-        .cloned()
-        .map(|inner| Curve { inner })
-        .collect())
+    Ok(curves_of(&noisy))
 }

@@ -1,10 +1,10 @@
 //! Network topology as plain Python data: counts, faces, boundary loops, diagnostics.
 
-use batten_core::{Network, Tolerance, Topology, Warning, DEFAULT_TOLERANCE};
+use batten_core::{Tolerance, Topology, Warning, DEFAULT_TOLERANCE};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::curve::Curve;
+use crate::curve::{network_of, Curve};
 use crate::errors::{core_err, guard};
 use crate::hull::warning_dict;
 
@@ -25,8 +25,7 @@ pub(crate) fn topology<'py>(
     tolerance: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let tol = Tolerance::try_new(tolerance).map_err(core_err)?;
-    let network =
-        Network::try_new("", curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)?;
+    let network = network_of("", &curves)?;
     let topo = py.detach(|| {
         guard("building the topology", || {
             Topology::build(&network, tol).map_err(core_err)
