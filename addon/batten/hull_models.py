@@ -31,8 +31,6 @@ _kept: dict[str, _Kept] = {}
 #: The live hulls (:class:`batten_native.LiveHull`) of the sources built with ``live=True``,
 #: by source name: rebuilt incrementally while their curves move.
 _live: dict[str, LiveHull] = {}
-#: The curve names, in order, each live hull was built with.
-_live_names: dict[str, list[str]] = {}
 
 
 def fingerprint(name: str, curves: list) -> str:
@@ -73,23 +71,17 @@ def model_for(name: str, curves: list, *, measured: bool = True):
 
 
 def live_build(name: str, curves: list, tolerance: float, resolution: int):
-    """``(arrays, report, model)`` of ``curves`` from ``name``'s live hull: rebuilt
-    incrementally when it was built with these settings and curve names, else built anew
-    and kept. The model is kept for hydrostatics as by :func:`keep`."""
+    """``(arrays, report, model)`` of ``curves`` from ``name``'s live hull: rebuilt when it
+    was built with these settings (incrementally unless the curves' names, roles or
+    connectivity changed, which its report says), else built anew and kept. The model is
+    kept for hydrostatics as by :func:`keep`."""
     live = _live.get(name)
-    names = [c.name for c in curves]
-    if (
-        live is not None
-        and live.tolerance == tolerance
-        and live.resolution == resolution
-        and _live_names.get(name) == names
-    ):
+    if live is not None and live.tolerance == tolerance and live.resolution == resolution:
         arrays, report, model = live.rebuild(curves)
     else:
         live = LiveHull(curves, tolerance, resolution, name)
         arrays, report, model = live.result()
         _live[name] = live
-        _live_names[name] = names
     keep(name, curves, tolerance, resolution, model, measured=report["measured"])
     return arrays, report, model
 
@@ -119,8 +111,6 @@ def forget(name: str | None = None) -> None:
     if name is None:
         _kept.clear()
         _live.clear()
-        _live_names.clear()
     else:
         _kept.pop(name, None)
         _live.pop(name, None)
-        _live_names.pop(name, None)
