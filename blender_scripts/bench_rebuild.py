@@ -1,7 +1,9 @@
 """Live-rebuild timing: move one control point of a station and rebuild, end to end (curves in,
 surface, mesh written), as a full build and as the incremental live rebuild
-(``api.build(..., live=True)``) in the same run, with their ratio; on the frigate example and
-on KCS imported from ``../shared/hulls`` at the defaults, at resolutions 12 and 24.
+(``api.build(..., live=True)``) in the same run, with their ratio; on the frigate example, on
+KCS imported from ``../shared/hulls`` at the defaults, and on a synthetic 308-patch network
+(the exact Wigley hull drawn with 27 stations and 10 waterlines, ``examples/wigley.py``), at
+resolutions 12 and 24.
 
     PYTHONPATH=build/native/release:addon .venv/bin/python blender_scripts/bench_rebuild.py
     blender -b -P blender_scripts/bench_rebuild.py
@@ -15,6 +17,7 @@ once the drag pauses.
 
 from __future__ import annotations
 
+import json
 import os
 import sys
 import tempfile
@@ -44,10 +47,32 @@ def _hull(name: str):
     if name == "frigate":
         coll = api.load_network(ROOT / "examples" / "frigate_network.json")
         station = coll.objects["st4"]
+    elif name == "synthetic":
+        coll = api.load_network(_synthetic_network())
+        station = coll.objects[SYNTHETIC_STATION]
     else:
         coll, _ = api.import_sections(ROOT.parent / "shared" / "hulls" / name / "network.json")
         station = coll.objects["st10"]
     return coll, station
+
+
+#: The synthetic network: Wigley stations and waterlines at these counts give 308 patches.
+SYNTHETIC_STATIONS, SYNTHETIC_WATERLINES = 27, 10
+#: The station the synthetic drag moves (off midship, so its faces are like the others).
+SYNTHETIC_STATION = "station +14.3"
+
+
+def _synthetic_network() -> Path:
+    """The synthetic network's JSON file (written once per run into a temporary folder)."""
+    sys.path.insert(0, str(ROOT / "examples"))
+    import wigley
+
+    n = SYNTHETIC_STATIONS
+    stations = [wigley.L * k / (n + 1) for k in range(-(n // 2), n // 2 + 1)]
+    waterlines = [wigley.T * k / SYNTHETIC_WATERLINES for k in range(1, SYNTHETIC_WATERLINES + 1)]
+    path = Path(tempfile.mkdtemp(prefix="batten_bench_")) / "synthetic.json"
+    path.write_text(json.dumps(wigley.network(stations, waterlines, name="synthetic")))
+    return path
 
 
 def _median_ms(xs) -> float:
@@ -90,7 +115,7 @@ def bench(name: str, resolution: int) -> None:
 
 def main() -> None:
     batten.register()
-    for name in ("frigate", "kcs"):
+    for name in ("frigate", "kcs", "synthetic"):
         for resolution in (12, 24):
             bench(name, resolution)
 
