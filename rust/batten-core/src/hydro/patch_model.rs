@@ -50,7 +50,7 @@ fn mirror(p: DVec3) -> DVec3 {
 #[derive(Clone, Debug)]
 pub struct PatchHydroModel {
     /// Per patch: its topology face and its cells, in patch order.
-    patches: Vec<(usize, Arc<[Cell]>)>,
+    patches: Vec<(usize, Arc<FaceCells>)>,
     /// `(patch, cell)` of each cell, in order of their boxes' lowest `x` (a stable sort of the
     /// patch order, so a model made in any way from the same cells reads them alike).
     order: Vec<(u32, u32)>,
@@ -70,6 +70,20 @@ pub struct PatchHydroModel {
 /// Cells folded one after another per chunk of the box order, the chunks' sums added in order:
 /// the wet integrals are the same bit for bit whatever the threads do.
 const FOLD_CHUNK: usize = 256;
+
+/// The cells of one patch and their boxes (in the same order).
+#[derive(Debug)]
+struct FaceCells {
+    cells: Vec<Cell>,
+    boxes: Vec<Aabb>,
+}
+
+impl FaceCells {
+    fn new(cells: Vec<Cell>) -> FaceCells {
+        let boxes = cells.iter().map(net_box).collect();
+        FaceCells { cells, boxes }
+    }
+}
 
 /// `(patch, cell)`: where a cell is held.
 type CellKey = (u32, u32);
@@ -160,7 +174,7 @@ impl PatchHydroModel {
         density: CellDensity,
         keep: Option<(&PatchHydroModel, &(dyn Fn(usize) -> bool + Sync))>,
     ) -> PatchHydroModel {
-        let kept = |face: usize| -> Option<Arc<[Cell]>> {
+        let kept = |face: usize| -> Option<Arc<FaceCells>> {
             let (prev, changed) = keep?;
             if changed(face) {
                 return None;
@@ -168,21 +182,30 @@ impl PatchHydroModel {
             let k = prev.patches.binary_search_by_key(&face, |p| p.0).ok()?;
             Some(prev.patches[k].1.clone())
         };
-        let per_patch: Vec<(usize, Arc<[Cell]>, bool)> = patches
+        let per_patch: Vec<(usize, Arc<FaceCells>, bool)> = patches
             .par_iter()
             .zip(faces)
             .map(|(patch, &face)| match kept(face) {
                 Some(cells) => (face, cells, true),
-                None => (face, patch_cells(patch, outward, density).into(), false),
+                None => (
+                    face,
+                    Arc::new(FaceCells::new(patch_cells(patch, outward, density))),
+                    false,
+                ),
             })
             .collect();
-        let kept_cells = per_patch.iter().filter(|p| p.2).map(|p| p.1.len()).sum();
-        let per_patch: Vec<(usize, Arc<[Cell]>)> =
+        let kept_cells = per_patch
+            .iter()
+            .filter(|p| p.2)
+            .map(|p| p.1.cells.len())
+            .sum();
+        let per_patch: Vec<(usize, Arc<FaceCells>)> =
             per_patch.into_iter().map(|(f, c, _)| (f, c)).collect();
-        let mut keyed: Vec<((u32, u32), (DVec3, DVec3))> = Vec::new();
-        for (p, (_, cells)) in per_patch.iter().enumerate() {
-            for (c, cell) in cells.iter().enumerate() {
-                keyed.push(((p as u32, c as u32), net_box(cell)));
+        // Kept patches bring their boxes: only the sort is done again.
+        let mut keyed: Vec<(CellKey, Aabb)> = Vec::new();
+        for (p, (_, face)) in per_patch.iter().enumerate() {
+            for (c, b) in face.boxes.iter().enumerate() {
+                keyed.push(((p as u32, c as u32), *b));
             }
         }
         keyed.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
@@ -226,7 +249,7 @@ impl PatchHydroModel {
     #[inline]
     fn cell(&self, k: usize) -> &Cell {
         let (p, c) = self.order[k];
-        &self.patches[p as usize].1[c as usize]
+        &self.patches[p as usize].1.cells[c as usize]
     }
 
     /// The diagonal of the surface's box.
