@@ -40,6 +40,7 @@ __all__ = [
     "network_from_json",
     "network_to_json",
     "nodes_from_data",
+    "same_curves",
     "section_noise",
     "snap_to_nodes",
     "topology",
