@@ -18,7 +18,8 @@ use crate::sections::PySection;
 
 /// A hull's exact surface for hydrostatics, from [`build_hull_model`](crate::hull::build_hull_model).
 /// Its cells are made on the first call that needs them (tens of milliseconds for a ship) and
-/// kept. Every method releases the GIL and raises `HydrostaticsError` or `InvalidArgumentError`.
+/// kept; the model a `LiveHull` hands out after an incremental rebuild makes only the cells of
+/// the faces patched again and keeps the others from the model before (`cells_kept`). Every method releases the GIL and raises `HydrostaticsError` or `InvalidArgumentError`.
 #[pyclass(frozen, module = "batten_native")]
 pub(crate) struct HullModel {
     surface: HullSurface,
