@@ -13,6 +13,11 @@ and the network's connectivity is unchanged, as in a drag of a network whose cro
 together; a move that takes a curve off its crossings is a full rebuild (reported as such).
 The live figure includes ``api.settle``'s cost separately: the report's quality sampling, run
 once the drag pauses.
+
+Then the round trip of a live drag with its figures: move the control point, rebuild live, and
+``api.hydrostatics`` at the design draft (exact cells, then Live cells): the figures' time is
+the cells of the faces the drag reached, made again, and the integration (the other faces'
+cells are kept from the model before).
 """
 
 from __future__ import annotations
@@ -113,11 +118,55 @@ def bench(name: str, resolution: int) -> None:
     )
 
 
+def bench_figures(name: str) -> None:
+    """Drag → live rebuild → api.hydrostatics at the design draft, timed part by part."""
+    coll, station = _hull(name)
+    point = station.data.splines[0].points[len(station.data.splines[0].points) // 2]
+    if name == "frigate":
+        draft, lpp, fp = 4.0, None, None
+    else:
+        ref = json.loads((ROOT.parent / "shared" / "hulls" / name / "network.json").read_text())
+        draft, lpp, fp = ref["T"], ref["Lpp"], ref["Lpp"]
+    api.build(coll, live=True)
+    api.hydrostatics(coll, draft, lpp=lpp, fp=fp)
+    api.hydrostatics(coll, draft, lpp=lpp, fp=fp, live=True)
+    rebuild, exact, live_cells, kept = [], [], [], set()
+    for i in range(RUNS):
+        co = point.co.copy()
+        co.y += STEP * (1 if i % 2 else -1)
+        point.co = co
+        t0 = time.perf_counter()
+        api.build(coll, live=True)
+        t1 = time.perf_counter()
+        api.hydrostatics(coll, draft, lpp=lpp, fp=fp)
+        t2 = time.perf_counter()
+        rebuild.append(t1 - t0)
+        exact.append(t2 - t1)
+        model = hull_models._kept[coll.name].model
+        kept.add((model.cells_kept, model.cells))
+    for i in range(RUNS):
+        co = point.co.copy()
+        co.y += STEP * (1 if i % 2 else -1)
+        point.co = co
+        api.build(coll, live=True)
+        t1 = time.perf_counter()
+        api.hydrostatics(coll, draft, lpp=lpp, fp=fp, live=True)
+        live_cells.append(time.perf_counter() - t1)
+    print(
+        f"{name}, drag then hydrostatics at {draft} m: live rebuild {_median_ms(rebuild):.1f} ms; "
+        f"then hydrostatics {_median_ms(exact):.2f} ms (best {min(exact) * 1e3:.2f} ms; cells kept "
+        f"of all {sorted(kept)}), with Live cells {_median_ms(live_cells):.2f} ms "
+        f"(best {min(live_cells) * 1e3:.2f} ms)"
+    )
+
+
 def main() -> None:
     batten.register()
     for name in ("frigate", "kcs", "synthetic"):
         for resolution in (12, 24):
             bench(name, resolution)
+    for name in ("frigate", "kcs"):
+        bench_figures(name)
 
 
 if __name__ == "__main__":

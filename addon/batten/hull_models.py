@@ -1,17 +1,23 @@
 """The exact surfaces of the hulls built in this session, kept for hydrostatics.
 
 :func:`batten.api.build` keeps each source's :class:`batten_native.HullModel` here under the
-source's name, with a fingerprint of the curves it was built from (their network JSON) and the
-build's tolerance and resolution. Hydrostatics reuse it while the curves are unchanged and
-rebuild it (with the same settings) when they have changed, so figures never describe a surface
-other than the one the curves give now.
+source's name, with the curves it was built from and the build's tolerance and resolution.
+Hydrostatics reuse it while the curves are unchanged (compared as curves:
+:func:`batten_native.same_curves`) and rebuild it (with the same settings) when they have
+changed, so figures never describe a surface other than the one the curves give now.
 """
 
 from __future__ import annotations
 
 from typing import NamedTuple
 
-from batten_native import DEFAULT_RESOLUTION, DEFAULT_TOLERANCE, LiveHull, build_hull_model, network_to_json
+from batten_native import (
+    DEFAULT_RESOLUTION,
+    DEFAULT_TOLERANCE,
+    LiveHull,
+    build_hull_model,
+    same_curves,
+)
 
 
 class _Kept(NamedTuple):
@@ -19,8 +25,6 @@ class _Kept(NamedTuple):
     tolerance: float
     resolution: int
     model: object
-    #: The curves' fingerprint, made the first time a lookup needs it (one entry, or none).
-    fingerprint: list
     #: False for a live rebuild's surface whose report (warnings, knuckle edges) is not yet
     #: measured: its patches and mesh are exact, its report is the last measured one.
     measured: bool = True
@@ -33,22 +37,10 @@ _kept: dict[str, _Kept] = {}
 _live: dict[str, LiveHull] = {}
 
 
-def fingerprint(name: str, curves: list) -> str:
-    """What identifies the curves of a build: their network JSON."""
-    return network_to_json(name, curves)
-
-
 def keep(name: str, curves: list, tolerance: float, resolution: int, model, measured: bool = True) -> None:
-    """Keep ``model``, built from ``curves`` with these settings, as ``name``'s surface (the
-    curves' fingerprint is taken only when a lookup needs it: a live rebuild does not pay for
-    it); ``measured`` False when its report waits for :func:`settle`."""
-    _kept[name] = _Kept(curves, tolerance, resolution, model, [], measured)
-
-
-def _fingerprint_of(name: str, kept: _Kept) -> str:
-    if not kept.fingerprint:
-        kept.fingerprint.append(fingerprint(name, kept.curves))
-    return kept.fingerprint[0]
+    """Keep ``model``, built from ``curves`` with these settings, as ``name``'s surface;
+    ``measured`` False when its report waits for :func:`settle`."""
+    _kept[name] = _Kept(curves, tolerance, resolution, model, measured)
 
 
 def model_for(name: str, curves: list, *, measured: bool = True):
@@ -57,8 +49,9 @@ def model_for(name: str, curves: list, *, measured: bool = True):
     ``measured`` asks for a surface whose report is measured (sections and exports read its
     knuckle edges and warnings): a live rebuild's is measured first (:func:`settle`)."""
     kept = _kept.get(name)
-    key = fingerprint(name, curves)
-    if kept is not None and _fingerprint_of(name, kept) == key:
+    # The curves compared as they are (their names, roles and geometry), not by writing their
+    # JSON: a live drag's figures pay microseconds for this, not milliseconds.
+    if kept is not None and same_curves(kept.curves, curves):
         if measured and not kept.measured:
             settle(name)
             return _kept[name].model
@@ -66,7 +59,7 @@ def model_for(name: str, curves: list, *, measured: bool = True):
     tolerance = kept_tolerance(name)
     resolution = kept.resolution if kept else DEFAULT_RESOLUTION
     _arrays, _report, model = build_hull_model(curves, tolerance, resolution, name)
-    _kept[name] = _Kept(curves, tolerance, resolution, model, [key])
+    _kept[name] = _Kept(curves, tolerance, resolution, model)
     return model
 
 

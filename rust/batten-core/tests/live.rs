@@ -205,3 +205,51 @@ fn a_failed_rebuild_keeps_the_previous_surface() {
     live.rebuild(&next).expect("rebuilds");
     assert_same_as_full(&mut live, &next);
 }
+
+/// Hydrostatics follow a drag: the model of each rebuilt surface, made from the one before
+/// with the cells of the faces the rebuild did not patch again kept, is the model of a full
+/// build — the same figures bit for bit — and keeps most of the cells.
+#[test]
+fn hydro_cells_kept_across_drags_give_a_full_build_s_figures() {
+    use batten_core::{default_datums, hydrostatics, CellDensity, Flotation};
+    let net = load("frigate_network.json");
+    let mut live = LiveHull::new(&net, &options()).expect("builds");
+    assert_eq!(
+        live.rebuilt_faces(),
+        None,
+        "a first build builds everything"
+    );
+    let mut model = live.surface().hydro_model(CellDensity::DEFAULT);
+    assert_eq!(model.kept_cell_count(), 0, "a new model makes every cell");
+    let station = curve(&net, "st4");
+    let middle = net.curves()[station].curve.control_points().len() / 2;
+    let mut current = net;
+    for by in [4e-5, -3e-5, 2e-5] {
+        current = moved(&current, station, middle, DVec3::new(0.0, by, 0.0));
+        live.rebuild(&current).expect("rebuilds");
+        let rebuilt = live.rebuilt_faces().expect("incremental").to_vec();
+        let of = live.surface().patches.len();
+        assert!(
+            !rebuilt.is_empty() && rebuilt.len() < of,
+            "{rebuilt:?} of {of}"
+        );
+        model = live
+            .surface()
+            .hydro_model_after(&model, &|f| rebuilt.contains(&f));
+        assert!(
+            model.kept_cell_count() > 0 && model.kept_cell_count() < model.cell_count(),
+            "kept {} of {}",
+            model.kept_cell_count(),
+            model.cell_count()
+        );
+        let full = build_hull(&current, live.options())
+            .expect("full build")
+            .hydro_model(CellDensity::DEFAULT);
+        assert_eq!(full.cell_count(), model.cell_count(), "the same cells");
+        let datums = default_datums(&full, 4.0, None).expect("datums");
+        let flotation = Flotation::at_draft(4.0);
+        let a = hydrostatics(&model, &flotation, &datums).expect("figures");
+        let b = hydrostatics(&full, &flotation, &datums).expect("figures");
+        assert!(a == b, "kept cells' figures {a:?}\nvs a full build's {b:?}");
+    }
+}

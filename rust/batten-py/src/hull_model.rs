@@ -1,7 +1,8 @@
 //! `HullModel`: a built hull's exact patch surface kept for hydrostatics (the core's
 //! `PatchHydroModel`, made on first use).
 
-use std::sync::OnceLock;
+use std::collections::BTreeSet;
+use std::sync::{Arc, OnceLock};
 
 use batten_core::{
     float_to, hydrostatics, level_draft, sectional_areas, CellDensity, HullGeometry, HullSurface,
@@ -17,23 +18,74 @@ use crate::sections::PySection;
 
 /// A hull's exact surface for hydrostatics, from [`build_hull_model`](crate::hull::build_hull_model).
 /// Its cells are made on the first call that needs them (tens of milliseconds for a ship) and
-/// kept. Every method releases the GIL and raises `HydrostaticsError` or `InvalidArgumentError`.
+/// kept; the model a `LiveHull` hands out after an incremental rebuild makes only the cells of
+/// the faces patched again and keeps the others from the model before (`cells_kept`). Every method releases the GIL and raises `HydrostaticsError` or `InvalidArgumentError`.
 #[pyclass(frozen, module = "batten_native")]
 pub(crate) struct HullModel {
     surface: HullSurface,
-    model: OnceLock<PatchHydroModel>,
-    live: OnceLock<PatchHydroModel>,
+    model: Arc<OnceLock<PatchHydroModel>>,
+    live: Arc<OnceLock<PatchHydroModel>>,
     sections: OnceLock<SectionModel>,
+    /// Where the exact and the Live cells may come from: for a live hull's surface, an earlier
+    /// model of the same hull.
+    seeds: Seeds,
+}
+
+/// An earlier model of the same live hull (its cells, once made) and the topology faces
+/// patched again since its surface: the cells of the others are kept.
+#[derive(Clone, Debug)]
+pub(crate) struct Seed {
+    cells: Arc<OnceLock<PatchHydroModel>>,
+    changed: Arc<BTreeSet<usize>>,
+}
+
+/// The seeds of the exact and the Live cells.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Seeds {
+    exact: Option<Seed>,
+    live: Option<Seed>,
 }
 
 impl HullModel {
     /// Keep `surface`.
     pub(crate) fn new(surface: HullSurface) -> HullModel {
+        HullModel::seeded(surface, Seeds::default())
+    }
+
+    /// Keep `surface`, a live rebuild of an earlier model's (see [`HullModel::successor`]).
+    pub(crate) fn seeded(surface: HullSurface, seeds: Seeds) -> HullModel {
         HullModel {
             surface,
-            model: OnceLock::new(),
-            live: OnceLock::new(),
+            model: Arc::new(OnceLock::new()),
+            live: Arc::new(OnceLock::new()),
             sections: OnceLock::new(),
+            seeds,
+        }
+    }
+
+    /// The seeds of the model of a surface rebuilt from this one's with only the faces
+    /// `rebuilt` patched again (`None`: everything rebuilt, nothing to keep): this model's
+    /// cells where they are made, else the ones this model would have kept.
+    pub(crate) fn successor(&self, rebuilt: Option<&[usize]>) -> Seeds {
+        let Some(rebuilt) = rebuilt else {
+            return Seeds::default();
+        };
+        let next = |lock: &Arc<OnceLock<PatchHydroModel>>, seed: &Option<Seed>| {
+            if lock.get().is_some() {
+                Some(Seed {
+                    cells: lock.clone(),
+                    changed: Arc::new(rebuilt.iter().copied().collect()),
+                })
+            } else {
+                seed.as_ref().map(|s| Seed {
+                    cells: s.cells.clone(),
+                    changed: Arc::new(s.changed.iter().chain(rebuilt).copied().collect()),
+                })
+            }
+        };
+        Seeds {
+            exact: next(&self.model, &self.seeds.exact),
+            live: next(&self.live, &self.seeds.live),
         }
     }
 
@@ -43,13 +95,22 @@ impl HullModel {
     }
 
     fn geometry(&self, live: bool) -> &PatchHydroModel {
-        if live {
-            self.live
-                .get_or_init(|| self.surface.hydro_model(CellDensity::LIVE))
+        let (lock, seed, density) = if live {
+            (&self.live, &self.seeds.live, CellDensity::LIVE)
         } else {
-            self.model
-                .get_or_init(|| self.surface.hydro_model(CellDensity::DEFAULT))
-        }
+            (&self.model, &self.seeds.exact, CellDensity::DEFAULT)
+        };
+        lock.get_or_init(|| {
+            let earlier = seed
+                .as_ref()
+                .and_then(|s| Some((s.cells.get()?, &s.changed)));
+            match earlier {
+                Some((prev, changed)) if prev.density() == density => self
+                    .surface
+                    .hydro_model_after(prev, &|f| changed.contains(&f)),
+                _ => self.surface.hydro_model(density),
+            }
+        })
     }
 
     fn section_model(&self) -> &SectionModel {
@@ -64,6 +125,13 @@ impl HullModel {
     #[getter]
     fn cells(&self, py: Python<'_>) -> usize {
         py.detach(|| self.geometry(false).cell_count())
+    }
+
+    /// How many of the exact model's cells were kept from the model of the surface before a
+    /// live rebuild (the cells of the faces it did not patch again; 0 when all were made).
+    #[getter]
+    fn cells_kept(&self, py: Python<'_>) -> usize {
+        py.detach(|| self.geometry(false).kept_cell_count())
     }
 
     /// Whether the surface is a half hull (port side) answered for both sides.

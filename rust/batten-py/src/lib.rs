@@ -57,6 +57,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ROLES", batten_core::Role::ALL.map(|r| r.name()).to_vec())?;
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(network::network_to_json, m)?)?;
+    m.add_function(wrap_pyfunction!(network::same_curves, m)?)?;
     m.add_function(wrap_pyfunction!(network::network_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(network::check_lengths, m)?)?;
     m.add_function(wrap_pyfunction!(network::snap_to_nodes, m)?)?;

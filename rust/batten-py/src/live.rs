@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 use crate::curve::{network_of, Curve};
 use crate::errors::{core_err, guard};
 use crate::hull::{network_and_options, surface_outputs, MeshArrays};
-use crate::hull_model::HullModel;
+use crate::hull_model::{HullModel, Seeds};
 
 /// A hull surface kept with everything its build computed: `rebuild(curves)` after the
 /// curves moved builds again only the faces they reach (when the network's connectivity is
@@ -17,6 +17,9 @@ use crate::hull_model::HullModel;
 #[pyclass(module = "batten_native", name = "LiveHull")]
 pub(crate) struct LiveHull {
     inner: CoreLiveHull,
+    /// The last model handed out, whose cells (once made) the next one keeps for the faces a
+    /// rebuild did not patch again.
+    last: Option<Py<HullModel>>,
 }
 
 /// The report dict of `hull` with how it was built: `measured` (False while the quality
@@ -26,7 +29,8 @@ pub(crate) struct LiveHull {
 fn outputs<'py>(
     py: Python<'py>,
     hull: &CoreLiveHull,
-) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+    seeds: Seeds,
+) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, Py<HullModel>)> {
     let surface = hull.surface();
     let (arrays, report) = surface_outputs(py, surface)?;
     report.set_item("measured", hull.is_measured())?;
@@ -46,7 +50,27 @@ fn outputs<'py>(
         }
     }
     report.set_item("rebuild", rebuild)?;
-    Ok((arrays, report, HullModel::new(surface.clone())))
+    let model = Py::new(py, HullModel::seeded(surface.clone(), seeds))?;
+    Ok((arrays, report, model))
+}
+
+impl LiveHull {
+    /// The outputs of the current surface, its model seeded from the last one handed out
+    /// (`rebuilt`: the faces patched again since, `None` for everything), and kept as the last.
+    fn handed_out<'py>(
+        &mut self,
+        py: Python<'py>,
+        rebuilt: Option<&[usize]>,
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, Py<HullModel>)> {
+        let seeds = self
+            .last
+            .as_ref()
+            .map(|m| m.get().successor(rebuilt))
+            .unwrap_or_default();
+        let out = outputs(py, &self.inner, seeds)?;
+        self.last = Some(out.2.clone_ref(py));
+        Ok(out)
+    }
 }
 
 #[pymethods]
@@ -67,16 +91,17 @@ impl LiveHull {
                 CoreLiveHull::new(&network, &options).map_err(core_err)
             })
         })?;
-        Ok(LiveHull { inner })
+        Ok(LiveHull { inner, last: None })
     }
 
     /// `(arrays, report, model)` of the current surface, as `build_hull_model` gives them,
     /// the report with `measured` and `rebuild`.
     fn result<'py>(
-        &self,
+        &mut self,
         py: Python<'py>,
-    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
-        outputs(py, &self.inner)
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, Py<HullModel>)> {
+        // The same surface as the last model's: all its cells kept.
+        self.handed_out(py, Some(&[]))
     }
 
     /// Rebuild for `curves` (the same curves, moved; names and order as built) and return
@@ -85,7 +110,7 @@ impl LiveHull {
         &mut self,
         py: Python<'py>,
         curves: Vec<PyRef<'py, Curve>>,
-    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, Py<HullModel>)> {
         let network = network_of(&self.inner.network().name, &curves)?;
         let inner = &mut self.inner;
         py.detach(|| {
@@ -93,7 +118,8 @@ impl LiveHull {
                 inner.rebuild(&network).map(|_| ()).map_err(core_err)
             })
         })?;
-        outputs(py, &self.inner)
+        let rebuilt = self.inner.rebuilt_faces().map(<[usize]>::to_vec);
+        self.handed_out(py, rebuilt.as_deref())
     }
 
     /// Measure the report's quality figures on the current surface if a rebuild left them
@@ -101,14 +127,15 @@ impl LiveHull {
     fn settle<'py>(
         &mut self,
         py: Python<'py>,
-    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
+    ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, Py<HullModel>)> {
         let inner = &mut self.inner;
         py.detach(|| {
             guard("measuring the hull surface", || {
                 inner.settle().map(|_| ()).map_err(core_err)
             })
         })?;
-        outputs(py, &self.inner)
+        // Settling measures the report; the patches stay.
+        self.handed_out(py, Some(&[]))
     }
 
     /// True when the report's quality figures were measured on the current surface.

@@ -23,6 +23,14 @@ pub(crate) fn network_to_json(
     py.detach(|| guard("writing network", || Ok(network.to_json())))
 }
 
+/// Whether the curve lists `a` and `b` are the same curves: names, roles, degrees, knots,
+/// control points and weights equal, in order (what a network's JSON would say, without
+/// writing it: the check a kept surface makes on every hydrostatics call).
+#[pyfunction]
+pub(crate) fn same_curves(a: Vec<PyRef<'_, Curve>>, b: Vec<PyRef<'_, Curve>>) -> bool {
+    a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| x.inner == y.inner)
+}
+
 /// Read batten's JSON network text: returns `(name, [Curve, ...])`; a bad curve raises
 /// `BattenError` naming it.
 #[pyfunction]

@@ -37,6 +37,8 @@ pub struct LiveHull {
     surface: HullSurface,
     measured: bool,
     last: Rebuild,
+    /// The topology faces the last rebuild patched again (`None` after a full build).
+    rebuilt: Option<Vec<usize>>,
 }
 
 impl LiveHull {
@@ -53,6 +55,7 @@ impl LiveHull {
             stages,
             measured: true,
             last: Rebuild::Full { reason: None },
+            rebuilt: None,
         })
     }
 
@@ -75,12 +78,19 @@ impl LiveHull {
             ),
         };
         let (patched, mesh, outward) = assemble(network, &stages)?;
+        // A kept face shares its outcome with the stages it was kept from.
+        let rebuilt = matches!(last, Rebuild::Incremental { .. }).then(|| {
+            (0..stages.faces.len())
+                .filter(|&f| !std::sync::Arc::ptr_eq(&stages.faces[f], &self.stages.faces[f]))
+                .collect()
+        });
         let report = self.surface.report.clone();
         self.surface = into_surface(patched, mesh, outward, report);
         self.stages = stages;
         self.network = network.clone();
         self.measured = false;
         self.last = last;
+        self.rebuilt = rebuilt;
         Ok(&self.last)
     }
 
@@ -132,6 +142,14 @@ impl LiveHull {
     /// What the last build or rebuild did.
     pub fn last_rebuild(&self) -> &Rebuild {
         &self.last
+    }
+
+    /// The topology faces (`HullSurface::patch_faces` values) the last rebuild patched again,
+    /// in order, or `None` when it built everything: the other faces' patches are those of the
+    /// surface before, bit for bit, so whatever was made of them (cells for hydrostatics,
+    /// [`HullSurface::hydro_model_after`]) can be kept.
+    pub fn rebuilt_faces(&self) -> Option<&[usize]> {
+        self.rebuilt.as_deref()
     }
 
     /// The network the current surface was built from.

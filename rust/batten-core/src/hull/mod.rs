@@ -126,7 +126,33 @@ impl HullSurface {
     /// [`PatchHydroModel`]), cut at `density` ([`CellDensity::DEFAULT`] for the figures,
     /// [`CellDensity::LIVE`] while dragging).
     pub fn hydro_model(&self, density: CellDensity) -> PatchHydroModel {
-        PatchHydroModel::new(&self.patches, self.patches_outward, &self.mesh, density)
+        PatchHydroModel::updated_or_new(
+            None,
+            &self.patches,
+            &self.patch_faces,
+            self.patches_outward,
+            &self.mesh,
+            density,
+        )
+    }
+
+    /// The model of this surface, a live rebuild of the surface `previous` was made of in which
+    /// only the faces `changed` names were patched again: `previous`'s cells of the other faces
+    /// are kept, and the result is [`HullSurface::hydro_model`] at `previous`'s density, bit
+    /// for bit ([`PatchHydroModel::updated`]).
+    pub fn hydro_model_after(
+        &self,
+        previous: &PatchHydroModel,
+        changed: &(dyn Fn(usize) -> bool + Sync),
+    ) -> PatchHydroModel {
+        PatchHydroModel::updated(
+            previous,
+            &self.patches,
+            &self.patch_faces,
+            changed,
+            self.patches_outward,
+            &self.mesh,
+        )
     }
 }
 

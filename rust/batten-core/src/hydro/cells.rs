@@ -14,7 +14,6 @@
 //! is a linear combination of them, whatever the waterplane.
 
 use glam::{DVec2, DVec3};
-use rayon::prelude::*;
 
 use super::bernstein::{basis, gauss, interpolation_matrix, lobatto_nodes, GAUSS, N};
 use super::integrals::WetIntegrals;
@@ -385,25 +384,19 @@ fn moments(net: &[[DVec3; N]; N], sign: f64) -> CellMoments {
     out
 }
 
-/// The cells of every patch (in parallel), `outward` saying whether the patches' `P_u × P_v`
-/// points out of the hull.
-pub(crate) fn build_cells(patches: &[Patch], outward: bool, density: CellDensity) -> Vec<Cell> {
+/// The cells of one patch, `outward` saying whether the patches' `P_u × P_v` points out of the
+/// hull.
+pub(crate) fn patch_cells(patch: &Patch, outward: bool, density: CellDensity) -> Vec<Cell> {
     let sign = if outward { 1.0 } else { -1.0 };
-    patches
-        .par_iter()
-        .flat_map_iter(|patch| {
-            let qs = quads(patch.domain());
-            let mut cells = Vec::new();
-            for q in &qs {
-                for bx in boxes(q, density.per_quad.max(1), density.corner_levels) {
-                    let net = interpolate(patch, q, bx);
-                    let moments = moments(&net, sign);
-                    cells.push(Cell { net, sign, moments });
-                }
-            }
-            cells
-        })
-        .collect()
+    let mut cells = Vec::new();
+    for q in &quads(patch.domain()) {
+        for bx in boxes(q, density.per_quad.max(1), density.corner_levels) {
+            let net = interpolate(patch, q, bx);
+            let moments = moments(&net, sign);
+            cells.push(Cell { net, sign, moments });
+        }
+    }
+    cells
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@
 
 use glam::DVec3;
 
-use super::bernstein::{basis, bounds, eval1, gauss, split1, GAUSS, N};
+use super::bernstein::{basis, bounds, eval1, gauss, gauss_rule, split1, GAUSS, N};
 use super::cells::{Cell, CellMoments};
 use super::integrals::WetIntegrals;
 use super::roots::{bracketed, sign_changes};
@@ -17,6 +17,18 @@ use super::waterplane::Waterplane;
 /// Halvings of a box before giving up on monotony (the box is then `2⁻¹²` of the cell: its
 /// tensor rule with the wet indicator errs by far less than rounding of the whole).
 const MAX_DEPTH: usize = 12;
+
+/// Gauss–Legendre points along the outer parameter of a graph (the integrand there, through
+/// the graph's root, is smooth but not a polynomial; along the height the [`GAUSS`] rule keeps
+/// the polynomial integrands exact).
+const OUTER_GAUSS: usize = 10;
+
+/// The [`OUTER_GAUSS`]-point rule on `[0, 1]`.
+fn outer_gauss() -> &'static ([f64; OUTER_GAUSS], [f64; OUTER_GAUSS]) {
+    static RULE: std::sync::OnceLock<([f64; OUTER_GAUSS], [f64; OUTER_GAUSS])> =
+        std::sync::OnceLock::new();
+    RULE.get_or_init(gauss_rule::<OUTER_GAUSS>)
+}
 
 /// Halvings below which a box's quarters are integrated in parallel (the first two levels).
 const PARALLEL_DEPTH: usize = 2;
@@ -247,13 +259,14 @@ fn graph(cell: &Cell, z: &[[f64; N]; N], bx: [f64; 4], swapped: bool, out: &mut 
     cuts.push(1.0);
     cuts.sort_by(f64::total_cmp);
     let (x, w) = gauss();
+    let (xo, wo) = outer_gauss();
     for win in cuts.windows(2) {
         let (a, b) = (win[0], win[1]);
         if b - a <= 0.0 {
             continue;
         }
-        for q in 0..GAUSS {
-            let lu = a + (b - a) * x[q];
+        for q in 0..OUTER_GAUSS {
+            let lu = a + (b - a) * xo[q];
             let (bu, _) = basis(lu);
             let col: [f64; N] = std::array::from_fn(|j| (0..N).map(|i| z[i][j] * bu[i]).sum());
             let (lo_h, hi_h) = match (col[0] <= 0.0, col[N - 1] <= 0.0) {
@@ -273,7 +286,7 @@ fn graph(cell: &Cell, z: &[[f64; N]; N], bx: [f64; 4], swapped: bool, out: &mut 
                 continue;
             }
             let u = u0 + (u1 - u0) * lu;
-            let wu = w[q] * (b - a) * (u1 - u0);
+            let wu = wo[q] * (b - a) * (u1 - u0);
             let (c, cd) = if swapped { cell.row(u) } else { cell.column(u) };
             for r in 0..GAUSS {
                 let lh = lo_h + (hi_h - lo_h) * x[r];

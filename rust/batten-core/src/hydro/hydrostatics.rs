@@ -3,6 +3,7 @@
 //! MTC, sectional areas (ITTC symbols and definitions; SI units, tonnes for masses).
 
 use glam::DVec3;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::caps::cap_integrals;
@@ -385,7 +386,10 @@ fn max_section(
     let area = |x: f64| immersed_section_area(geom, plane, DVec3::X, x, tol);
     let n = MAX_SECTION_SAMPLES;
     let mut step = (hi - lo) / (n - 1) as f64;
+    // The samples are independent: computed in parallel (in order, so the figures are those
+    // of a serial run bit for bit).
     let samples: Vec<(f64, f64)> = (0..n)
+        .into_par_iter()
         .map(|k| {
             let x = lo + step * k as f64;
             (x, area(x))
@@ -404,8 +408,10 @@ fn max_section(
     };
     for _ in 0..MAX_SECTION_REFINEMENTS {
         let (x0, x2) = ((best_x - step).max(lo), (best_x + step).min(hi));
-        let f0 = sampled(x0).unwrap_or_else(|| area(x0));
-        let f2 = sampled(x2).unwrap_or_else(|| area(x2));
+        let (f0, f2) = rayon::join(
+            || sampled(x0).unwrap_or_else(|| area(x0)),
+            || sampled(x2).unwrap_or_else(|| area(x2)),
+        );
         let (h0, h2) = (best_x - x0, x2 - best_x);
         // The vertex of the parabola through (x0, f0), (best_x, best_a), (x2, f2).
         let num = h0 * h0 * (best_a - f2) - h2 * h2 * (best_a - f0);
@@ -449,8 +455,32 @@ pub fn hydrostatics(
     let Some((xi_lo, xi_hi)) = geom.wet_range(&plane, plane.e1, &waterline) else {
         return Err(below_keel(geom, &plane, draft));
     };
-    let caps = cap_integrals(geom, &plane, draft, scale, CENTREPLANE_RELATIVE * scale)?;
-    let w: WetIntegrals = geom.wet_integrals(&plane) + caps;
+    let lpp = datums.lpp();
+    // The wet surface's integrals and the stations (midship, the largest section, the transom)
+    // are independent: computed side by side, then checked in the order the errors are
+    // documented (a hole before the sections are used).
+    let (wet, (midship_area, (max_section_x, max_section_area), transom_area)) = rayon::join(
+        || -> Result<WetIntegrals, HydroError> {
+            let caps = cap_integrals(geom, &plane, draft, scale, CENTREPLANE_RELATIVE * scale)?;
+            Ok(geom.wet_integrals(&plane) + caps)
+        },
+        || {
+            let midship_area = immersed_section_area(geom, &plane, DVec3::X, datums.x_mid(), tol);
+            // Upright and level in x, the range along x is the one along e1 found above.
+            let (x_lo, x_hi) = if plane.e1 == DVec3::X {
+                (xi_lo, xi_hi)
+            } else {
+                geom.wet_range(&plane, DVec3::X, &waterline)
+                    .unwrap_or((datums.x_ap, datums.x_fp))
+            };
+            let ((max_x, max_a), transom) = rayon::join(
+                || max_section(geom, &plane, x_lo, x_hi, tol),
+                || immersed_section_area(geom, &plane, DVec3::X, x_lo + 1e-6 * (x_hi - x_lo), tol),
+            );
+            (midship_area, (max_x, max_a), transom)
+        },
+    );
+    let w: WetIntegrals = wet?;
     if !w.is_finite() {
         return Err(HydroError::Degenerate(
             "the wet surface's integrals are not finite".into(),
@@ -482,16 +512,8 @@ pub fn hydrostatics(
         (Some((a0, a1)), Some((b0, b1))) => (a1 - a0, b1 - b0),
         _ => (0.0, 0.0),
     };
-    let lpp = datums.lpp();
     let tan_trim = flotation.trim / lpp;
     let draft_at = |x: f64| draft + (datums.x_mid() - x) * tan_trim;
-    let midship_area = immersed_section_area(geom, &plane, DVec3::X, datums.x_mid(), tol);
-    let (x_lo, x_hi) = geom
-        .wet_range(&plane, DVec3::X, &waterline)
-        .unwrap_or((datums.x_ap, datums.x_fp));
-    let (max_section_x, max_section_area) = max_section(geom, &plane, x_lo, x_hi, tol);
-    let transom_area =
-        immersed_section_area(geom, &plane, DVec3::X, x_lo + 1e-6 * (x_hi - x_lo), tol);
     let density = flotation.density;
     let displacement = density * v;
     let t = draft;

@@ -3,11 +3,13 @@
 //! ([`clip`](super::clip)) and cut by planes ([`contour`](super::contour)); its free edges from
 //! the welded mesh.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
 use super::bernstein::{basis, N};
-use super::cells::{build_cells, Cell, CellDensity, CellMoments};
+use super::cells::{patch_cells, Cell, CellDensity, CellMoments};
 use super::clip::{wetness, CellWetness};
 use super::contour::cell_section;
 use super::geometry::{HullGeometry, OpenChain, SectionArc, SectionSegment};
@@ -41,9 +43,17 @@ fn mirror(p: DVec3) -> DVec3 {
 
 /// A hull's patch surface ready for hydrostatics: its cells with their boxes, whether it is a
 /// half hull, and its free edges off the centreplane.
+///
+/// The cells are held patch by patch (shared, so a model of the same hull after an edit,
+/// [`PatchHydroModel::updated`], keeps those of the patches the edit did not reach) and read in
+/// the order of their boxes' lowest `x`.
 #[derive(Clone, Debug)]
 pub struct PatchHydroModel {
-    cells: Vec<Cell>,
+    /// Per patch: its topology face and its cells, in patch order.
+    patches: Vec<(usize, Arc<FaceCells>)>,
+    /// `(patch, cell)` of each cell, in order of their boxes' lowest `x` (a stable sort of the
+    /// patch order, so a model made in any way from the same cells reads them alike).
+    order: Vec<(u32, u32)>,
     boxes: Vec<(DVec3, DVec3)>,
     /// The largest extent in `x` of a cell's box (the cells are in order of their boxes' lowest
     /// `x`, so a station reads only the cells within this of it).
@@ -51,7 +61,34 @@ pub struct PatchHydroModel {
     half: bool,
     open: Vec<OpenChain>,
     bounds: (DVec3, DVec3),
+    outward: bool,
+    density: CellDensity,
+    /// How many of the cells were kept from an earlier model ([`PatchHydroModel::updated`]).
+    kept: usize,
 }
+
+/// Cells folded one after another per chunk of the box order, the chunks' sums added in order:
+/// the wet integrals are the same bit for bit whatever the threads do.
+const FOLD_CHUNK: usize = 256;
+
+/// The cells of one patch and their boxes (in the same order).
+#[derive(Debug)]
+struct FaceCells {
+    cells: Vec<Cell>,
+    boxes: Vec<Aabb>,
+}
+
+impl FaceCells {
+    fn new(cells: Vec<Cell>) -> FaceCells {
+        let boxes = cells.iter().map(net_box).collect();
+        FaceCells { cells, boxes }
+    }
+}
+
+/// `(patch, cell)`: where a cell is held.
+type CellKey = (u32, u32);
+/// A box `(lowest, highest)`.
+type Aabb = (DVec3, DVec3);
 
 /// The box of a cell's net (it holds the polynomial).
 fn net_box(cell: &Cell) -> (DVec3, DVec3) {
@@ -87,15 +124,92 @@ impl PatchHydroModel {
         mesh: &SurfaceMesh,
         density: CellDensity,
     ) -> PatchHydroModel {
-        let mut pairs: Vec<(Cell, (DVec3, DVec3))> = build_cells(patches, outward, density)
-            .into_iter()
-            .map(|c| {
-                let b = net_box(&c);
-                (c, b)
+        let faces: Vec<usize> = (0..patches.len()).collect();
+        PatchHydroModel::of_faces(patches, &faces, outward, mesh, density, None)
+    }
+
+    /// The model of `patches` (`faces[k]` the topology face of `patches[k]`), as
+    /// [`PatchHydroModel::new`], keeping from `previous` — a model of the same hull before an
+    /// edit — the cells of every face that `changed` does not name (when it was made with the
+    /// same density and orientation): the result is the model `new` makes, bit for bit, at the
+    /// cost of the changed faces' cells. [`HullSurface::hydro_model_after`](crate::HullSurface::hydro_model_after)
+    /// gives it for a live rebuild.
+    pub fn updated(
+        previous: &PatchHydroModel,
+        patches: &[Patch],
+        faces: &[usize],
+        changed: &(dyn Fn(usize) -> bool + Sync),
+        outward: bool,
+        mesh: &SurfaceMesh,
+    ) -> PatchHydroModel {
+        let keep = (previous.outward == outward).then_some((previous, changed));
+        PatchHydroModel::of_faces(patches, faces, outward, mesh, previous.density, keep)
+    }
+
+    /// [`PatchHydroModel::updated`] from `previous`, or a new model of `patches` (of topology
+    /// `faces`) at `density`.
+    pub(crate) fn updated_or_new(
+        previous: Option<(&PatchHydroModel, &(dyn Fn(usize) -> bool + Sync))>,
+        patches: &[Patch],
+        faces: &[usize],
+        outward: bool,
+        mesh: &SurfaceMesh,
+        density: CellDensity,
+    ) -> PatchHydroModel {
+        match previous {
+            Some((prev, changed)) => {
+                PatchHydroModel::updated(prev, patches, faces, changed, outward, mesh)
+            }
+            None => PatchHydroModel::of_faces(patches, faces, outward, mesh, density, None),
+        }
+    }
+
+    /// The model of `patches` of topology `faces`, reusing the cells of the unchanged faces of
+    /// `keep`'s model.
+    fn of_faces(
+        patches: &[Patch],
+        faces: &[usize],
+        outward: bool,
+        mesh: &SurfaceMesh,
+        density: CellDensity,
+        keep: Option<(&PatchHydroModel, &(dyn Fn(usize) -> bool + Sync))>,
+    ) -> PatchHydroModel {
+        let kept = |face: usize| -> Option<Arc<FaceCells>> {
+            let (prev, changed) = keep?;
+            if changed(face) {
+                return None;
+            }
+            let k = prev.patches.binary_search_by_key(&face, |p| p.0).ok()?;
+            Some(prev.patches[k].1.clone())
+        };
+        let per_patch: Vec<(usize, Arc<FaceCells>, bool)> = patches
+            .par_iter()
+            .zip(faces)
+            .map(|(patch, &face)| match kept(face) {
+                Some(cells) => (face, cells, true),
+                None => (
+                    face,
+                    Arc::new(FaceCells::new(patch_cells(patch, outward, density))),
+                    false,
+                ),
             })
             .collect();
-        pairs.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
-        let (cells, boxes): (Vec<Cell>, Vec<(DVec3, DVec3)>) = pairs.into_iter().unzip();
+        let kept_cells = per_patch
+            .iter()
+            .filter(|p| p.2)
+            .map(|p| p.1.cells.len())
+            .sum();
+        let per_patch: Vec<(usize, Arc<FaceCells>)> =
+            per_patch.into_iter().map(|(f, c, _)| (f, c)).collect();
+        // Kept patches bring their boxes: only the sort is done again.
+        let mut keyed: Vec<(CellKey, Aabb)> = Vec::new();
+        for (p, (_, face)) in per_patch.iter().enumerate() {
+            for (c, b) in face.boxes.iter().enumerate() {
+                keyed.push(((p as u32, c as u32), *b));
+            }
+        }
+        keyed.sort_by(|a, b| a.1 .0.x.total_cmp(&b.1 .0.x));
+        let (order, boxes): (Vec<CellKey>, Vec<Aabb>) = keyed.into_iter().unzip();
         let max_dx = boxes.iter().map(|b| b.1.x - b.0.x).fold(0.0, f64::max);
         let mut lo = DVec3::splat(f64::INFINITY);
         let mut hi = DVec3::splat(f64::NEG_INFINITY);
@@ -118,13 +232,24 @@ impl PatchHydroModel {
             lo.y = lo.y.min(-hi.y);
         }
         PatchHydroModel {
-            cells,
+            patches: per_patch,
+            order,
             boxes,
             max_dx,
             half,
             open,
             bounds: (lo, hi),
+            outward,
+            density,
+            kept: kept_cells,
         }
+    }
+
+    /// The `k`-th cell in box order.
+    #[inline]
+    fn cell(&self, k: usize) -> &Cell {
+        let (p, c) = self.order[k];
+        &self.patches[p as usize].1.cells[c as usize]
     }
 
     /// The diagonal of the surface's box.
@@ -134,43 +259,54 @@ impl PatchHydroModel {
 
     /// Number of cells (for benchmarks and reports).
     pub fn cell_count(&self) -> usize {
-        self.cells.len()
+        self.order.len()
+    }
+
+    /// How many cells were kept from the earlier model [`PatchHydroModel::updated`] was given
+    /// (0 for a new model).
+    pub fn kept_cell_count(&self) -> usize {
+        self.kept
+    }
+
+    /// The density of the cells.
+    pub fn density(&self) -> CellDensity {
+        self.density
     }
 
     /// The integrals of the drawn half (or whole) in `plane`.
     fn own_integrals(&self, plane: &Waterplane) -> WetIntegrals {
         let c = plane.e3.dot(plane.origin);
         let slack = WETNESS_SLACK_RELATIVE * self.size();
-        let (moments, cut) = self
-            .cells
-            .par_iter()
-            .zip(&self.boxes)
-            .fold(
-                || (CellMoments::default(), WetIntegrals::default()),
-                |(mut m, mut w), (cell, b)| {
-                    let (lo, hi) = box_range(b, plane.e3);
+        let parts: Vec<(CellMoments, WetIntegrals)> = (0..self.order.len())
+            .step_by(FOLD_CHUNK)
+            .collect::<Vec<_>>()
+            .into_par_iter()
+            .map(|start| {
+                let (mut m, mut w) = (CellMoments::default(), WetIntegrals::default());
+                for k in start..(start + FOLD_CHUNK).min(self.order.len()) {
+                    let (lo, hi) = box_range(&self.boxes[k], plane.e3);
                     if lo - c >= -slack {
-                        return (m, w);
+                        continue;
                     }
+                    let cell = self.cell(k);
                     if hi - c <= slack {
                         m.add(&cell.moments);
-                        return (m, w);
+                        continue;
                     }
                     match wetness(cell, plane, slack) {
                         CellWetness::Dry => {}
                         CellWetness::Wet => m.add(&cell.moments),
                         CellWetness::Cut(x) => w += x,
                     }
-                    (m, w)
-                },
-            )
-            .reduce(
-                || (CellMoments::default(), WetIntegrals::default()),
-                |(mut m1, w1), (m2, w2)| {
-                    m1.add(&m2);
-                    (m1, w1 + w2)
-                },
-            );
+                }
+                (m, w)
+            })
+            .collect();
+        let (mut moments, mut cut) = (CellMoments::default(), WetIntegrals::default());
+        for (m, w) in &parts {
+            moments.add(m);
+            cut += *w;
+        }
         moments.in_frame(plane) + cut
     }
 
@@ -190,7 +326,7 @@ impl PatchHydroModel {
                 self.boxes.partition_point(|b| b.0.x <= c),
             )
         } else {
-            (0, self.cells.len())
+            (0, self.order.len())
         };
         // The box test is cheap: done in one go, so the parallel work is the cells cut.
         let cut: Vec<usize> = (first..last)
@@ -203,7 +339,7 @@ impl PatchHydroModel {
         cut.par_iter()
             .flat_map_iter(|&k| {
                 let mut out = Vec::new();
-                cell_section(&self.cells[k], m, c, tolerance, &mut out);
+                cell_section(self.cell(k), m, c, tolerance, &mut out);
                 out
             })
             .collect()
@@ -277,7 +413,7 @@ impl PatchHydroModel {
                     continue;
                 }
             }
-            self.cells[k].grid_points(&samples, |p| {
+            self.cell(k).grid_points(&samples, |p| {
                 if plane.zeta(p) <= 0.0 {
                     let v = dir.dot(p);
                     range = merge(range, Some((v, v)));
@@ -413,7 +549,7 @@ mod tests {
         let mut cut = 0;
         for z in [3.1, 4.0, 5.9] {
             let plane = Waterplane::level(z);
-            for cell in &model.cells {
+            for cell in (0..model.cell_count()).map(|k| model.cell(k)) {
                 let CellWetness::Cut(whole) = wetness(cell, &plane, 0.0) else {
                     continue;
                 };
