@@ -253,3 +253,33 @@ fn hydro_cells_kept_across_drags_give_a_full_build_s_figures() {
         assert!(a == b, "kept cells' figures {a:?}\nvs a full build's {b:?}");
     }
 }
+
+/// Moving one control point changes a curve on `degree + 1` of its spans only: the faces along
+/// the rest of the curve keep their patches (their edges lie where the curve did not change),
+/// so fewer faces are built again than when the whole curve moves; both match a full build.
+#[test]
+fn a_local_move_rebuilds_fewer_faces_than_moving_the_whole_curve() {
+    let net = load("frigate_network.json");
+    let deck = curve(&net, "deck");
+    let rebuilt = |next: &Network| {
+        let mut live = LiveHull::new(&net, &options()).expect("builds");
+        let faces = match live.rebuild(next).expect("rebuilds").clone() {
+            Rebuild::Incremental { faces, .. } => faces,
+            other => panic!("expected an incremental rebuild, got {other:?}"),
+        };
+        assert_same_as_full(&mut live, next);
+        faces
+    };
+    let by = DVec3::new(0.0, 4e-5, 0.0);
+    let local = rebuilt(&moved(&net, deck, 1, by));
+    let points = net.curves()[deck].curve.control_point_count();
+    let mut whole = net.clone();
+    for i in 1..points - 1 {
+        whole = moved(&whole, deck, i, by);
+    }
+    let whole = rebuilt(&whole);
+    assert!(
+        local < whole,
+        "a move near the deck's end rebuilds {local} faces, the whole deck's interior {whole}"
+    );
+}

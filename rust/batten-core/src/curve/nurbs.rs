@@ -165,6 +165,34 @@ impl NurbsCurve {
         self.rational.then(|| self.cw.iter().map(|c| c.w).collect())
     }
 
+    /// True when `other` is this curve, bit for bit, wherever either is evaluated on
+    /// `[lo, hi]`: the same degree and knot vector, and the same homogeneous control points
+    /// over the spans that reach the interval (one span more on each side, for evaluations at
+    /// a knot that take the neighbouring span). A drag of one control point changes a curve on
+    /// `degree + 1` spans only; the live rebuild keeps what lies outside them.
+    pub fn same_on(&self, other: &NurbsCurve, lo: f64, hi: f64) -> bool {
+        if self.degree != other.degree
+            || self.cw.len() != other.cw.len()
+            || self.knots.len() != other.knots.len()
+            || self
+                .knots
+                .iter()
+                .zip(&other.knots)
+                .any(|(a, b)| a.to_bits() != b.to_bits())
+        {
+            return false;
+        }
+        let (lo, hi) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+        let n = self.cw.len();
+        let p = self.degree;
+        let first = find_span(&self.knots, p, n, lo).saturating_sub(p + 1);
+        let last = (find_span(&self.knots, p, n, hi) + 1).min(n - 1);
+        self.cw[first..=last]
+            .iter()
+            .zip(&other.cw[first..=last])
+            .all(|(a, b)| a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits))
+    }
+
     /// Homogeneous control points `(w·P, w)`.
     pub fn homogeneous_points(&self) -> &[DVec4] {
         &self.cw

@@ -381,6 +381,28 @@ impl Stages {
                     || at(brep, e.end) != at(old_brep, o.end)
             })
             .collect();
+        // Of those, the edges whose curve changed where the edge lies: a moved control point
+        // reaches only `degree + 1` spans of its curve, and the edges beyond them (their
+        // nodes, parameters and curve bits there unchanged) give their faces the same patch.
+        let changed: Vec<bool> = brep
+            .edges
+            .iter()
+            .zip(&old_brep.edges)
+            .zip(&dirty_info)
+            .map(|((e, o), &dirty)| {
+                dirty
+                    && !(e.t0.to_bits() == o.t0.to_bits()
+                        && e.t1.to_bits() == o.t1.to_bits()
+                        && {
+                            let at = |b: &crate::topo::Brep, v: crate::topo::VertexId| {
+                                b.vertices[v.index()].position.to_array().map(f64::to_bits)
+                            };
+                            at(brep, e.start) == at(old_brep, o.start)
+                                && at(brep, e.end) == at(old_brep, o.end)
+                        }
+                        && new[e.curve].curve.same_on(&old[e.curve].curve, e.t0, e.t1))
+            })
+            .collect();
         let edges = self
             .edges
             .updated(network, &topology, options.tolerance, &dirty_info);
@@ -408,12 +430,12 @@ impl Stages {
             .iter()
             .enumerate()
             .map(|(k, e)| {
-                dirty_info[k]
+                changed[k]
                     || knuckle_changed[k]
                     || [e.start, e.end].iter().any(|v| {
                         edges.at_vertex[v.index()]
                             .iter()
-                            .any(|end| dirty_info[end.edge])
+                            .any(|end| changed[end.edge])
                     })
             })
             .collect();
@@ -431,9 +453,14 @@ impl Stages {
             .faces
             .iter()
             .map(|f| {
-                f.edges
-                    .iter()
-                    .any(|e| dirty_normal[e.index()] || knuckle_changed[e.index()])
+                // A composite side's breaks come from its segments' arc lengths, which are
+                // measured on the whole curve (centred on its control points): a face with
+                // one is patched again whenever any of its edges' curves moved.
+                let composite = f.sides.len() < f.edges.len();
+                f.edges.iter().any(|e| {
+                    let k = e.index();
+                    dirty_normal[k] || knuckle_changed[k] || (composite && dirty_info[k])
+                })
             })
             .collect();
         let mut stages = Stages {
