@@ -85,11 +85,13 @@ def update_positions(obj, positions, face_vertices, face_sizes) -> bool:
         or len(mesh.loops) != len(face_vertices)
     ):
         return False
+    # The corners' vertices (a fast attribute read: 0.3 ms for 640k corners) with the counts
+    # of polygons and corners decide it: polygons grouped otherwise over the very same corner
+    # list would need sizes changed in pairs. Reading the polygons' sizes themselves
+    # (``loop_total``, 11 ms for 160k polygons) would take most of a live frame.
     corners = np.empty(len(face_vertices), dtype=np.int32)
     mesh.attributes[".corner_vert"].data.foreach_get("value", corners)
-    sizes = np.empty(len(face_sizes), dtype=np.int32)
-    mesh.polygons.foreach_get("loop_total", sizes)
-    if not (np.array_equal(corners, face_vertices) and np.array_equal(sizes, face_sizes)):
+    if not np.array_equal(corners, face_vertices):
         return False
     mesh.attributes["position"].data.foreach_set("vector", positions.astype(np.float32).ravel())
     mesh.update()
