@@ -9,6 +9,7 @@ from __future__ import annotations
 import bpy
 
 from . import api, progress
+from .operator_base import BattenOperator
 
 #: Time between two steps of a modal job (s): the timer that drives it.
 TICK_S = 0.01
@@ -18,7 +19,7 @@ CANCEL_HINT = " — Esc to cancel"
 CANCEL_EVENTS = frozenset({"ESC", "RIGHTMOUSE"})
 
 
-class ModalJob:
+class ModalJob(BattenOperator):
     """The shared body of batten's long operators. A subclass gives :meth:`job` (the
     :func:`batten.api.start` of its call) and :meth:`finish` (its reports from the call's
     result). :meth:`execute` starts the job modally when Blender has a window, else runs it to
@@ -44,9 +45,9 @@ class ModalJob:
         return self.finish(context, job.result)
 
     def execute(self, context):
+        if bpy.app.background or context.window is None:
+            return BattenOperator.execute(self, context)
         try:
-            if bpy.app.background or context.window is None:
-                return self.run(context)
             self.begin(context)
         except api.BattenError as e:
             self.report({"ERROR"}, str(e))

@@ -8,6 +8,7 @@ from . import api
 from ._registry import register_classes, unregister_classes
 from .api import example_files
 from .modal_jobs import ModalJob
+from .operator_base import BattenOperator
 from .scene_build import build_into_scene
 from .scene_hydro import draft_of
 
@@ -18,23 +19,6 @@ def _hull_source(context):
     if settings.source is not None:
         return settings.source
     return [o for o in context.selected_objects if o.type == "CURVE"]
-
-
-class BattenOperator:
-    """The shared body of batten's operators: :meth:`execute` runs :meth:`run`, and a
-    BattenError it raises becomes an error report on the operator and ``{'CANCELLED'}``
-    (Blender's undo step is then not kept, and the API has changed nothing)."""
-
-    def run(self, context) -> set[str]:
-        """The operator's work (calls into :mod:`batten.api`); returns Blender's result set."""
-        raise NotImplementedError
-
-    def execute(self, context):
-        try:
-            return self.run(context)
-        except api.BattenError as e:
-            self.report({"ERROR"}, str(e))
-            return {"CANCELLED"}
 
 
 class BATTEN_OT_build(BattenOperator, bpy.types.Operator):

@@ -169,8 +169,8 @@ class Job:
         p = self._progress
         if p is None:
             p = self._progress = Progress(s.label, s.total, self.callback).__enter__()
-        elif s.done == p.done and s.label == p.label:
-            return False  # a wait for core work that has not finished a round yet
+        if s.done == p.done and s.label == p.label:
+            return False  # a wait for core work that has not finished a (first) round yet
         p.label, p.total = s.label, max(int(s.total), 1)
         try:
             p.at(s.done, final=s.final)
