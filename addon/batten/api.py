@@ -5,8 +5,14 @@ raises :class:`BattenError` (a ``ValueError``) with a message naming the curve a
 as one of its kinds a script can catch: :class:`CurveError` (``.curve`` is the curve object's
 name; :class:`FairError` when fairing fails), :class:`NetworkFileError` (a network or section
 file that cannot be read or written), :class:`NoSurfaceError`, :class:`InvalidArgumentError`
-(a bad argument value or source) and :class:`InternalError` (a bug in batten's core). A failed
-call leaves the file as it was: nothing half-written, no source curve changed.
+(a bad argument value or source), :class:`Cancelled` (long work stopped by its ``progress``
+callback) and :class:`InternalError` (a bug in batten's core). A failed or cancelled call
+leaves the file as it was: nothing half-written, no source curve changed.
+
+The long calls (:data:`LONG_CALLS`) take ``progress=``, a callable ``progress(label, done,
+total)`` called after each step; returning ``False`` stops the work and raises
+:class:`Cancelled` (see :mod:`batten.progress`). :func:`start` gives such a call as a job to
+run step by step, as the modal operators do.
 
     import batten.api as api
     curves = api.read_curves(bpy.data.collections["Hull"])

@@ -109,17 +109,6 @@ class Progress:
         if answer is False and not final:
             raise Cancelled(f"{self.label} cancelled after {self.done}/{self.total} steps: nothing changed")
 
-    def rounds(self) -> Callable[[int, int], None]:
-        """A callback for the core's round-by-round work (``batten_native.fair_sections``'s
-        ``progress``): each round reported as :meth:`at`; :class:`Cancelled` raised in it
-        stops the core, which then returns nothing."""
-
-        def round_done(done: int, total: int) -> None:
-            self.total = max(int(total), 1)
-            self.at(done)
-
-        return round_done
-
 
 class Step(NamedTuple):
     """What a job yields after each step: ``done`` of ``total`` steps of ``label``; ``final``
