@@ -317,3 +317,10 @@ def test_a_modal_error_is_reported_and_changes_nothing(tmp_path):
     assert results == [{"CANCELLED"}]
     assert reports[0][0] == {"ERROR"} and "bad.json" in reports[0][1]
     assert len(bpy.data.objects) == objects
+
+
+def test_invoked_headless_the_operator_still_runs_at_once(arcs):
+    # Invoked (as a click would), without a window: the job runs to its end, as from a script.
+    before = _splines(arcs)
+    assert bpy.ops.batten.fair_curves("INVOKE_DEFAULT") == {"FINISHED"}
+    assert _splines(arcs) != before

@@ -2,7 +2,8 @@
 per timer event, so Blender's event loop runs between steps: the status bar shows
 ``"batten: <label> k/N — Esc to cancel"`` and Esc or a right click cancels, with nothing
 changed (the jobs write only after their last step). Headless, or called from a script
-(``bpy.ops.batten.…()`` runs ``execute``), the job runs to its end at once."""
+(``bpy.ops.batten.…()`` runs ``execute`` without ``invoke``), the job runs to its end at
+once, so the script sees its result."""
 
 from __future__ import annotations
 
@@ -22,9 +23,10 @@ CANCEL_EVENTS = frozenset({"ESC", "RIGHTMOUSE"})
 class ModalJob(BattenOperator):
     """The shared body of batten's long operators. A subclass gives :meth:`job` (the
     :func:`batten.api.start` of its call) and :meth:`finish` (its reports from the call's
-    result). :meth:`execute` starts the job modally when Blender has a window, else runs it to
-    its end; :meth:`modal` steps it on each timer event and cancels on Esc / right click. A
-    BattenError becomes an error report and ``{'CANCELLED'}``, as for every batten operator."""
+    result). :meth:`execute` starts the job modally when it was invoked from the UI and Blender
+    has a window, else runs it to its end; :meth:`modal` steps it on each timer event and
+    cancels on Esc / right click. A BattenError becomes an error report and ``{'CANCELLED'}``,
+    as for every batten operator."""
 
     _job = None
     _timer = None
@@ -44,8 +46,20 @@ class ModalJob(BattenOperator):
             pass
         return self.finish(context, job.result)
 
+    #: Set by :meth:`invoke` (a click in the UI, or the file browser that opens first): only then
+    #: does :meth:`execute` run modally; a script's ``bpy.ops.batten.…()`` runs it at once.
+    interactive: bpy.props.BoolProperty(default=False, options={"HIDDEN", "SKIP_SAVE"})
+
+    def invoke(self, context, event):
+        self.interactive = True
+        parent = super()
+        if hasattr(parent, "invoke"):
+            return parent.invoke(context, event)  # the file browser (Import/ExportHelper)
+        return self.execute(context)
+
     def execute(self, context):
-        if bpy.app.background or context.window is None:
+        modal = getattr(self, "interactive", False) is True
+        if not modal or bpy.app.background or context.window is None:
             return BattenOperator.execute(self, context)
         try:
             self.begin(context)
