@@ -5,8 +5,14 @@ raises :class:`BattenError` (a ``ValueError``) with a message naming the curve a
 as one of its kinds a script can catch: :class:`CurveError` (``.curve`` is the curve object's
 name; :class:`FairError` when fairing fails), :class:`NetworkFileError` (a network or section
 file that cannot be read or written), :class:`NoSurfaceError`, :class:`InvalidArgumentError`
-(a bad argument value or source) and :class:`InternalError` (a bug in batten's core). A failed
-call leaves the file as it was: nothing half-written, no source curve changed.
+(a bad argument value or source), :class:`Cancelled` (long work stopped by its ``progress``
+callback) and :class:`InternalError` (a bug in batten's core). A failed or cancelled call
+leaves the file as it was: nothing half-written, no source curve changed.
+
+The long calls (:data:`LONG_CALLS`) take ``progress=``, a callable ``progress(label, done,
+total)`` called after each step; returning ``False`` stops the work and raises
+:class:`Cancelled` (see :mod:`batten.progress`). :func:`start` gives such a call as a job to
+run step by step, as the modal operators do.
 
     import batten.api as api
     curves = api.read_curves(bpy.data.collections["Hull"])
@@ -38,6 +44,7 @@ from batten_native import (
     SEA_WATER_DENSITY,
     SECTION_CAPTURE_FACTOR,
     BattenError,
+    Cancelled,
     Curve,
     CurveError,
     ExportError,
@@ -71,7 +78,7 @@ from .file_text import file_path, read_text
 from .fit_data import fit_data
 from .object_names import blender_name, errors_named_by_object, objects_of, with_objects
 from .offsets import table_text
-from .progress import Progress
+from .progress import Job, ProgressCallback, Step, deferred, in_worker, run
 from .sections import Section, all_sections, finite_offsets, planes
 from .sections import cut as _cut_sections
 
@@ -95,6 +102,9 @@ __all__ = [
     "DEFAULT_TOLERANCE",
     "ROLES",
     "BattenError",
+    "Cancelled",
+    "Job",
+    "start",
     "CurveError",
     "FairError",
     "InternalError",
@@ -131,6 +141,41 @@ __all__ = [
     "keep",
     "transform",
 ]
+
+
+def start(function, *args, **kwargs) -> Job:
+    """The long call ``function(*args, **kwargs)`` of this module (:func:`fair_curves`,
+    :func:`fair_curve`, :func:`fair_surface`, :func:`import_sections`, :func:`export_iges`,
+    :func:`export_step`, :func:`export_3dm`, :func:`lines_plan`, :func:`offsets_table`,
+    :func:`export_sections`; ``progress=`` as they take it) as a :class:`batten.progress.Job`
+    that runs step by step: ``job.step()`` until it returns True, then ``job.result`` (what the
+    call returns); ``job.cancel()`` between steps stops it with nothing changed. Only argument
+    checks run before the first step. Batten's modal operators run their work this way; the
+    call itself runs it to its end. InvalidArgumentError for another function."""
+    name = getattr(function, "__name__", "")
+    if name not in LONG_CALLS or globals().get(name) is not function:
+        calls = ", ".join(LONG_CALLS)
+        raise InvalidArgumentError(f"start: {function!r} is no long call of batten.api ({calls})")
+    job = deferred(function, *args, **kwargs)
+    if job is None:
+        raise InternalError(f"start: {name} ran no job")
+    return job
+
+
+#: The calls :func:`start` runs step by step.
+LONG_CALLS = (
+    "fair_curves",
+    "fair_curve",
+    "fair_surface",
+    "import_sections",
+    "export_iges",
+    "export_step",
+    "export_3dm",
+    "lines_plan",
+    "offsets_table",
+    "export_sections",
+)
+
 
 #: Display resolution (segments per span) of the curve objects batten draws.
 CURVE_RESOLUTION = 16
@@ -327,6 +372,7 @@ def fair_curves(
     noise: float | None = None,
     degree: int = DEFAULT_FAIR_DEGREE,
     corner_angle_deg: float | None = DEFAULT_CORNER_ANGLE_DEG,
+    progress: ProgressCallback | None = None,
 ) -> list[dict]:
     """Refit every spline of the curve objects in ``objects`` (as for :func:`curve_objects`) in
     place as a fair NURBS spline (Dierckx's smoothing spline, H-rep paper §4) and return one
@@ -341,18 +387,27 @@ def fair_curves(
     control_points, knots, interior_knots, max_deviation, rms_deviation, inflections,
     curvature_extrema, fairness_energy (∫κ² ds), max_curvature, corners, dropped_duplicates,
     pieces.
+
+    ``progress``: ``progress(label, done, total)`` after each object is fitted (see
+    :mod:`batten.progress`); returning ``False`` raises :class:`Cancelled` before any object
+    is written.
     """
+    return run(_fair_curves_steps(objects, tolerance, noise, degree, corner_angle_deg), progress)
+
+
+def _fair_curves_steps(objects, tolerance, noise, degree, corner_angle_deg):
+    """:func:`fair_curves` as a job (:class:`batten.progress.Job`): a step per object fitted,
+    the objects written after the last."""
     if noise is not None:
         tolerance = None
-    fitted = [
-        (
-            obj,
-            _fair_object(
-                obj, tolerance=tolerance, noise=noise, degree=degree, corner_angle_deg=corner_angle_deg
-            ),
+    chosen = curve_objects(objects)
+    fitted = []
+    for k, obj in enumerate(chosen):
+        fits = _fair_object(
+            obj, tolerance=tolerance, noise=noise, degree=degree, corner_angle_deg=corner_angle_deg
         )
-        for obj in curve_objects(objects)
-    ]
+        fitted.append((obj, fits))
+        yield Step("fairing curves", k + 1, len(chosen))
     curves_out.replace_splines_of([(obj, [curve for curve, _ in fits]) for obj, fits in fitted])
     return [report for _, fits in fitted for _, report in fits]
 
@@ -364,11 +419,17 @@ def fair_curve(
     noise: float | None = None,
     degree: int = DEFAULT_FAIR_DEGREE,
     corner_angle_deg: float | None = DEFAULT_CORNER_ANGLE_DEG,
+    progress: ProgressCallback | None = None,
 ) -> list[dict]:
     """:func:`fair_curves` of the one curve object ``obj``: every spline refitted, one report
-    per spline; on any error nothing changes."""
+    per spline; on any error (or a cancel) nothing changes."""
     return fair_curves(
-        obj, tolerance=tolerance, noise=noise, degree=degree, corner_angle_deg=corner_angle_deg
+        obj,
+        tolerance=tolerance,
+        noise=noise,
+        degree=degree,
+        corner_angle_deg=corner_angle_deg,
+        progress=progress,
     )
 
 
@@ -389,6 +450,7 @@ def fair_surface(
     filter: str = "cubic",
     bias_target: float | None = None,
     model_tolerance: float = DEFAULT_TOLERANCE,
+    progress: ProgressCallback | None = None,
 ) -> dict:
     """Fair the hull in ``source`` through its families of plane sections, as loftsmen did
     (seed 003, Pla et al. 1998 §4): in each family (``"stations"``, ``"waterlines"``,
@@ -413,7 +475,40 @@ def fair_surface(
     ``inflections``, ``max_bias`` m) and ``curves``: per curve ``curve``, ``object``,
     ``family``, ``offset``, ``moves``, ``tolerance``, ``max_deviation``, ``before``, ``after``.
     InvalidArgumentError for a bad family, filter, role, tolerance or an unknown name.
+
+    ``progress``: ``progress(label, round, max_rounds)`` after each round (the core calls back
+    between rounds; see :mod:`batten.progress`); returning ``False`` stops the fairing and
+    raises :class:`Cancelled`, and no curve is changed.
     """
+    options = {
+        "tolerance": tolerance,
+        "families": families,
+        "fixed": fixed,
+        "fixed_points": fixed_points,
+        "curve_tolerances": curve_tolerances,
+        "max_rounds": max_rounds,
+        "filter": filter,
+        "bias_target": bias_target,
+        "model_tolerance": model_tolerance,
+    }
+    return run(_fair_surface_steps(source, **options), progress)
+
+
+def _fair_surface_steps(
+    source,
+    *,
+    tolerance,
+    families,
+    fixed,
+    fixed_points,
+    curve_tolerances,
+    max_rounds,
+    filter,
+    bias_target,
+    model_tolerance,
+):
+    """:func:`fair_surface` as a job: the core's rounds run in a worker thread (it touches no
+    Blender data), a step per round; the curve objects are written after the last."""
     curves, object_of = _read_source(source)
     by_object: dict[str, list[str]] = {}
     for c in curves:
@@ -433,8 +528,9 @@ def fair_surface(
         if obj_name not in by_object:
             raise InvalidArgumentError(f"curve_tolerances: no curve object '{obj_name}'")
         per_curve.extend((name, float(tol)) for name in by_object[obj_name])
-    with errors_named_by_object(object_of):
-        faired, report = fair_sections(
+
+    def fair(round_done):
+        return fair_sections(
             curves,
             tolerance=tolerance,
             families=[families] if isinstance(families, str) else list(families),
@@ -446,7 +542,11 @@ def fair_surface(
             max_rounds=max_rounds,
             bias_target=bias_target,
             model_tolerance=model_tolerance,
+            progress=round_done,
         )
+
+    with errors_named_by_object(object_of):
+        faired, report = yield from in_worker("fairing the surface", max_rounds, fair)
     moved = {c["curve"] for c in report["curves"] if c["moves"] > 0}
     new_of = {c.name: c for c in faired}
     objects = {o.name: o for o in curve_objects(source)}
@@ -480,6 +580,7 @@ def import_sections(
     corner_angle_deg: float | None = DEFAULT_CORNER_ANGLE_DEG,
     model_tolerance: float = DEFAULT_SECTION_MODEL_TOLERANCE,
     collection: str | None = None,
+    progress: ProgressCallback | None = None,
 ):
     """Read a point-list file (the neutral section JSON of ``shared/hulls``, or a CSV offsets table
     ``name, x, y, z``), find where the point curves cross or end on each other
@@ -504,7 +605,24 @@ def import_sections(
     measured after the move (``rms_deviation`` is the fit's), and ``fit_tolerance``: a curve
     that leaves nodes out is fitted again closer (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS``
     times) and the nodes found again.
+
+    ``progress``: ``progress(label, done, total)`` after each section is fitted (see
+    :mod:`batten.progress`); returning ``False`` raises :class:`Cancelled` and nothing is
+    created.
     """
+    options = {
+        "tolerance": tolerance,
+        "degree": degree,
+        "corner_angle_deg": corner_angle_deg,
+        "model_tolerance": model_tolerance,
+        "collection": collection,
+    }
+    return run(_import_sections_steps(path, **options), progress)
+
+
+def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_tolerance, collection):
+    """:func:`import_sections` as a job: a step per section fitted; the collection drawn after
+    the last."""
     name, sections = sections_in.read_sections(path)
     if not sections:
         raise NetworkFileError(f"section file '{path}': no curves")
@@ -532,10 +650,9 @@ def import_sections(
         return curve, report
 
     fits = []
-    with Progress("fitting sections", len(data)) as progress:
-        for sec in data:
-            fits.append(fit(sec, tolerance))
-            progress.step()
+    for k, sec in enumerate(data):
+        fits.append(fit(sec, tolerance))
+        yield Step("fitting sections", k + 1, len(data))
     within = [tolerance] * len(sections)
     for round_ in range(SNAP_ROUNDS + 1):
         curves = [c for c, _ in fits]
@@ -1102,7 +1219,14 @@ def _offsets(source, family, spec, model) -> list[float]:
 
 
 def offsets_table(
-    source, path, *, stations=21, waterlines=10, buttocks=5, tolerance: float = OFFSETS_TOLERANCE
+    source,
+    path,
+    *,
+    stations=21,
+    waterlines=10,
+    buttocks=5,
+    tolerance: float = OFFSETS_TOLERANCE,
+    progress: ProgressCallback | None = None,
 ) -> Path:
     """Write the offsets table of the hull in ``source`` to ``path`` (CSV, whole or not at all):
     the half-breadths (m) where the stations cross the waterlines and the heights (m) where
@@ -1115,12 +1239,28 @@ def offsets_table(
     draft. An empty cell: the station does not reach that waterline or buttock (no NaN is
     written); a cell ``"a / b"``: the station crosses it more than once (see
     :mod:`batten.offsets`). Returns the path; NetworkFileError when it cannot be written,
-    InvalidArgumentError for bad counts or offsets (naming the argument)."""
+    InvalidArgumentError for bad counts or offsets (naming the argument). ``progress``: as
+    :func:`export_iges`'s (steps: the surface measured, the stations cut, the file written).
+    """
+    return run(_offsets_table_steps(source, path, stations, waterlines, buttocks, tolerance), progress)
+
+
+def _offsets_table_steps(source, path, stations, waterlines, buttocks, tolerance):
+    """:func:`offsets_table` as a job of three steps; the file written at the last."""
     model = _hull_model(source)
+    yield Step("offsets table", 1, 3)
     xs, labels = _station_xs(source, model, stations)
     wls = _offsets(source, "waterlines", waterlines, model)
     bls = _offsets(source, "buttocks", buttocks, model)
     cut = sections(source, stations=xs, tolerance=tolerance)["stations"]
+    yield Step("offsets table", 2, 3)
+    written = _write_offsets(source, path, model, labels, cut, wls, bls, tolerance)
+    yield Step("offsets table", 3, 3, final=True)
+    return written
+
+
+def _write_offsets(source, path, model, labels, cut, wls, bls, tolerance) -> Path:
+    """The offsets table of :func:`offsets_table` from its stations ``cut``."""
     x_ap, x_fp = _station_extent(source, model)
     datums = {"x_ap": x_ap, "x_fp": x_fp, "design_draft": design_draft(source), "tolerance": tolerance}
     rows = [(label, s.offset, s.polylines) for label, s in zip(labels, cut, strict=True)]
@@ -1133,7 +1273,13 @@ def offsets_table(
 
 
 def export_sections(
-    source, path, *, stations=41, waterlines=12, tolerance: float = OFFSETS_TOLERANCE
+    source,
+    path,
+    *,
+    stations=41,
+    waterlines=12,
+    tolerance: float = OFFSETS_TOLERANCE,
+    progress: ProgressCallback | None = None,
 ) -> Path:
     """Write the hull in ``source`` as a section file in the neutral format that
     :func:`import_sections` reads (``shared/hulls``' JSON): its stations (``stations`` as in
@@ -1145,10 +1291,25 @@ def export_sections(
     boundary curve has among its points every section end and corner on it, a chine ends on
     a section or a boundary curve, and a section piece along a boundary curve, or one ending
     inside faces (cut where the surface folds, which the build reports), is left out.
-    Returns the path; NetworkFileError when it cannot be written."""
+    Returns the path; NetworkFileError when it cannot be written. ``progress``: as
+    :func:`export_iges`'s (steps: the surface measured, the sections cut, the file written)."""
+    return run(_export_sections_steps(source, path, stations, waterlines, tolerance), progress)
+
+
+def _export_sections_steps(source, path, stations, waterlines, tolerance):
+    """:func:`export_sections` as a job of three steps; the file written at the last."""
     model = _hull_model(source)
+    yield Step("section file", 1, 3)
     xs, _ = _station_xs(source, model, stations)
     cut = sections(source, stations=xs, waterlines=waterlines, tolerance=tolerance)
+    yield Step("section file", 2, 3)
+    written = _write_section_file(source, path, cut)
+    yield Step("section file", 3, 3, final=True)
+    return written
+
+
+def _write_section_file(source, path, cut) -> Path:
+    """The section file of :func:`export_sections` from its sections ``cut``."""
     network = read_curves(source)
     boundary = [c for c in network if c.role in KIND_OF_ROLE]
     curves = []
@@ -1265,15 +1426,26 @@ def lines_plan(source, path, **options) -> Path:
 
     The file is written whole or not at all: InvalidArgumentError for another suffix, no draft,
     a bad count or offset; NetworkFileError naming the file when it cannot be written.
+    ``progress=``: as :func:`export_iges`'s (steps: the drawing made, the file written).
     """
     from . import lines_plan_files
 
+    progress = options.pop("progress", None)
     path = file_path(path, "lines plan")
     try:
         lines_plan_files.format_of(path)
     except ValueError as e:
         raise InvalidArgumentError(f"lines plan '{path}': {e}") from None
-    return write_lines_plan(lines_plan_drawing(source, **options), path)
+    return run(_lines_plan_steps(source, path, options), progress)
+
+
+def _lines_plan_steps(source, path, options):
+    """:func:`lines_plan` as a job of two steps: the drawing made, the file written."""
+    drawing = lines_plan_drawing(source, **options)
+    yield Step("lines plan", 1, 2)
+    written = write_lines_plan(drawing, path)
+    yield Step("lines plan", 2, 2, final=True)
+    return written
 
 
 def write_lines_plan(drawing, path) -> Path:
@@ -1309,13 +1481,18 @@ def lines_plan_scene(source, **options):
 # --- CAD exports --------------------------------------------------------------------------------
 
 
-def _export(source, path, fmt: str, tolerance: float, allow_holes: bool) -> Path:
+def _export(source, path, fmt: str, tolerance: float, allow_holes: bool, progress) -> Path:
+    return run(_export_steps(source, path, fmt, tolerance, allow_holes), progress)
+
+
+def _export_steps(source, path, fmt: str, tolerance: float, allow_holes: bool):
+    """An export as a job (see :mod:`batten.cad_export` for its steps)."""
     model = _hull_model(source)
     name = _source_name(source)
     try:
         if fmt == "3dm":
-            return cad_export.write_3dm(model, name, path, tolerance, allow_holes)[0]
-        return cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes)[0]
+            return (yield from cad_export.write_3dm(model, name, path, tolerance, allow_holes))[0]
+        return (yield from cad_export.write_text_file(model, name, path, fmt, tolerance, allow_holes))[0]
     except ExportError as e:
         if not e.faces:
             raise
@@ -1325,7 +1502,12 @@ def _export(source, path, fmt: str, tolerance: float, allow_holes: bool) -> Path
 
 
 def export_iges(
-    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+    source,
+    path,
+    *,
+    tolerance: float = DEFAULT_EXPORT_TOLERANCE,
+    allow_holes: bool = False,
+    progress: ProgressCallback | None = None,
 ) -> Path:
     """Write the hull surface of ``source`` (as :func:`build` makes it, with the last build's
     settings) to ``path`` as IGES 5.3: every patch approximated by bicubic B-spline surfaces
@@ -1336,26 +1518,41 @@ def export_iges(
     warnings) raises ExportError saying so, unless ``allow_holes`` (then what exists is
     written). The file is written whole or not at all (ExportError naming it when it cannot
     be). Returns the path.
+
+    ``progress``: ``progress(label, done, total)`` after each step (IGES/STEP: the text made,
+    then the file written; 3dm: each face, then the file written); returning ``False`` before
+    the file is written raises :class:`Cancelled` and no file is written (see
+    :mod:`batten.progress`).
     """
-    return _export(source, path, "iges", tolerance, allow_holes)
+    return _export(source, path, "iges", tolerance, allow_holes, progress)
 
 
 def export_step(
-    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+    source,
+    path,
+    *,
+    tolerance: float = DEFAULT_EXPORT_TOLERANCE,
+    allow_holes: bool = False,
+    progress: ProgressCallback | None = None,
 ) -> Path:
     """Write the hull surface of ``source`` to ``path`` as STEP AP214: one open shell of
     B-spline faces (``ADVANCED_FACE`` on ``B_SPLINE_SURFACE_WITH_KNOTS``, bounded by their
     B-spline edge curves), in metres; the faces, holes and errors as :func:`export_iges`."""
-    return _export(source, path, "step", tolerance, allow_holes)
+    return _export(source, path, "step", tolerance, allow_holes, progress)
 
 
 def export_3dm(
-    source, path, *, tolerance: float = DEFAULT_EXPORT_TOLERANCE, allow_holes: bool = False
+    source,
+    path,
+    *,
+    tolerance: float = DEFAULT_EXPORT_TOLERANCE,
+    allow_holes: bool = False,
+    progress: ProgressCallback | None = None,
 ) -> Path:
     """Write the hull surface of ``source`` to ``path`` as a Rhino ``.3dm`` (rhino3dm): one
     NurbsSurface object per face, in metres; the faces, holes and errors as
     :func:`export_iges`."""
-    return _export(source, path, "3dm", tolerance, allow_holes)
+    return _export(source, path, "3dm", tolerance, allow_holes, progress)
 
 
 def closed_surface(source, *, tolerance: float = DEFAULT_TOLERANCE):

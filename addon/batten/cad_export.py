@@ -13,6 +13,7 @@ from batten_native import ExportError, cad_faces, cad_text
 
 from .atomic_write import replace_atomically, write_atomically
 from .file_text import file_path
+from .progress import JobSteps, Step
 
 #: The file version rhino3dm writes (Rhino 7 reads it, and every later Rhino).
 RHINO_FILE_VERSION = 7
@@ -37,21 +38,25 @@ def _written(path: Path, what: str, write) -> Path:
         raise ExportError(f"{what} '{path}': cannot be written: {e.strerror or e}") from e
 
 
-def write_text_file(
-    model, name: str, path, fmt: str, tolerance: float, allow_holes: bool
-) -> tuple[Path, dict]:
+def write_text_file(model, name: str, path, fmt: str, tolerance: float, allow_holes: bool) -> JobSteps:
     """Write ``model``'s surface (a ``batten_native.HullModel``) to ``path`` as ``fmt``
     (``"iges"`` or ``"step"``); returns the path and what the core measured (faces, patches,
-    control_points, max_deviation, tolerance)."""
+    control_points, max_deviation, tolerance). A job (:class:`batten.progress.Job`) of two
+    steps: the text made, then the file written (closed after the first, it writes nothing)."""
     what = f"{fmt.upper()} file"
     path = file_path(path, what)
     text, stats = cad_text(model, fmt, tolerance, allow_holes, name, path.name, _author(), _now())
-    return _written(path, what, lambda: write_atomically(path, text)), stats
+    yield Step(f"{what}: text", 1, 2)
+    written = _written(path, what, lambda: write_atomically(path, text))
+    yield Step(f"{what}: written", 2, 2, final=True)
+    return written, stats
 
 
-def write_3dm(model, name: str, path, tolerance: float, allow_holes: bool) -> tuple[Path, dict]:
+def write_3dm(model, name: str, path, tolerance: float, allow_holes: bool) -> JobSteps:
     """Write ``model``'s surface to ``path`` as a Rhino ``.3dm`` of NurbsSurface objects (one per
-    face, named after the hull, in metres); returns the path and what was measured."""
+    face, named after the hull, in metres); returns the path and what was measured. A job
+    (:class:`batten.progress.Job`): a step per face, and one once the file is written (closed
+    before that, it writes nothing)."""
     import rhino3dm
 
     what = "3dm file"
@@ -75,9 +80,12 @@ def write_3dm(model, name: str, path, tolerance: float, allow_holes: bool) -> tu
         attributes = rhino3dm.ObjectAttributes()
         attributes.Name = f"{name} face {k}"
         doc.Objects.AddSurface(surface, attributes)
+        yield Step(f"{what}: faces", k + 1, len(faces) + 1)
 
     def write(tmp: Path) -> None:
         if not doc.Write(os.fspath(tmp), RHINO_FILE_VERSION):
             raise OSError(f"rhino3dm could not write {tmp.name}")
 
-    return _written(path, what, lambda: replace_atomically(path, write)), stats
+    written = _written(path, what, lambda: replace_atomically(path, write))
+    yield Step(f"{what}: written", len(faces) + 1, len(faces) + 1, final=True)
+    return written, stats

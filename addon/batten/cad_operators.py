@@ -7,10 +7,11 @@ from bpy_extras.io_utils import ExportHelper
 
 from . import api
 from ._registry import register_classes, unregister_classes
-from .operators import BattenOperator, _hull_source
+from .modal_jobs import ModalJob
+from .operators import _hull_source
 
 
-class _CadExport(BattenOperator, ExportHelper):
+class _CadExport(ModalJob, ExportHelper):
     """The shared body: the hull's surface written by ``api.<export>`` within ``tolerance``."""
 
     export = ""
@@ -28,10 +29,13 @@ class _CadExport(BattenOperator, ExportHelper):
         name="Allow Holes", description="Write what exists even if the surface has holes", default=False
     )
 
-    def run(self, context):
-        path = getattr(api, self.export)(
-            _hull_source(context), self.filepath, tolerance=self.tolerance, allow_holes=self.allow_holes
-        )
+    def job(self, context):
+        export = getattr(api, self.export)
+        source = _hull_source(context)
+        options = {"tolerance": self.tolerance, "allow_holes": self.allow_holes}
+        return api.start(export, source, self.filepath, **options)
+
+    def finish(self, context, path):
         self.report({"INFO"}, f"Wrote {path}")
         return {"FINISHED"}
 

@@ -7,6 +7,8 @@ from bpy_extras.io_utils import ExportHelper, ImportHelper
 from . import api
 from ._registry import register_classes, unregister_classes
 from .api import example_files
+from .modal_jobs import ModalJob
+from .operator_base import BattenOperator
 from .scene_build import build_into_scene
 from .scene_hydro import draft_of
 
@@ -17,23 +19,6 @@ def _hull_source(context):
     if settings.source is not None:
         return settings.source
     return [o for o in context.selected_objects if o.type == "CURVE"]
-
-
-class BattenOperator:
-    """The shared body of batten's operators: :meth:`execute` runs :meth:`run`, and a
-    BattenError it raises becomes an error report on the operator and ``{'CANCELLED'}``
-    (Blender's undo step is then not kept, and the API has changed nothing)."""
-
-    def run(self, context) -> set[str]:
-        """The operator's work (calls into :mod:`batten.api`); returns Blender's result set."""
-        raise NotImplementedError
-
-    def execute(self, context):
-        try:
-            return self.run(context)
-        except api.BattenError as e:
-            self.report({"ERROR"}, str(e))
-            return {"CANCELLED"}
 
 
 class BATTEN_OT_build(BattenOperator, bpy.types.Operator):
@@ -147,7 +132,7 @@ class BATTEN_OT_import_network(BattenOperator, bpy.types.Operator, ImportHelper)
         return {"FINISHED"}
 
 
-class BATTEN_OT_fair_curves(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_fair_curves(ModalJob, bpy.types.Operator):
     """Refit the selected curves as fair NURBS splines within the fair tolerance (all of them,
     or none if one fails)"""
 
@@ -159,15 +144,17 @@ class BATTEN_OT_fair_curves(BattenOperator, bpy.types.Operator):
     def poll(cls, context):
         return any(o.type == "CURVE" for o in context.selected_objects)
 
-    def run(self, context):
+    def job(self, context):
         selected = [o for o in context.selected_objects if o.type == "CURVE"]
-        done = api.fair_curves(selected, tolerance=context.scene.batten.fair_tolerance)
+        return api.start(api.fair_curves, selected, tolerance=context.scene.batten.fair_tolerance)
+
+    def finish(self, context, done):
         worst = max(r["max_deviation"] for r in done)
         self.report({"INFO"}, f"Faired {len(done)} curve(s); largest deviation {worst * 1e3:.2f} mm")
         return {"FINISHED"}
 
 
-class BATTEN_OT_import_sections(BattenOperator, bpy.types.Operator, ImportHelper):
+class BATTEN_OT_import_sections(ModalJob, bpy.types.Operator, ImportHelper):
     """Import sections or offsets (neutral JSON point lists, or CSV rows name,x,y,z) as fair curves"""
 
     bl_idname = "batten.import_sections"
@@ -179,8 +166,11 @@ class BATTEN_OT_import_sections(BattenOperator, bpy.types.Operator, ImportHelper
         name="Tolerance", default=api.DEFAULT_SECTION_TOLERANCE, min=1e-6, max=1.0, precision=4, unit="LENGTH"
     )
 
-    def run(self, context):
-        coll, reports = api.import_sections(self.filepath, tolerance=self.tolerance)
+    def job(self, context):
+        return api.start(api.import_sections, self.filepath, tolerance=self.tolerance)
+
+    def finish(self, context, result):
+        coll, reports = result
         worst = max(r["max_deviation"] for r in reports)
         self.report(
             {"INFO"}, f"Imported {len(reports)} curves into '{coll.name}'; worst {worst * 1e3:.2f} mm"
@@ -231,7 +221,7 @@ class BATTEN_OT_lines_plan(BattenOperator, _LinesPlanOptions, bpy.types.Operator
         return {"FINISHED"}
 
 
-class BATTEN_OT_export_lines_plan(BattenOperator, _LinesPlanOptions, bpy.types.Operator, ExportHelper):
+class BATTEN_OT_export_lines_plan(ModalJob, _LinesPlanOptions, bpy.types.Operator, ExportHelper):
     """Write the hull's lines plan as PDF (A3, to scale), SVG, DXF (a layer per family) or PNG"""
 
     bl_idname = "batten.export_lines_plan"
@@ -258,8 +248,11 @@ class BATTEN_OT_export_lines_plan(BattenOperator, _LinesPlanOptions, bpy.types.O
         self.filepath = wanted
         return changed
 
-    def run(self, context):
-        path = api.lines_plan(context.scene.batten.source, self.filepath, **self.plan_options(context))
+    def job(self, context):
+        source = context.scene.batten.source
+        return api.start(api.lines_plan, source, self.filepath, **self.plan_options(context))
+
+    def finish(self, context, path):
         self.report({"INFO"}, f"Wrote {path}")
         return {"FINISHED"}
 

@@ -76,9 +76,10 @@ pub use sections::{
     knuckle_lines, KnuckleLine, SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,
 };
 pub use surface_fair::{
-    fair_sections, section_noise, HullFairness, SectionFairness, SectionFamily, SectionFilter,
-    SectionReport, SurfaceFairOptions, SurfaceFairReport, SurfaceFairing, DEFAULT_BIAS_SHARE,
-    DEFAULT_FIXED_ROLES, DEFAULT_SURFACE_FAIR_ROUNDS, DEFAULT_SURFACE_FAIR_TOLERANCE,
+    fair_sections, fair_sections_with, section_noise, HullFairness, SectionFairness, SectionFamily,
+    SectionFilter, SectionReport, SurfaceFairOptions, SurfaceFairReport, SurfaceFairing,
+    DEFAULT_BIAS_SHARE, DEFAULT_FIXED_ROLES, DEFAULT_SURFACE_FAIR_ROUNDS,
+    DEFAULT_SURFACE_FAIR_TOLERANCE,
 };
 pub use tolerance::{InvalidTolerance, Tolerance};
 pub use topo::{

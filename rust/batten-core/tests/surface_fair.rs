@@ -4,8 +4,8 @@
 mod common;
 
 use batten_core::{
-    curvature_variation, fair_sections, section_noise, Error, Network, NurbsCurve, Role,
-    SectionFamily, SectionFilter, SurfaceFairOptions,
+    curvature_variation, fair_sections, fair_sections_with, section_noise, Error, Network,
+    NurbsCurve, Role, SectionFamily, SectionFilter, SurfaceFairOptions,
 };
 use common::{poly, wigley};
 use glam::DVec3;
@@ -263,4 +263,35 @@ fn curvature_variation_is_zero_on_a_circle_and_matches_quadrature_on_a_cubic() {
         "{got} vs {reference}"
     );
     let _ = DVec3::ZERO;
+}
+
+#[test]
+fn the_round_callback_sees_every_round_and_stops_the_fairing() {
+    let noisy = section_noise(&wigley(21, 8), 0.3 * TOL, 3, &options()).expect("noise");
+    let opts = options();
+    let mut seen = Vec::new();
+    let whole = fair_sections_with(&noisy, &opts, &mut |done, total| {
+        seen.push((done, total));
+        true
+    })
+    .expect("fairing")
+    .expect("not stopped");
+    let rounds = whole.report.rounds;
+    assert!(rounds >= 3, "rounds: {rounds}");
+    let expected: Vec<_> = (1..=rounds).map(|k| (k, opts.max_rounds)).collect();
+    assert_eq!(seen, expected, "one call per round, in order");
+    let plain = fair_sections(&noisy, &opts).expect("fairing");
+    assert_eq!(
+        apart(&plain.network, &whole.network),
+        0.0,
+        "the callback changes nothing"
+    );
+    let mut calls = 0;
+    let stopped = fair_sections_with(&noisy, &opts, &mut |_, _| {
+        calls += 1;
+        calls < 2
+    })
+    .expect("no error");
+    assert!(stopped.is_none(), "stopped: no network");
+    assert_eq!(calls, 2, "no round after the stop");
 }

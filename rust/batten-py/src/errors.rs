@@ -12,6 +12,7 @@
 //! | [`Error::Tolerance`], [`Error::Resolution`], [`Error::EmptyName`], [`Error::InvalidInput`], argument checks | `InvalidArgumentError` |
 //! | [`Error::Hydro`] (other than [`HydroError::InvalidInput`], an `InvalidArgumentError`) | `HydrostaticsError` |
 //! | [`ExportError`](batten_core::ExportError) (its own type: the export sits above the hull, which uses [`Error`]) | `ExportError` (`.faces` set for patches that could not be fitted), `InvalidArgumentError` for a bad tolerance |
+//! | a `progress` callback that returned `False` | `Cancelled` |
 //! | a caught panic | `InternalError` |
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -27,6 +28,7 @@ pyo3::import_exception!(batten_native._errors, NoSurfaceError);
 pyo3::import_exception!(batten_native._errors, InvalidArgumentError);
 pyo3::import_exception!(batten_native._errors, HydrostaticsError);
 pyo3::import_exception!(batten_native._errors, InternalError);
+pyo3::import_exception!(batten_native._errors, Cancelled);
 pyo3::import_exception!(batten_native._errors, ExportError);
 
 /// A core error as the `BattenError` subclass of its kind, with the core's message (which names

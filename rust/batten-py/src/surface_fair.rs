@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::{curves_of, network_of, Curve};
-use crate::errors::{arg_err, core_err, guard};
+use crate::errors::{arg_err, core_err, guard, Cancelled};
 
 /// The options from Python's arguments, each bad value an InvalidArgumentError naming it.
 #[allow(clippy::too_many_arguments)]
@@ -93,13 +93,16 @@ fn hull_dict<'py>(py: Python<'py>, f: &HullFairness) -> PyResult<Bound<'py, PyDi
 /// its movable sections), `max_deviation` (m), `before` and `after` (the hull's
 /// `curvature_variation` Σ∫κ′² ds, `inflections`, `max_bias`), and `curves`, one dict per
 /// curve: `curve`, `family` (or None), `offset`, `moves`, `tolerance`, `max_deviation`,
-/// `before`, `after`. The GIL is released while it runs.
+/// `before`, `after`. The GIL is released while it runs; `progress(rounds done, max rounds)`,
+/// if given, is called (holding the GIL again) after each round: returning `False` stops the
+/// fairing and raises `Cancelled`, an exception it raises stops it and propagates; either way
+/// no curve is returned.
 #[pyfunction]
 #[pyo3(signature = (curves, *, tolerance=DEFAULT_SURFACE_FAIR_TOLERANCE,
     families=vec!["stations".to_owned(), "waterlines".to_owned()], fixed_roles=None,
     fixed_curves=Vec::new(), fixed_points=Vec::new(), curve_tolerances=Vec::new(),
     filter="cubic", max_rounds=DEFAULT_SURFACE_FAIR_ROUNDS, bias_target=None,
-    model_tolerance=DEFAULT_TOLERANCE))]
+    model_tolerance=DEFAULT_TOLERANCE, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_sections<'py>(
     py: Python<'py>,
@@ -114,6 +117,7 @@ pub(crate) fn fair_sections<'py>(
     max_rounds: usize,
     bias_target: Option<f64>,
     model_tolerance: f64,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<(Vec<Curve>, Bound<'py, PyDict>)> {
     let opts = options(
         tolerance,
@@ -128,11 +132,27 @@ pub(crate) fn fair_sections<'py>(
         model_tolerance,
     )?;
     let network = network_of("", &curves)?;
+    let mut stopped: Option<PyErr> = None;
     let faired = py.detach(|| {
         guard("fairing the sections", || {
-            batten_core::fair_sections(&network, &opts).map_err(core_err)
+            let mut round_done = |done: usize, total: usize| match &progress {
+                None => true,
+                Some(callback) => {
+                    Python::attach(|py| match keeps_going(py, callback, done, total) {
+                        Ok(going) => going,
+                        Err(err) => {
+                            stopped = Some(err);
+                            false
+                        }
+                    })
+                }
+            };
+            batten_core::fair_sections_with(&network, &opts, &mut round_done).map_err(core_err)
         })
     })?;
+    let Some(faired) = faired else {
+        return Err(stopped.unwrap_or_else(|| Cancelled::new_err("surface fairing cancelled")));
+    };
     let r = &faired.report;
     let d = PyDict::new(py);
     d.set_item("rounds", r.rounds)?;
@@ -165,6 +185,13 @@ pub(crate) fn fair_sections<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("curves", per_curve)?;
     Ok((curves_of(&faired.network), d))
+}
+
+/// Whether long work goes on after `callback(done, total)`: anything but `False` (so a callback
+/// that only shows progress and returns None goes on).
+fn keeps_going(py: Python<'_>, callback: &Py<PyAny>, done: usize, total: usize) -> PyResult<bool> {
+    let answer = callback.call1(py, (done, total))?;
+    Ok(!answer.bind(py).is(&*pyo3::types::PyBool::new(py, false)))
 }
 
 /// The paper's test input (Pla et al. 1998 §5, `batten_core::section_noise`): every movable

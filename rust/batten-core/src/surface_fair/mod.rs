@@ -264,6 +264,21 @@ pub fn fair_sections(
     network: &Network,
     options: &SurfaceFairOptions,
 ) -> Result<SurfaceFairing, Error> {
+    let faired = fair_sections_with(network, options, &mut |_, _| true)?;
+    faired.ok_or_else(|| Error::InvalidInput("surface fairing stopped".to_owned()))
+}
+
+/// [`fair_sections`], calling `round_done(rounds done, max rounds)` after each round (one
+/// family's turn, Pla et al. 1998 §4); when it returns `false` the fairing stops there and
+/// gives `Ok(None)`: nothing of the network is changed (the caller keeps its curves). So a
+/// front end shows progress and lets the designer cancel between rounds.
+///
+/// Errors: as [`fair_sections`].
+pub fn fair_sections_with(
+    network: &Network,
+    options: &SurfaceFairOptions,
+    round_done: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<Option<SurfaceFairing>, Error> {
     let mut setup = setup(network, options)?;
     let filter = options.filter;
     let target = match options.bias_target {
@@ -284,6 +299,9 @@ pub fn fair_sections(
         let f = round % setup.families.len();
         let moved = relax_family(&mut setup, f, filter, target)?;
         total_moves += moved.moves;
+        if !round_done(rounds, options.max_rounds) {
+            return Ok(None);
+        }
         idle_rounds = if moved.moves == 0 { idle_rounds + 1 } else { 0 };
         if idle_rounds >= setup.families.len() {
             converged = moved.fair;
@@ -308,10 +326,10 @@ pub fn fair_sections(
             bias_target: target,
         },
     );
-    Ok(SurfaceFairing {
+    Ok(Some(SurfaceFairing {
         network: moved_network(network, &setup.state)?,
         report,
-    })
+    }))
 }
 
 /// What one family's turn came to.

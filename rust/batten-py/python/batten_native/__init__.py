@@ -3,11 +3,13 @@
 Everything here is implemented in Rust (``batten_native._native``); errors are raised as
 subclasses of :class:`BattenError`, a :class:`ValueError` whose message names the curve and the
 problem (``batten_native._errors``: CurveError with ``.curve``, FairError, NetworkFileError,
-NoSurfaceError, InvalidArgumentError, HydrostaticsError, ExportError, InternalError).
+NoSurfaceError, InvalidArgumentError, HydrostaticsError, ExportError, Cancelled,
+InternalError).
 """
 
 from ._errors import (
     BattenError,
+    Cancelled,
     CurveError,
     ExportError,
     FairError,
@@ -74,6 +76,7 @@ __all__ = [
     "ROLES",
     "SECTION_CAPTURE_FACTOR",
     "BattenError",
+    "Cancelled",
     "CurveError",
     "ExportError",
     "FairError",

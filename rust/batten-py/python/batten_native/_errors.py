@@ -60,12 +60,18 @@ class ExportError(BattenError):
         return str(self.args[0])
 
 
+class Cancelled(BattenError):
+    """Long work stopped because its ``progress`` callback returned ``False`` (or the designer
+    pressed Esc in a modal operator); nothing it would have changed or written is changed."""
+
+
 class InternalError(BattenError):
     """A defect of batten (a caught panic of the core); please report it with the curves that caused it."""
 
 
 __all__ = [
     "BattenError",
+    "Cancelled",
     "CurveError",
     "ExportError",
     "FairError",

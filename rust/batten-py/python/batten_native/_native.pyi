@@ -1,5 +1,6 @@
 """Type stubs of the compiled module batten_native._native."""
 
+from collections.abc import Callable
 from typing import Final, final
 
 import numpy as np
@@ -179,6 +180,7 @@ def fair_sections(
     max_rounds: int = ...,
     bias_target: float | None = None,
     model_tolerance: float = ...,  # DEFAULT_TOLERANCE
+    progress: Callable[[int, int], object] | None = None,  # False stops: Cancelled
 ) -> tuple[list[Curve], dict]: ...
 def section_noise(
     curves: list[Curve],
