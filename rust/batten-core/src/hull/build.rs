@@ -366,20 +366,26 @@ impl Stages {
         }
         let moved: Vec<bool> = old.iter().zip(new).map(|(a, b)| a != b).collect();
         let (brep, old_brep) = (&topology.brep, &self.topology.brep);
-        let dirty_info: Vec<bool> = brep
+        // Per edge: whether its parameters and end nodes are bit for bit as before.
+        let at = |b: &crate::topo::Brep, v: crate::topo::VertexId| {
+            b.vertices[v.index()].position.to_array().map(f64::to_bits)
+        };
+        let same_ends: Vec<bool> = brep
             .edges
             .iter()
             .zip(&old_brep.edges)
             .map(|(e, o)| {
-                let at = |b: &crate::topo::Brep, v: crate::topo::VertexId| {
-                    b.vertices[v.index()].position.to_array().map(f64::to_bits)
-                };
-                moved[e.curve]
-                    || e.t0.to_bits() != o.t0.to_bits()
-                    || e.t1.to_bits() != o.t1.to_bits()
-                    || at(brep, e.start) != at(old_brep, o.start)
-                    || at(brep, e.end) != at(old_brep, o.end)
+                e.t0.to_bits() == o.t0.to_bits()
+                    && e.t1.to_bits() == o.t1.to_bits()
+                    && at(brep, e.start) == at(old_brep, o.start)
+                    && at(brep, e.end) == at(old_brep, o.end)
             })
+            .collect();
+        let dirty_info: Vec<bool> = brep
+            .edges
+            .iter()
+            .zip(&same_ends)
+            .map(|(e, &same)| moved[e.curve] || !same)
             .collect();
         // Of those, the edges whose curve changed where the edge lies: a moved control point
         // reaches only `degree + 1` spans of its curve, and the edges beyond them (their
@@ -387,20 +393,11 @@ impl Stages {
         let changed: Vec<bool> = brep
             .edges
             .iter()
-            .zip(&old_brep.edges)
-            .zip(&dirty_info)
-            .map(|((e, o), &dirty)| {
-                dirty
-                    && !(e.t0.to_bits() == o.t0.to_bits()
-                        && e.t1.to_bits() == o.t1.to_bits()
-                        && {
-                            let at = |b: &crate::topo::Brep, v: crate::topo::VertexId| {
-                                b.vertices[v.index()].position.to_array().map(f64::to_bits)
-                            };
-                            at(brep, e.start) == at(old_brep, o.start)
-                                && at(brep, e.end) == at(old_brep, o.end)
-                        }
-                        && new[e.curve].curve.same_on(&old[e.curve].curve, e.t0, e.t1))
+            .zip(&same_ends)
+            .map(|(e, &same)| {
+                !same
+                    || (moved[e.curve]
+                        && !new[e.curve].curve.same_on(&old[e.curve].curve, e.t0, e.t1))
             })
             .collect();
         let edges = self
