@@ -114,6 +114,14 @@ def evaluated_volume(obj, *, axis: int, level: float) -> float:
     return total
 
 
+def move_point(obj, index: int, dy: float) -> None:
+    """Move control point ``index`` of ``obj``'s first spline by ``dy`` along y (a drag)."""
+    point = obj.data.splines[0].points[index]
+    co = point.co.copy()
+    co.y += dy
+    point.co = co
+
+
 def noisy_arc(n=120, r=10.0, sigma=0.01, seed=4):
     """A quarter circle of radius ``r`` as ``n`` points, the interior ones moved by Gaussian
     noise σ in x and y (seeded)."""

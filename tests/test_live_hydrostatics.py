@@ -8,13 +8,7 @@ import batten.api as api
 import pytest
 from batten import hull_models
 from batten_native import DEFAULT_RESOLUTION, build_hull_model
-
-
-def _move(obj, index: int, dy: float) -> None:
-    point = obj.data.splines[0].points[index]
-    co = point.co.copy()
-    co.y += dy
-    point.co = co
+from helpers import move_point
 
 
 @pytest.fixture
@@ -52,7 +46,7 @@ def test_drags_keep_the_other_faces_cells_and_give_a_full_build_s_figures(kcs):
     # in between (the cells kept are then those of the last model that made them).
     for dys, check in (((4e-5, -3e-5), True), ((2e-5,), True), ((-5e-5,), False)):
         for dy in dys:
-            _move(station, middle, dy)
+            move_point(station, middle, dy)
             rebuild = api.build(coll, live=True).report["rebuild"]
             assert rebuild["kind"] == "incremental" and 0 < rebuild["faces"] < rebuild["of"], rebuild
         after = api.hydrostatics(coll, draft, lpp=lpp, fp=lpp)
@@ -80,7 +74,7 @@ def test_a_full_rebuild_makes_every_cell_again(kcs):
     # A move off the crossings changes the connectivity, and so does the move back: both are
     # full rebuilds, and nothing is kept.
     for dy in (0.05, -0.05):
-        _move(station, middle, dy)
+        move_point(station, middle, dy)
         rebuild = api.build(coll, live=True).report["rebuild"]
         assert rebuild["kind"] == "full", rebuild
     after = api.hydrostatics(coll, draft, lpp=lpp, fp=lpp)

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 from batten import hull_models, live, scene_build
 from batten_native import build_surface
+from helpers import move_point
 
 RESOLUTION = 8
 
@@ -23,13 +24,6 @@ def _positions(obj) -> np.ndarray:
 def _full(coll):
     """A full build of the collection's curves now: mesh arrays and report."""
     return build_surface(api.read_curves(coll), api.DEFAULT_TOLERANCE, RESOLUTION, coll.name)
-
-
-def _move(obj, index: int, dy: float) -> None:
-    point = obj.data.splines[0].points[index]
-    co = point.co.copy()
-    co.y += dy
-    point.co = co
 
 
 @pytest.fixture
@@ -47,7 +41,7 @@ def test_a_small_move_rebuilds_its_faces_and_writes_positions_only(frigate):
     station = frigate.objects["st4"]
     middle = len(station.data.splines[0].points) // 2
     # Less than the model tolerance: the station stays on its waterlines (same connectivity).
-    _move(station, middle, 4e-5)
+    move_point(station, middle, 4e-5)
     moved = api.build(frigate, resolution=RESOLUTION, live=True)
     rebuild = moved.report["rebuild"]
     assert rebuild["kind"] == "incremental", rebuild
@@ -69,7 +63,7 @@ def test_a_small_move_rebuilds_its_faces_and_writes_positions_only(frigate):
 def test_a_move_off_the_crossings_falls_back_to_a_full_build(frigate):
     api.build(frigate, resolution=RESOLUTION, live=True)
     station = frigate.objects["st4"]
-    _move(station, len(station.data.splines[0].points) // 2, 0.02)
+    move_point(station, len(station.data.splines[0].points) // 2, 0.02)
     result = api.build(frigate, resolution=RESOLUTION, live=True)
     rebuild = result.report["rebuild"]
     assert rebuild["kind"] == "full" and "connectivity" in rebuild["reason"], rebuild
@@ -104,7 +98,7 @@ def test_fifty_drags_on_kcs_end_in_the_full_build(hulls_dir):
     for _ in range(50):
         obj = stations[rng.integers(len(stations))]
         n = len(obj.data.splines[0].points)
-        _move(obj, int(rng.integers(1, n - 1)), float(rng.uniform(-3e-5, 3e-5)))
+        move_point(obj, int(rng.integers(1, n - 1)), float(rng.uniform(-3e-5, 3e-5)))
         kinds.append(api.build(coll, resolution=RESOLUTION, live=True).report["rebuild"]["kind"])
     assert kinds.count("incremental") >= 45, kinds
     surface = bpy.data.objects[f"{coll.name} surface"]
@@ -136,7 +130,7 @@ def test_switching_live_off_leaves_no_timer_behind(frigate):
 def test_sections_and_exports_read_a_measured_report_after_a_live_rebuild(frigate):
     api.build(frigate, resolution=RESOLUTION, live=True)
     station = frigate.objects["st4"]
-    _move(station, len(station.data.splines[0].points) // 2, 4e-5)
+    move_point(station, len(station.data.splines[0].points) // 2, 4e-5)
     assert not api.build(frigate, resolution=RESOLUTION, live=True).report["measured"]
     kept = hull_models._kept[frigate.name]
     api.hydrostatics(frigate, 4.0)
@@ -149,7 +143,7 @@ def test_sections_and_exports_read_a_measured_report_after_a_live_rebuild(frigat
 def test_a_live_rebuild_follows_the_mirror_setting(frigate):
     api.build(frigate, resolution=RESOLUTION, live=True)
     station = frigate.objects["st4"]
-    _move(station, len(station.data.splines[0].points) // 2, 4e-5)
+    move_point(station, len(station.data.splines[0].points) // 2, 4e-5)
     result = api.build(frigate, resolution=RESOLUTION, live=True, mirror=False)
     assert result.report["rebuild"]["kind"] == "incremental"
     assert not result.object.modifiers, "mirror off: no Mirror modifier"
