@@ -80,6 +80,13 @@ def _synthetic_network() -> Path:
     return path
 
 
+def _drag(point, i: int) -> None:
+    """Move ``point`` by ``STEP`` along y, to one side on even ``i`` and back on odd."""
+    co = point.co.copy()
+    co.y += STEP * (1 if i % 2 else -1)
+    point.co = co
+
+
 def _median_ms(xs) -> float:
     return float(np.median(xs)) * 1e3
 
@@ -88,21 +95,16 @@ def bench(name: str, resolution: int) -> None:
     coll, station = _hull(name)
     point = station.data.splines[0].points[len(station.data.splines[0].points) // 2]
 
-    def move(i: int) -> None:
-        co = point.co.copy()
-        co.y += STEP * (1 if i % 2 else -1)
-        point.co = co
-
     full, inc, settle, kinds = [], [], [], set()
     api.build(coll, resolution=resolution)
     for i in range(RUNS):
-        move(i)
+        _drag(point, i)
         t0 = time.perf_counter()
         api.build(coll, resolution=resolution)
         full.append(time.perf_counter() - t0)
     api.build(coll, resolution=resolution, live=True)
     for i in range(RUNS):
-        move(i)
+        _drag(point, i)
         t0 = time.perf_counter()
         r = api.build(coll, resolution=resolution, live=True).report
         inc.append(time.perf_counter() - t0)
@@ -132,9 +134,7 @@ def bench_figures(name: str) -> None:
     api.hydrostatics(coll, draft, lpp=lpp, fp=fp, live=True)
     rebuild, exact, live_cells, kept = [], [], [], set()
     for i in range(RUNS):
-        co = point.co.copy()
-        co.y += STEP * (1 if i % 2 else -1)
-        point.co = co
+        _drag(point, i)
         t0 = time.perf_counter()
         api.build(coll, live=True)
         t1 = time.perf_counter()
@@ -145,9 +145,7 @@ def bench_figures(name: str) -> None:
         model = hull_models._kept[coll.name].model
         kept.add((model.cells_kept, model.cells))
     for i in range(RUNS):
-        co = point.co.copy()
-        co.y += STEP * (1 if i % 2 else -1)
-        point.co = co
+        _drag(point, i)
         api.build(coll, live=True)
         t1 = time.perf_counter()
         api.hydrostatics(coll, draft, lpp=lpp, fp=fp, live=True)
