@@ -949,3 +949,73 @@ fn too_large_a_mesh_is_refused_before_it_is_built() {
         "refused with the vertex count"
     );
 }
+
+/// A straight segment along x from t = 0 to t = 1 whose crossing curves at t = −1, 0, 1, 2
+/// lean at φ = c·t² about it: the tangent plane turns quadratically along the curve.
+fn leaning_crossings(
+    c_degrees: f64,
+    far_degrees: Option<f64>,
+) -> (SideSegment, Vec<RibbonNode>, Vec<(RibbonNode, DVec3)>) {
+    let curve = bezier(&[DVec3::ZERO, DVec3::X]);
+    let seg = SideSegment::new(curve, 0.0, 1.0);
+    let lean = |t: f64| {
+        let phi = (c_degrees * t * t).to_radians();
+        DVec3::new(0.0, phi.cos(), phi.sin())
+    };
+    let node = |t: f64, v: DVec3| RibbonNode {
+        t,
+        tangents: vec![v],
+    };
+    let inner = vec![node(0.0, lean(0.0)), node(1.0, lean(1.0))];
+    let far = match far_degrees {
+        Some(d) => DVec3::new(0.0, d.to_radians().cos(), d.to_radians().sin()),
+        None => lean(2.0),
+    };
+    let outer = vec![
+        (node(-1.0, lean(-1.0)), DVec3::X),
+        (node(2.0, far), DVec3::X),
+    ];
+    (seg, inner, outer)
+}
+
+/// The lean of the normal field about x at `t`, in degrees (n = x̂ × crossing direction).
+fn lean_of(en: &EdgeNormal, t: f64) -> f64 {
+    let n = en.normal(t);
+    (-n.y).atan2(n.z).to_degrees().abs()
+}
+
+#[test]
+fn nodes_beyond_a_segment_make_its_normal_field_follow_a_quadratic_turn() {
+    // c = 4°: the lean at t = 0.5 is 1°; the straight blend of the two end nodes gives 2°.
+    let (seg, inner, outer) = leaning_crossings(4.0, None);
+    let straight = EdgeNormal::from_crossings(&seg, &inner, MIN_CROSSING_ANGLE_DEGREES)
+        .expect("nodes")
+        .expect("crossings");
+    let along = EdgeNormal::from_crossings_along(&seg, &inner, &outer, MIN_CROSSING_ANGLE_DEGREES)
+        .expect("nodes")
+        .expect("crossings");
+    assert!(
+        (lean_of(&straight, 0.5) - 2.0).abs() < 0.01,
+        "{}",
+        lean_of(&straight, 0.5)
+    );
+    assert!(
+        (lean_of(&along, 0.5) - 1.0).abs() < 0.02,
+        "{}",
+        lean_of(&along, 0.5)
+    );
+    // The nodes beyond only shape the slopes: the ends are the segment's own nodes.
+    assert_eq!(along.parameters(), &[0.0, 1.0]);
+    for t in [0.0, 1.0] {
+        assert!(along.normal(t).angle_between(straight.normal(t)) < 1e-12);
+    }
+}
+
+#[test]
+fn a_node_beyond_that_is_not_finite_is_an_error() {
+    let (seg, inner, mut outer) = leaning_crossings(4.0, None);
+    outer[0].0.t = f64::NAN;
+    assert!(
+        EdgeNormal::from_crossings_along(&seg, &inner, &outer, MIN_CROSSING_ANGLE_DEGREES).is_err()
+    );
+}

@@ -40,6 +40,17 @@ pub const MIN_CORNER_ANGLE_DEGREES: f64 = 2.0;
 /// remainder is treated as zero: directions that close are parallel for every purpose here.
 const PARALLEL: f64 = 1e-9;
 
+/// Nodes beyond a segment's ends that turn its normal field by up to this from the straight
+/// blend of its own nodes shape the field fully (see [`EdgeNormal::from_crossings_along`]).
+pub(crate) const BEYOND_TRUSTED_DEGREES: f64 = 3.0;
+
+/// Nodes beyond a segment's ends that would turn its normal field by this or more from the
+/// straight blend of its own nodes are left out.
+pub(crate) const BEYOND_DROPPED_DEGREES: f64 = 6.0;
+
+/// Samples along a segment at which the turn of the nodes beyond is measured.
+const BEYOND_SAMPLES: usize = 16;
+
 /// How far a ribbon node's parameter may lie outside its segment's interval, relative to the
 /// interval's length (at least 1): node parameters come from the topology's intersections and
 /// may round past the segment's ends.
@@ -89,7 +100,7 @@ pub fn gram_schmidt_cross_tangent(
 ///
 /// Nodes are keyed by the curve's own parameter, so the two faces sharing the segment (which
 /// traverse it in opposite directions) evaluate the same normal at the same point. Between
-/// nodes the unit normals are blended by a cubic Hermite (Catmull–Rom slopes) in `t` and
+/// nodes the unit normals are blended by a cubic Hermite (three-point slopes) in `t` and
 /// normalised; outside the first and last node the end normals are held. The sign is
 /// arbitrary; each face orients it outwards.
 #[derive(Clone, Debug, PartialEq)]
@@ -111,9 +122,32 @@ impl EdgeNormal {
         nodes: &[RibbonNode],
         min_angle_degrees: f64,
     ) -> Result<Option<EdgeNormal>, PatchError> {
-        let mut pairs = Vec::with_capacity(nodes.len());
-        for node in nodes {
-            check_node_t(segment, node.t)?;
+        EdgeNormal::from_crossings_along(segment, nodes, &[], min_angle_degrees)
+    }
+
+    /// [`EdgeNormal::from_crossings`], with nodes beyond the segment on the same curve as
+    /// well, each with the curve's tangent there (the segment's curve may be cut to its
+    /// interval): they shape the blend's slopes at the segment's ends and are never evaluated
+    /// at. `Ok(None)` when no node inside the segment has a crossing tangent.
+    pub fn from_crossings_along(
+        segment: &SideSegment,
+        nodes: &[RibbonNode],
+        outer: &[(RibbonNode, DVec3)],
+        min_angle_degrees: f64,
+    ) -> Result<Option<EdgeNormal>, PatchError> {
+        let mut pairs = Vec::with_capacity(nodes.len() + outer.len());
+        let inner = nodes.iter().map(|n| (n, None));
+        let outer = outer.iter().map(|(n, c)| (n, Some(*c)));
+        for (node, tangent) in inner.chain(outer) {
+            if tangent.is_none() {
+                check_node_t(segment, node.t)?;
+            } else if !node.t.is_finite() || !tangent.is_some_and(|c| c.is_finite()) {
+                return Err(PatchError::BadRibbonNode {
+                    curve: segment_label(segment),
+                    t: node.t,
+                    reason: "a node beyond the segment is not finite".to_string(),
+                });
+            }
             if let Some(bad) = node.tangents.iter().find(|v| !v.is_finite()) {
                 return Err(PatchError::BadRibbonNode {
                     curve: segment_label(segment),
@@ -121,8 +155,14 @@ impl EdgeNormal {
                     reason: format!("crossing tangent {bad} is not finite"),
                 });
             }
-            let d = segment.curve.derivs(node.t);
-            let c = if d.d1.length() > 0.0 { d.d1 } else { d.d2 };
+            let c = tangent.unwrap_or_else(|| {
+                let d = segment.curve.derivs(node.t);
+                if d.d1.length() > 0.0 {
+                    d.d1
+                } else {
+                    d.d2
+                }
+            });
             let Some(c_hat) = c.try_normalize() else {
                 continue;
             };
@@ -146,10 +186,60 @@ impl EdgeNormal {
                 pairs.push((node.t, n));
             }
         }
-        if pairs.is_empty() {
+        let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
+        let slack = NODE_PARAMETER_SLACK * (hi - lo).abs().max(1.0);
+        let inside = |t: f64| t >= lo - slack && t <= hi + slack;
+        // A node beyond an end counts only beside a normal at that end.
+        let has_end = |end: f64| pairs.iter().any(|&(t, _)| (t - end).abs() <= slack);
+        let (at_lo, at_hi) = (has_end(lo), has_end(hi));
+        let (inner, outer): (Vec<_>, Vec<_>) = pairs.into_iter().partition(|&(t, _)| inside(t));
+        let outer: Vec<_> = outer
+            .into_iter()
+            .filter(|&(t, _)| if t < lo { at_lo } else { at_hi })
+            .collect();
+        if inner.is_empty() {
             return Ok(None);
         }
-        Ok(Some(EdgeNormal::from_pairs(pairs)))
+        let near = EdgeNormal::from_pairs(inner);
+        if outer.is_empty() || near.ts.len() < 2 {
+            return Ok(Some(near));
+        }
+        let mut all = outer;
+        all.extend(near.ts.iter().copied().zip(near.normals.iter().copied()));
+        let far = EdgeNormal::from_pairs(all);
+        // How far the nodes beyond turn the field from the straight blend of the segment's
+        // own nodes. A gentle turn is the surface's curvature along the curve, which the
+        // three-node blend follows; past `BEYOND_TRUSTED_DEGREES` the tangent plane turns
+        // too fast along the curve (a forefoot, a bilge of few nodes, noisy data) for a
+        // parabola through three nodes, and the straight blend is kept, reached smoothly by
+        // `BEYOND_DROPPED_DEGREES`.
+        let turn = (0..=BEYOND_SAMPLES)
+            .map(|j| {
+                let t = lo + (hi - lo) * j as f64 / BEYOND_SAMPLES as f64;
+                near.normal(t).dot(far.normal(t)).abs().min(1.0).acos()
+            })
+            .fold(0.0, f64::max)
+            .to_degrees();
+        let x = ((BEYOND_DROPPED_DEGREES - turn)
+            / (BEYOND_DROPPED_DEGREES - BEYOND_TRUSTED_DEGREES))
+            .clamp(0.0, 1.0);
+        let w = x * x * (3.0 - 2.0 * x);
+        if w == 0.0 {
+            return Ok(Some(near));
+        }
+        // Same nodes as `near`; slopes moved towards those the nodes beyond give.
+        let mut out = near;
+        // The far field's signs follow its own first node; bring them to `out`'s.
+        let sign = if far.normal(out.ts[0]).dot(out.normals[0]) < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        for (t, slope) in out.ts.iter().zip(out.slopes.iter_mut()) {
+            let i = far.ts.partition_point(|&x| x < *t).min(far.ts.len() - 1);
+            *slope = *slope * (1.0 - w) + far.slopes[i] * (sign * w);
+        }
+        Ok(Some(out))
     }
 
     /// Build from given unit (or any non-zero) normals at curve parameters along `segment`,
@@ -199,23 +289,7 @@ impl EdgeNormal {
                 normals.push(n);
             }
         }
-        let k = ts.len();
-        let slopes = (0..k)
-            .map(|i| {
-                if k < 3 {
-                    // One node: constant; two nodes: the Hermite below with chord slopes
-                    // is the straight blend.
-                    if k == 2 {
-                        (normals[1] - normals[0]) / (ts[1] - ts[0])
-                    } else {
-                        DVec3::ZERO
-                    }
-                } else {
-                    let (a, b) = (i.saturating_sub(1), (i + 1).min(k - 1));
-                    (normals[b] - normals[a]) / (ts[b] - ts[a])
-                }
-            })
-            .collect();
+        let slopes = hermite_slopes(&ts, &normals);
         EdgeNormal {
             ts,
             normals,
@@ -223,41 +297,77 @@ impl EdgeNormal {
         }
     }
 
-    /// The unit normal at curve parameter `t` (not yet made perpendicular to the curve).
+    /// The unit normal at curve parameter `t` (not yet made perpendicular to the curve): the
+    /// node normals blended by a cubic Hermite with three-point slopes.
     #[inline]
     pub fn normal(&self, t: f64) -> DVec3 {
-        let k = self.ts.len();
-        if k == 1 || t.is_nan() || t <= self.ts[0] {
-            return self.normals[0];
-        }
-        if t >= self.ts[k - 1] {
-            return self.normals[k - 1];
-        }
-        let i = self.ts.partition_point(|&x| x <= t) - 1;
-        let (t0, t1) = (self.ts[i], self.ts[i + 1]);
-        let h = t1 - t0;
-        let x = (t - t0) / h;
-        let (x2, x3) = (x * x, x * x * x);
-        let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
-        let h10 = x3 - 2.0 * x2 + x;
-        let h01 = -2.0 * x3 + 3.0 * x2;
-        let h11 = x3 - x2;
-        let v = self.normals[i] * h00
-            + self.slopes[i] * (h10 * h)
-            + self.normals[i + 1] * h01
-            + self.slopes[i + 1] * (h11 * h);
-        // Aligned unit normals never blend to zero unless opposite; fall back to the nearer.
-        v.try_normalize().unwrap_or(if x < 0.5 {
-            self.normals[i]
-        } else {
-            self.normals[i + 1]
-        })
+        hermite_unit(&self.ts, &self.normals, &self.slopes, t)
     }
 
     /// The node parameters.
     pub fn parameters(&self) -> &[f64] {
         &self.ts
     }
+}
+
+/// Three-point slopes of `values` at the parameters `ts`: at an inner node the chord slopes of
+/// its two intervals weighted by the other interval's length (the derivative of the parabola
+/// through the three nodes, so a quadratic is blended exactly), at most three times the
+/// gentler of the two chords long; the chord slope at the end nodes; none for a single node
+/// (two nodes: the Hermite blend is the straight one).
+fn hermite_slopes(ts: &[f64], values: &[DVec3]) -> Vec<DVec3> {
+    let k = ts.len();
+    let chord = |i: usize| (values[i + 1] - values[i]) / (ts[i + 1] - ts[i]);
+    (0..k)
+        .map(|i| {
+            if k == 1 {
+                DVec3::ZERO
+            } else if i == 0 {
+                chord(0)
+            } else if i == k - 1 {
+                chord(k - 2)
+            } else {
+                let (h0, h1) = (ts[i] - ts[i - 1], ts[i + 1] - ts[i]);
+                let (d0, d1) = (chord(i - 1), chord(i));
+                let m = (d0 * h1 + d1 * h0) / (h0 + h1);
+                // Fritsch–Carlson's bound, on the vectors: the slope at most three times the
+                // gentler chord, so a short interval's steep chord never swings the long one.
+                let cap = 3.0 * d0.length().min(d1.length());
+                if m.length() > cap {
+                    m * (cap / m.length())
+                } else {
+                    m
+                }
+            }
+        })
+        .collect()
+}
+
+/// The cubic Hermite blend of unit vectors `values` (with `slopes`) at `t`, normalised; the end
+/// values are held outside the nodes.
+#[inline]
+fn hermite_unit(ts: &[f64], values: &[DVec3], slopes: &[DVec3], t: f64) -> DVec3 {
+    let k = ts.len();
+    if k == 1 || t.is_nan() || t <= ts[0] {
+        return values[0];
+    }
+    if t >= ts[k - 1] {
+        return values[k - 1];
+    }
+    let i = ts.partition_point(|&x| x <= t) - 1;
+    let (t0, t1) = (ts[i], ts[i + 1]);
+    let h = t1 - t0;
+    let x = (t - t0) / h;
+    let (x2, x3) = (x * x, x * x * x);
+    let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
+    let h10 = x3 - 2.0 * x2 + x;
+    let h01 = -2.0 * x3 + 3.0 * x2;
+    let h11 = x3 - x2;
+    let v =
+        values[i] * h00 + slopes[i] * (h10 * h) + values[i + 1] * h01 + slopes[i + 1] * (h11 * h);
+    // Aligned unit vectors never blend to zero unless opposite; fall back to the nearer.
+    v.try_normalize()
+        .unwrap_or(if x < 0.5 { values[i] } else { values[i + 1] })
 }
 
 fn segment_label(segment: &SideSegment) -> String {
