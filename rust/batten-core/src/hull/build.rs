@@ -10,7 +10,7 @@ use super::edges::FaceEdges;
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings};
-use super::ribbons::{one_sided_normal, shared_normal};
+use super::ribbons::{beyond, one_sided_normal, shared_normal};
 use super::warning::{FaceError, Warning, WarningKind};
 use super::{HullOptions, HullReport, HullSurface};
 use crate::error::Error;
@@ -223,7 +223,7 @@ fn edge_normal(
     if knuckle[k].is_some() || edges.info[k].is_none() {
         return (None, None);
     }
-    match shared_normal(k, topology, edges) {
+    match shared_normal(k, topology, edges, knuckle) {
         Ok(normal) => (normal, None),
         Err(error) => (
             None,
@@ -427,12 +427,17 @@ impl Stages {
             .iter()
             .enumerate()
             .map(|(k, e)| {
+                // The nodes whose crossing tangents shape the field: the ends and the nodes
+                // beyond them along the curve (`ribbons::beyond`).
+                let outer = [true, false].into_iter().filter_map(|at_start| {
+                    beyond(k, at_start, &topology, &edges, &knuckle).map(|(v, ..)| v)
+                });
                 changed[k]
                     || knuckle_changed[k]
-                    || [e.start, e.end].iter().any(|v| {
+                    || [e.start, e.end].into_iter().chain(outer).any(|v| {
                         edges.at_vertex[v.index()]
                             .iter()
-                            .any(|end| changed[end.edge])
+                            .any(|end| changed[end.edge] || knuckle_changed[end.edge])
                     })
             })
             .collect();

@@ -5,17 +5,90 @@
 use glam::DVec3;
 
 use super::edges::{EdgeInfo, FaceEdges};
+use super::knuckles::Knuckle;
 use crate::patch::{EdgeNormal, PatchError, RibbonNode, MIN_CROSSING_ANGLE_DEGREES};
-use crate::topo::{TopoFace, Topology};
+use crate::topo::{TopoFace, Topology, VertexId};
+
+/// Two curve tangents at a node closer to opposite than this make the curve run on smoothly
+/// through it: the node beyond may then shape the edge's normal field.
+const SMOOTH_RUN_DEGREES: f64 = 10.0;
+
+/// The node one edge beyond end `at_start` of edge `k` along the same curve, where the curve
+/// runs on smoothly through that end into a smooth edge: the node, that edge, the node's
+/// parameter on the curve and the curve's d/dt there. `None` at a free end, at a corner of the
+/// curve, where the curve goes on as a knuckle edge, or across the seam of a closed curve.
+pub(crate) fn beyond(
+    k: usize,
+    at_start: bool,
+    topology: &Topology,
+    edges: &FaceEdges,
+    knuckle: &[Option<Knuckle>],
+) -> Option<(VertexId, usize, f64, DVec3)> {
+    let e = &topology.brep.edges[k];
+    let info = edges.info[k].as_ref()?;
+    let v = if at_start { e.start } else { e.end };
+    let mut on_curve = edges.at_vertex[v.index()]
+        .iter()
+        .filter(|end| end.edge != k && topology.brep.edges[end.edge].curve == e.curve);
+    let end = on_curve.next()?;
+    if on_curve.next().is_some() || knuckle[end.edge].is_some() {
+        return None;
+    }
+    let other = edges.info[end.edge].as_ref()?;
+    let (here, there) = (
+        info.leaving_tangent(at_start),
+        other.leaving_tangent(end.at_start),
+    );
+    let cos = -here.dot(there) / (here.length() * there.length());
+    if cos.is_nan() || cos < SMOOTH_RUN_DEGREES.to_radians().cos() {
+        return None;
+    }
+    let oe = &topology.brep.edges[end.edge];
+    let (far, t, d) = if end.at_start {
+        (oe.end, other.segment.t1, other.end_tangent)
+    } else {
+        (oe.start, other.segment.t0, other.start_tangent)
+    };
+    let outward = if at_start {
+        t < info.segment.t0
+    } else {
+        t > info.segment.t1
+    };
+    outward.then_some((far, end.edge, t, d))
+}
+
+/// The tangents, at node `v`, of the curves other than `curve` whose region-bounding edges end
+/// there (both sides of the curve), each leaving the node.
+fn crossing_tangents(
+    v: VertexId,
+    curve: usize,
+    topology: &Topology,
+    edges: &FaceEdges,
+) -> Vec<DVec3> {
+    edges.at_vertex[v.index()]
+        .iter()
+        .filter(|end| topology.brep.edges[end.edge].curve != curve)
+        .filter_map(|end| {
+            edges.info[end.edge]
+                .as_ref()
+                .map(|o| o.leaving_tangent(end.at_start))
+        })
+        .collect()
+}
 
 /// The ONE normal field of a smooth edge `k`, shared by both its faces (§3.2.2: the same
 /// tangent plane on both sides is GC¹): at each end node, the tangents of every other curve's
 /// face edge through that node (both sides of the edge), eq. 8 with the 15° rule, averaged.
+/// Where the curve runs on smoothly past an end, the node beyond is taken too (see
+/// [`beyond`]): it only shapes the blend's slope at the end, which makes the normal field of
+/// the curve continuous in its derivative across the node and exact for a tangent plane that
+/// turns quadratically along the curve (a Wigley hull's, between stations).
 /// `Ok(None)` when no crossing tangent survives (the faces then use their default ribbons).
 pub(crate) fn shared_normal(
     k: usize,
     topology: &Topology,
     edges: &FaceEdges,
+    knuckle: &[Option<Knuckle>],
 ) -> Result<Option<EdgeNormal>, PatchError> {
     let Some(info) = &edges.info[k] else {
         return Ok(None);
@@ -24,20 +97,20 @@ pub(crate) fn shared_normal(
     let mut nodes = Vec::with_capacity(2);
     let (t0, t1) = (info.segment.t0, info.segment.t1);
     for (v, t) in [(e.start, t0), (e.end, t1)] {
-        let tangents: Vec<DVec3> = edges.at_vertex[v.index()]
-            .iter()
-            .filter(|end| topology.brep.edges[end.edge].curve != e.curve)
-            .filter_map(|end| {
-                edges.info[end.edge]
-                    .as_ref()
-                    .map(|o| o.leaving_tangent(end.at_start))
-            })
-            .collect();
+        let tangents = crossing_tangents(v, e.curve, topology, edges);
         if !tangents.is_empty() {
             nodes.push(RibbonNode { t, tangents });
         }
     }
-    EdgeNormal::from_crossings(&info.segment, &nodes, MIN_CROSSING_ANGLE_DEGREES)
+    let outer: Vec<(RibbonNode, DVec3)> = [true, false]
+        .into_iter()
+        .filter_map(|at_start| beyond(k, at_start, topology, edges, knuckle))
+        .filter_map(|(v, _, t, d)| {
+            let tangents = crossing_tangents(v, e.curve, topology, edges);
+            (!tangents.is_empty()).then_some((RibbonNode { t, tangents }, d))
+        })
+        .collect();
+    EdgeNormal::from_crossings_along(&info.segment, &nodes, &outer, MIN_CROSSING_ANGLE_DEGREES)
 }
 
 /// The normal field of knuckle edge `face.edges[pos]` for that face alone (G0 across the
