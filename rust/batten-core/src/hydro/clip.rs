@@ -20,8 +20,9 @@ const MAX_DEPTH: usize = 12;
 
 /// Gauss–Legendre points along the outer parameter of a graph (the integrand there, through
 /// the graph's root, is smooth but not a polynomial; along the height the [`GAUSS`] rule keeps
-/// the polynomial integrands exact).
-const OUTER_GAUSS: usize = 10;
+/// the polynomial integrands exact). Seven points give the Wigley hull's and the frigate's wet
+/// integrals within 2e-14 relative of ten points' (three: 6e-9), at 30 % less work per cut cell.
+const OUTER_GAUSS: usize = 7;
 
 /// The [`OUTER_GAUSS`]-point rule on `[0, 1]`.
 fn outer_gauss() -> &'static ([f64; OUTER_GAUSS], [f64; OUTER_GAUSS]) {
