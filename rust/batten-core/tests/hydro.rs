@@ -73,7 +73,7 @@ fn wigley_at(d: f64) -> Wigley {
 }
 
 /// The Wigley hull drawn light (`wigley.json`: 7 stations, 3 waterlines; its ribbons must carry
-/// the flare between the stations, measured −0.008 % ∇ at T, −0.019 % at T/2) and as a lines
+/// the flare between the stations, measured −0.006 % ∇ at T, −0.019 % at T/2) and as a lines
 /// plan (`wigley_lines.json`: 15 × 6, −0.0001 %), each against the analytic hull.
 #[test]
 fn wigley_drawings_match_the_analytic_hull_at_t_and_half_t() {
