@@ -123,13 +123,24 @@ fn wigley_matches_the_analytic_hull(file: &str) {
 
 #[test]
 fn integration_converges_to_1e_9_on_the_wigley_hull_and_the_frigate() {
-    // The light 7 × 3 Wigley drawing has patches four times the size of the lines plan's (same
-    // cells per patch): measured 7.3e-9 for It at 0.37 T. The frigate's composite sides leave
-    // parameter lines where its patches are only C0 in parameter speed: 5.4e-9 for Il at 5.3 m.
-    for (file, drafts, rel) in [
-        ("wigley_lines.json", [T, 0.5 * T, 0.37 * T], 1e-9),
-        ("wigley.json", [T, 0.5 * T, 0.37 * T], 1e-8),
-        ("frigate_network.json", [4.0, 3.1, 5.3], 1e-8),
+    // Measured (coarse against fine): the lines plan 1e-11 at every draft; the light 7 × 3
+    // drawing, whose patches are four times the size (same cells per patch), 1e-11 at T and
+    // T/2 and 2.6e-9 for Il at 0.37 T, a waterline just above a drawn one, through the cells
+    // at the patches' corners at the stem and stern. The frigate's composite sides leave
+    // parameter lines where its patches are only C0 in parameter speed: 1.4e-9 for It at 4 m.
+    for (file, drafts) in [
+        (
+            "wigley_lines.json",
+            [(T, 1e-9), (0.5 * T, 1e-9), (0.37 * T, 1e-9)],
+        ),
+        (
+            "wigley.json",
+            [(T, 1e-9), (0.5 * T, 1e-9), (0.37 * T, 1e-8)],
+        ),
+        (
+            "frigate_network.json",
+            [(4.0, 1e-8), (3.1, 1e-8), (5.3, 1e-8)],
+        ),
     ] {
         let net = example(file);
         let coarse = model_of(&net, CellDensity::DEFAULT);
@@ -140,8 +151,8 @@ fn integration_converges_to_1e_9_on_the_wigley_hull_and_the_frigate() {
                 corner_levels: 5,
             },
         );
-        let d = default_datums(&coarse, drafts[0], None).expect("datums");
-        for t in drafts {
+        let d = default_datums(&coarse, drafts[0].0, None).expect("datums");
+        for (t, rel) in drafts {
             let plane = batten_core::Waterplane::new(&Flotation::at_draft(t), &d);
             let (a, b) = (coarse.wet_integrals(&plane), fine.wet_integrals(&plane));
             for (what, x, y) in [
