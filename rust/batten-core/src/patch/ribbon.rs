@@ -186,8 +186,7 @@ impl EdgeNormal {
                 pairs.push((node.t, n));
             }
         }
-        let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
-        let slack = NODE_PARAMETER_SLACK * (hi - lo).abs().max(1.0);
+        let (lo, hi, slack) = node_range(segment);
         let inside = |t: f64| t >= lo - slack && t <= hi + slack;
         // A node beyond an end counts only beside a normal at that end.
         let has_end = |end: f64| pairs.iter().any(|&(t, _)| (t - end).abs() <= slack);
@@ -378,9 +377,15 @@ fn segment_label(segment: &SideSegment) -> String {
     }
 }
 
-fn check_node_t(segment: &SideSegment, t: f64) -> Result<(), PatchError> {
+/// The segment's parameter interval `(lo, hi)` in increasing order and how far past it a node
+/// may round ([`NODE_PARAMETER_SLACK`]).
+fn node_range(segment: &SideSegment) -> (f64, f64, f64) {
     let (lo, hi) = (segment.t0.min(segment.t1), segment.t0.max(segment.t1));
-    let slack = NODE_PARAMETER_SLACK * (hi - lo).abs().max(1.0);
+    (lo, hi, NODE_PARAMETER_SLACK * (hi - lo).abs().max(1.0))
+}
+
+fn check_node_t(segment: &SideSegment, t: f64) -> Result<(), PatchError> {
+    let (lo, hi, slack) = node_range(segment);
     if !t.is_finite() || t < lo - slack || t > hi + slack {
         return Err(PatchError::BadRibbonNode {
             curve: segment_label(segment),
