@@ -447,6 +447,37 @@ fn maximise(f: &(dyn Fn(f64) -> f64 + Sync), lo: f64, hi: f64) -> (f64, f64) {
     b
 }
 
+/// The immersed areas of the stations the figures need, side by side: at midship, the largest
+/// (its place and area) and the transom's (just forward of the wet surface's aft end), with
+/// `xi` the wet range along the waterplane's `e1`.
+fn stations(
+    geom: &dyn HullGeometry,
+    plane: &Waterplane,
+    datums: &Datums,
+    waterline: &[SectionSegment],
+    (xi_lo, xi_hi): (f64, f64),
+    tol: f64,
+) -> (f64, (f64, f64), f64) {
+    // Upright and level in x, the range along x is the one along e1.
+    let (x_lo, x_hi) = if plane.e1 == DVec3::X {
+        (xi_lo, xi_hi)
+    } else {
+        geom.wet_range(plane, DVec3::X, waterline)
+            .unwrap_or((datums.x_ap, datums.x_fp))
+    };
+    let transom_x = x_lo + 1e-6 * (x_hi - x_lo);
+    let (midship, (max, transom)) = rayon::join(
+        || immersed_section_area(geom, plane, DVec3::X, datums.x_mid(), tol),
+        || {
+            rayon::join(
+                || max_section(geom, plane, x_lo, x_hi, tol),
+                || immersed_section_area(geom, plane, DVec3::X, transom_x, tol),
+            )
+        },
+    );
+    (midship, max, transom)
+}
+
 /// The hydrostatics of `geom` floating at `flotation`, about the perpendiculars `datums`.
 ///
 /// Errors: invalid flotation or datums ([`HydroError::InvalidInput`]); the water below the keel
@@ -479,32 +510,11 @@ pub fn hydrostatics(
             let waterline = geom.plane_section(plane.e3, plane.e3.dot(plane.origin), tol);
             let stations = geom
                 .wet_range(&plane, plane.e1, &waterline)
-                .map(|(xi_lo, xi_hi)| {
-                    let (midship, (max, transom)) = rayon::join(
-                        || immersed_section_area(geom, &plane, DVec3::X, datums.x_mid(), tol),
-                        || {
-                            // Upright and level in x, the range along x is the one along e1.
-                            let (x_lo, x_hi) = if plane.e1 == DVec3::X {
-                                (xi_lo, xi_hi)
-                            } else {
-                                geom.wet_range(&plane, DVec3::X, &waterline)
-                                    .unwrap_or((datums.x_ap, datums.x_fp))
-                            };
-                            rayon::join(
-                                || max_section(geom, &plane, x_lo, x_hi, tol),
-                                || {
-                                    let x = x_lo + 1e-6 * (x_hi - x_lo);
-                                    immersed_section_area(geom, &plane, DVec3::X, x, tol)
-                                },
-                            )
-                        },
-                    );
-                    ((xi_lo, xi_hi), midship, max, transom)
-                });
+                .map(|xi| (xi, stations(geom, &plane, datums, &waterline, xi, tol)));
             (waterline, stations)
         },
     );
-    let Some(((xi_lo, xi_hi), midship_area, (max_section_x, max_section_area), transom_area)) =
+    let Some(((xi_lo, xi_hi), (midship_area, (max_section_x, max_section_area), transom_area))) =
         stations
     else {
         return Err(below_keel(geom, &plane, draft));
