@@ -141,26 +141,16 @@ pub(crate) struct Cell {
 }
 
 impl Cell {
-    /// The point and its derivatives `P_s`, `P_t` at `(s, t)`.
+    /// The point at `(s, t)` (no derivatives).
     #[inline]
-    pub(crate) fn eval(&self, s: f64, t: f64) -> (DVec3, DVec3, DVec3) {
-        let (bs, ds) = basis(s);
-        let (bt, dt) = basis(t);
-        let mut p = DVec3::ZERO;
-        let mut ps = DVec3::ZERO;
-        let mut pt = DVec3::ZERO;
-        for i in 0..N {
-            let mut row = DVec3::ZERO;
-            let mut row_t = DVec3::ZERO;
-            for j in 0..N {
-                row += self.net[i][j] * bt[j];
-                row_t += self.net[i][j] * dt[j];
-            }
-            p += row * bs[i];
-            ps += row * ds[i];
-            pt += row_t * bs[i];
-        }
-        (p, ps, pt)
+    pub(crate) fn point(&self, s: f64, t: f64) -> DVec3 {
+        let (bs, _) = basis(s);
+        let (bt, _) = basis(t);
+        self.net
+            .iter()
+            .zip(bs)
+            .map(|(row, b)| row.iter().zip(bt).map(|(q, c)| *q * c).sum::<DVec3>() * b)
+            .sum()
     }
 
     /// Call `f` with the points of the grid `(s_a, t_b)` whose Bernstein bases are

@@ -19,8 +19,8 @@ use super::waterplane::Waterplane;
 const MAX_DEPTH: usize = 12;
 
 /// Gauss–Legendre points along the outer parameter of a graph (the integrand there, through
-/// the graph's root, is smooth but not a polynomial; along the height the [`GAUSS`] rule keeps
-/// the polynomial integrands exact). Seven points give the Wigley hull's and the frigate's wet
+/// the graph's root, is smooth but not a polynomial; along the height see [`INNER_GAUSS`]).
+/// Seven points give the Wigley hull's and the frigate's wet
 /// integrals within 2e-14 relative of ten points' (three: 6e-9), at 30 % less work per cut cell.
 const OUTER_GAUSS: usize = 7;
 
@@ -29,6 +29,22 @@ fn outer_gauss() -> &'static ([f64; OUTER_GAUSS], [f64; OUTER_GAUSS]) {
     static RULE: std::sync::OnceLock<([f64; OUTER_GAUSS], [f64; OUTER_GAUSS])> =
         std::sync::OnceLock::new();
     RULE.get_or_init(gauss_rule::<OUTER_GAUSS>)
+}
+
+/// Gauss–Legendre points along the height parameter of a graph, from the box's edge up to the
+/// graph (the whole-box rules keep [`GAUSS`]). Ten points integrate degree 19 exactly; the
+/// integrands are of degree up to 27 along a cell's parameter, but a cell's polynomial is a
+/// smooth surface's, whose high-degree part is small: on the Wigley hull, the frigate, KCS and
+/// KVLCC2 at their drafts the polynomial integrals agree with [`GAUSS`] points' to 3e-12
+/// relative (most to 1e-15), the wetted area (not a polynomial) to 2e-8, for 30 % less work
+/// per cut cell.
+const INNER_GAUSS: usize = 10;
+
+/// The [`INNER_GAUSS`]-point rule on `[0, 1]`.
+fn inner_gauss() -> &'static ([f64; INNER_GAUSS], [f64; INNER_GAUSS]) {
+    static RULE: std::sync::OnceLock<([f64; INNER_GAUSS], [f64; INNER_GAUSS])> =
+        std::sync::OnceLock::new();
+    RULE.get_or_init(gauss_rule::<INNER_GAUSS>)
 }
 
 /// Halvings below which a box's quarters are integrated in parallel (the first two levels).
@@ -259,7 +275,7 @@ fn graph(cell: &Cell, z: &[[f64; N]; N], bx: [f64; 4], swapped: bool, out: &mut 
     sign_changes(&top, &mut cuts);
     cuts.push(1.0);
     cuts.sort_by(f64::total_cmp);
-    let (x, w) = gauss();
+    let (x, w) = inner_gauss();
     let (xo, wo) = outer_gauss();
     for win in cuts.windows(2) {
         let (a, b) = (win[0], win[1]);
@@ -289,7 +305,7 @@ fn graph(cell: &Cell, z: &[[f64; N]; N], bx: [f64; 4], swapped: bool, out: &mut 
             let u = u0 + (u1 - u0) * lu;
             let wu = wo[q] * (b - a) * (u1 - u0);
             let (c, cd) = if swapped { cell.row(u) } else { cell.column(u) };
-            for r in 0..GAUSS {
+            for r in 0..INNER_GAUSS {
                 let lh = lo_h + (hi_h - lo_h) * x[r];
                 let h = h0 + (h1 - h0) * lh;
                 let wh = w[r] * (hi_h - lo_h) * (h1 - h0);

@@ -37,18 +37,35 @@ fn scalar(g: &[[f64; N]; N], s: f64, t: f64) -> (f64, f64, f64) {
     (v, vs, vt)
 }
 
-/// Move `x` onto `g = 0` by Newton steps along the gradient, staying in the cell.
-fn project(g: &[[f64; N]; N], mut x: DVec2) -> DVec2 {
+/// A Newton step shorter than this (in the cell's parameters) ends a projection: the next would
+/// be of its square's order, below rounding.
+const PROJECTION_CONVERGED: f64 = 1e-7;
+
+/// Move `x` onto `g = 0` by Newton steps along the gradient, staying in the cell; with the
+/// gradient `(g_s, g_t)` at the last point it was evaluated.
+fn project(g: &[[f64; N]; N], mut x: DVec2) -> (DVec2, DVec2) {
+    let mut grad = DVec2::ZERO;
     for _ in 0..PROJECTION_STEPS {
         let (v, vs, vt) = scalar(g, x.x, x.y);
-        let grad = DVec2::new(vs, vt);
+        grad = DVec2::new(vs, vt);
         let len2 = grad.length_squared();
         if len2.is_nan() || len2 <= 0.0 || v == 0.0 {
             break;
         }
-        x = (x - grad * (v / len2)).clamp(DVec2::ZERO, DVec2::ONE);
+        let next = (x - grad * (v / len2)).clamp(DVec2::ZERO, DVec2::ONE);
+        let step = (next - x).length();
+        x = next;
+        if step < PROJECTION_CONVERGED {
+            break;
+        }
     }
-    x
+    (x, grad)
+}
+
+/// The Bernstein basis at the grid's nodes `k / GRID`.
+fn grid_basis() -> &'static [[f64; N]; GRID + 1] {
+    static TABLE: std::sync::OnceLock<[[f64; N]; GRID + 1]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|k| basis(k as f64 / GRID as f64).0))
 }
 
 /// The crossings of `g = 0` on the grid lines, each grid edge solved once on the 1-D polynomial
@@ -59,27 +76,40 @@ type EdgeRoots = (
     [[Option<DVec2>; GRID]; GRID + 1],
 );
 
-/// The [`EdgeRoots`] of the net `g`, whose values at the grid nodes are `vals`.
-fn edge_roots(g: &[[f64; N]; N], vals: &[[f64; GRID + 1]; GRID + 1]) -> EdgeRoots {
+/// The nets of `g` on the grid's lines: `along_s[k]` on `t = k / GRID` (a polynomial in `s`),
+/// `along_t[k]` on `s = k / GRID`.
+type GridLines = ([[f64; N]; GRID + 1], [[f64; N]; GRID + 1]);
+
+/// The [`GridLines`] of the net `g` (sum-factorised on the tabled basis).
+fn grid_lines(g: &[[f64; N]; N]) -> GridLines {
+    let table = grid_basis();
+    let along_s = std::array::from_fn(|k| {
+        std::array::from_fn(|i| (0..N).map(|j| g[i][j] * table[k][j]).sum())
+    });
+    let along_t = std::array::from_fn(|k| {
+        std::array::from_fn(|j| (0..N).map(|i| g[i][j] * table[k][i]).sum())
+    });
+    (along_s, along_t)
+}
+
+/// The [`EdgeRoots`] of the grid lines `lines`, whose values at the grid nodes are `vals`.
+fn edge_roots(lines: &GridLines, vals: &[[f64; GRID + 1]; GRID + 1]) -> EdgeRoots {
     let h = 1.0 / GRID as f64;
     let neg = |v: f64| v < 0.0;
     let mut along_s = [[None; GRID + 1]; GRID];
     let mut along_t = [[None; GRID]; GRID + 1];
     for k in 0..=GRID {
-        let (bk, _) = basis(k as f64 * h);
-        // The nets of g on the line t = k·h (along s) and on the line s = k·h (along t).
-        let line_s: [f64; N] = std::array::from_fn(|i| (0..N).map(|j| g[i][j] * bk[j]).sum());
-        let line_t: [f64; N] = std::array::from_fn(|j| (0..N).map(|i| g[i][j] * bk[i]).sum());
+        let (line_s, line_t) = (&lines.0[k], &lines.1[k]);
         for e in 0..GRID {
             let x0 = e as f64 * h;
             let (ga, gb) = (vals[e][k], vals[e + 1][k]);
             if neg(ga) != neg(gb) {
-                let l = bracketed(|l| eval1(&line_s, x0 + h * l), 0.0, 1.0, ga, gb);
+                let l = bracketed(|l| eval1(line_s, x0 + h * l), 0.0, 1.0, ga, gb);
                 along_s[e][k] = Some(DVec2::new(x0 + h * l, k as f64 * h));
             }
             let (ga, gb) = (vals[k][e], vals[k][e + 1]);
             if neg(ga) != neg(gb) {
-                let l = bracketed(|l| eval1(&line_t, x0 + h * l), 0.0, 1.0, ga, gb);
+                let l = bracketed(|l| eval1(line_t, x0 + h * l), 0.0, 1.0, ga, gb);
                 along_t[k][e] = Some(DVec2::new(k as f64 * h, x0 + h * l));
             }
         }
@@ -98,8 +128,8 @@ pub(crate) fn cell_section(
 ) {
     let g = cell.scalar_net(m, c);
     for (x0, x1) in grid_pieces(&g) {
-        let (p0, p1) = (cell.eval(x0.x, x0.y).0, cell.eval(x1.x, x1.y).0);
-        refine(cell, &g, m, (x0, p0), (x1, p1), tolerance, 0, out);
+        let (p0, p1) = (cell.point(x0.x, x0.y), cell.point(x1.x, x1.y));
+        refine(cell, &g, (x0, p0), (x1, p1), tolerance, 0, out);
     }
 }
 
@@ -113,14 +143,14 @@ pub(crate) fn grid_pieces(g: &[[f64; N]; N]) -> Vec<(DVec2, DVec2)> {
         return Vec::new();
     }
     let h = 1.0 / GRID as f64;
-    let mut vals = [[0.0f64; GRID + 1]; GRID + 1];
-    for (a, row) in vals.iter_mut().enumerate() {
-        for (b, v) in row.iter_mut().enumerate() {
-            *v = scalar(g, a as f64 * h, b as f64 * h).0;
-        }
-    }
+    let lines = grid_lines(g);
+    let table = grid_basis();
+    // g at node (a, b): the line t = b·h at s = a·h.
+    let vals: [[f64; GRID + 1]; GRID + 1] = std::array::from_fn(|a| {
+        std::array::from_fn(|b| (0..N).map(|i| lines.0[b][i] * table[a][i]).sum())
+    });
     let neg = |v: f64| v < 0.0;
-    let (along_s, along_t) = edge_roots(g, &vals);
+    let (along_s, along_t) = edge_roots(&lines, &vals);
     let mut pieces = Vec::new();
     for a in 0..GRID {
         for b in 0..GRID {
@@ -158,27 +188,27 @@ pub(crate) fn grid_pieces(g: &[[f64; N]; N]) -> Vec<(DVec2, DVec2)> {
 
 /// Emit the piece from `x0` to `x1` (parameters on the curve, surface points `p0`, `p1`), halved
 /// while its chord is further than `tolerance` from the curve's point between.
-#[allow(clippy::too_many_arguments)]
 fn refine(
     cell: &Cell,
     g: &[[f64; N]; N],
-    m: DVec3,
     (x0, p0): (DVec2, DVec3),
     (x1, p1): (DVec2, DVec3),
     tolerance: f64,
     depth: usize,
     out: &mut Vec<SectionArc>,
 ) {
-    let xm = project(g, 0.5 * (x0 + x1));
-    let (pm, ps, pt) = cell.eval(xm.x, xm.y);
+    let (xm, grad) = project(g, 0.5 * (x0 + x1));
+    let pm = cell.point(xm.x, xm.y);
     let off = (pm - 0.5 * (p0 + p1)).length();
     if off > tolerance && depth < MAX_REFINE_DEPTH {
-        refine(cell, g, m, (x0, p0), (xm, pm), tolerance, depth + 1, out);
-        refine(cell, g, m, (xm, pm), (x1, p1), tolerance, depth + 1, out);
+        refine(cell, g, (x0, p0), (xm, pm), tolerance, depth + 1, out);
+        refine(cell, g, (xm, pm), (x1, p1), tolerance, depth + 1, out);
         return;
     }
-    let n = ps.cross(pt) * cell.sign;
-    if (p1 - p0).dot(m.cross(n)) >= 0.0 {
+    // Along m × n: with n = ±P_s × P_t, m × n = ±(P_s g_t − P_t g_s), the image of the
+    // parameter direction ±(g_t, −g_s) — so the piece's direction in the parameters tells.
+    let along = (x1 - x0).dot(DVec2::new(grad.y, -grad.x)) * cell.sign;
+    if along >= 0.0 {
         out.push([p0, pm, p1]);
     } else {
         out.push([p1, pm, p0]);

@@ -379,14 +379,14 @@ fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<[f64; 3]> {
 }
 
 /// The largest immersed section between `lo` and `hi` (stations normal to `x`): its place and
-/// area ([`maximise`] of the sectional area curve).
+/// area ([`maximise`] of the sectional area curve), and the area at `lo` (its first sample).
 fn max_section(
     geom: &dyn HullGeometry,
     plane: &Waterplane,
     lo: f64,
     hi: f64,
     tol: f64,
-) -> (f64, f64) {
+) -> ((f64, f64), f64) {
     maximise(
         &|x: f64| immersed_section_area(geom, plane, DVec3::X, x, tol),
         lo,
@@ -394,14 +394,14 @@ fn max_section(
     )
 }
 
-/// The maximum of a smooth `f` on `[lo, hi]`, as `(x, f(x))`: `f` sampled at
+/// The maximum of a smooth `f` on `[lo, hi]`, as `(x, f(x))`, with `f(lo)`: `f` sampled at
 /// [`MAX_SECTION_SAMPLES`] even places (in parallel, in order, so the result is a serial run's
 /// bit for bit), then the best sample's bracket narrowed by successive parabolic
 /// interpolation (Brent, *Algorithms for Minimization without Derivatives*, 1973, ch. 5: the
 /// vertex of the parabola through the bracket's three points replaces one of them), at most
 /// [`MAX_SECTION_REFINEMENTS`] more evaluations. A best sample at an end of the range is the
 /// result (the curve then rises towards the end).
-fn maximise(f: &(dyn Fn(f64) -> f64 + Sync), lo: f64, hi: f64) -> (f64, f64) {
+fn maximise(f: &(dyn Fn(f64) -> f64 + Sync), lo: f64, hi: f64) -> ((f64, f64), f64) {
     let n = MAX_SECTION_SAMPLES;
     let step = (hi - lo) / (n - 1) as f64;
     let samples: Vec<(f64, f64)> = (0..n)
@@ -413,8 +413,9 @@ fn maximise(f: &(dyn Fn(f64) -> f64 + Sync), lo: f64, hi: f64) -> (f64, f64) {
         .collect();
     // The first of equal maxima: a flat top (parallel middle body) keeps its first station.
     let best = (1..n).fold(0, |b, k| if samples[k].1 > samples[b].1 { k } else { b });
+    let first = samples[0].1;
     if best == 0 || best + 1 == n {
-        return samples[best];
+        return (samples[best], first);
     }
     let (mut a, mut b, mut c) = (samples[best - 1], samples[best], samples[best + 1]);
     let close = MAX_SECTION_PLACE_RELATIVE * (hi - lo);
@@ -444,7 +445,7 @@ fn maximise(f: &(dyn Fn(f64) -> f64 + Sync), lo: f64, hi: f64) -> (f64, f64) {
             c = v;
         }
     }
-    b
+    (b, first)
 }
 
 /// The immersed areas of the stations the figures need, side by side: at midship, the largest
@@ -465,15 +466,11 @@ fn stations(
         geom.wet_range(plane, DVec3::X, waterline)
             .unwrap_or((datums.x_ap, datums.x_fp))
     };
+    // The transom's station is the first of the sectional area curve's samples.
     let transom_x = x_lo + 1e-6 * (x_hi - x_lo);
     let (midship, (max, transom)) = rayon::join(
         || immersed_section_area(geom, plane, DVec3::X, datums.x_mid(), tol),
-        || {
-            rayon::join(
-                || max_section(geom, plane, x_lo, x_hi, tol),
-                || immersed_section_area(geom, plane, DVec3::X, transom_x, tol),
-            )
-        },
+        || max_section(geom, plane, transom_x, x_hi, tol),
     );
     (midship, max, transom)
 }
@@ -616,7 +613,7 @@ mod tests {
             calls.fetch_add(1, Ordering::Relaxed);
             f(x)
         };
-        let out = maximise(&g, lo, hi);
+        let (out, _) = maximise(&g, lo, hi);
         (out, calls.into_inner())
     }
 
