@@ -20,8 +20,8 @@ const MAX_DEPTH: usize = 12;
 
 /// Gauss–Legendre points along the outer parameter of a graph (the integrand there, through
 /// the graph's root, is smooth but not a polynomial; along the height see [`INNER_GAUSS`]).
-/// Seven points give the Wigley hull's and the frigate's wet
-/// integrals within 2e-14 relative of ten points' (three: 6e-9), at 30 % less work per cut cell.
+/// Seven points give the Wigley hull's and the frigate's wet integrals within 2e-14 relative of
+/// ten points' (three: 6e-9), at 30 % less work per cut cell.
 const OUTER_GAUSS: usize = 7;
 
 /// The [`OUTER_GAUSS`]-point rule on `[0, 1]`.
