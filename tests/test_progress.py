@@ -125,9 +125,16 @@ def test_exports_print_their_steps(fmt, tmp_path, capsys, every_line):
         n = faces[-1][1] - 1
         assert n >= 4 and faces == [(k, n + 1) for k in range(1, n + 1)], faces
         assert _lines(err, f"{what}: written") == [(n + 1, n + 1)]
+        fitting = _lines(err, f"{what}: fitting")
+        assert fitting[-1] == (n, n) and all(t == n for _, t in fitting[1:]), fitting
     else:
-        assert _lines(err, f"{what}: text") == [(1, 2)]
-        assert _lines(err, f"{what}: written") == [(2, 2)]
+        # A line per face fitted (the count never going back, though two workers may report
+        # out of order), up to every face, then the file.
+        faces = _lines(err, f"{what}: faces")
+        n = faces[-1][1]
+        done = [d for d, _ in faces]
+        assert n >= 4 and done == sorted(done) and done[-1] == n and len(set(done)) > n // 2, faces
+        assert _lines(err, f"{what}: written") == [(n + 1, n + 1)]
 
 
 def test_lines_plan_and_offsets_table_print_their_steps(tmp_path, capsys, every_line):
@@ -211,8 +218,38 @@ def test_a_cancelled_export_leaves_the_target_file_as_it_was(fmt, tmp_path):
 def test_the_written_step_cannot_cancel(tmp_path):
     # A callback saying stop once the file is written: the file is there, no Cancelled.
     coll = api.load_network(EXAMPLES / "wigley_lines.json")
-    path = api.export_step(coll, tmp_path / "hull.stp", progress=lambda _l, done, _t: done < 2)
+    path = api.export_step(coll, tmp_path / "hull.stp", progress=lambda label, _d, _t: "written" not in label)
     assert path.read_text().startswith("ISO-10303-21;")
+
+
+@pytest.mark.parametrize("call", ["cad_text", "cad_faces"])
+def test_the_core_stops_fitting_faces_when_told(call):
+    # The export's fitting reports each face from the core's workers and stops starting faces
+    # once the callback says so: far fewer faces fitted than the surface has.
+    coll = api.load_network(EXAMPLES / "wigley_lines.json")
+    model = batten_native.build_hull_model(api.read_curves(coll))[2]
+    args = {
+        "cad_text": (model, "iges", 1e-4, False, "hull", "hull.igs", "", (2026, 1, 1, 0, 0, 0)),
+        "cad_faces": (model, 1e-4, False),
+    }[call]
+    _, stats = getattr(batten_native, call)(*args)
+    calls = []
+
+    def stop_at_two(done, total):
+        calls.append((done, total))
+        return len(calls) < 2
+
+    with pytest.raises(batten_native.Cancelled, match="exporting the surface cancelled"):
+        getattr(batten_native, call)(*args, progress=stop_at_two)
+    assert {t for _, t in calls} == {stats["faces"]}, "each call says how many faces there are"
+    # The workers finish the faces they had started (one per core), and start no more.
+    assert 2 <= len(calls) <= 2 + 4 < stats["faces"], (len(calls), stats["faces"])
+
+    def broken(done, total):
+        raise ZeroDivisionError("the callback's own error")
+
+    with pytest.raises(ZeroDivisionError, match="own error"):
+        getattr(batten_native, call)(*args, progress=broken)
 
 
 def test_cancelled_lines_plan_offsets_and_section_file_write_nothing(tmp_path):
@@ -324,3 +361,4 @@ def test_invoked_headless_the_operator_still_runs_at_once(arcs):
     before = _splines(arcs)
     assert bpy.ops.batten.fair_curves("INVOKE_DEFAULT") == {"FINISHED"}
     assert _splines(arcs) != before
+

@@ -1519,10 +1519,10 @@ def export_iges(
     written). The file is written whole or not at all (ExportError naming it when it cannot
     be). Returns the path.
 
-    ``progress``: ``progress(label, done, total)`` after each step (IGES/STEP: the text made,
-    then the file written; 3dm: each face, then the file written); returning ``False`` before
-    the file is written raises :class:`Cancelled` and no file is written (see
-    :mod:`batten.progress`).
+    ``progress``: ``progress(label, done, total)`` after each step (each face fitted — the
+    core fits them in a worker thread —, for 3dm each face added to the document, then the file
+    written); returning ``False`` before the file is written stops the fitting, raises
+    :class:`Cancelled`, and no file is written (see :mod:`batten.progress`).
     """
     return _export(source, path, "iges", tolerance, allow_holes, progress)
 

@@ -13,7 +13,7 @@ from batten_native import ExportError, cad_faces, cad_text
 
 from .atomic_write import replace_atomically, write_atomically
 from .file_text import file_path
-from .progress import JobSteps, Step
+from .progress import JobSteps, Step, in_worker
 
 #: The file version rhino3dm writes (Rhino 7 reads it, and every later Rhino).
 RHINO_FILE_VERSION = 7
@@ -42,26 +42,37 @@ def write_text_file(model, name: str, path, fmt: str, tolerance: float, allow_ho
     """Write ``model``'s surface (a ``batten_native.HullModel``) to ``path`` as ``fmt``
     (``"iges"`` or ``"step"``); returns the path and what the core measured (faces, patches,
     control_points, max_deviation, tolerance). A job (:class:`batten.progress.Job`) of two
-    steps: the text made, then the file written (closed after the first, it writes nothing)."""
+    steps: a step per face fitted (the core fits them in a worker thread), then the file
+    written (closed before that, the fitting stops and nothing is written)."""
     what = f"{fmt.upper()} file"
     path = file_path(path, what)
-    text, stats = cad_text(model, fmt, tolerance, allow_holes, name, path.name, _author(), _now())
-    yield Step(f"{what}: text", 1, 2)
+
+    def text_of(face_done):
+        return cad_text(
+            model, fmt, tolerance, allow_holes, name, path.name, _author(), _now(), progress=face_done
+        )
+
+    text, stats = yield from in_worker(f"{what}: faces", None, text_of)
     written = _written(path, what, lambda: write_atomically(path, text))
-    yield Step(f"{what}: written", 2, 2, final=True)
+    yield Step(f"{what}: written", stats["faces"] + 1, stats["faces"] + 1, final=True)
     return written, stats
 
 
 def write_3dm(model, name: str, path, tolerance: float, allow_holes: bool) -> JobSteps:
     """Write ``model``'s surface to ``path`` as a Rhino ``.3dm`` of NurbsSurface objects (one per
     face, named after the hull, in metres); returns the path and what was measured. A job
-    (:class:`batten.progress.Job`): a step per face, and one once the file is written (closed
-    before that, it writes nothing)."""
+    (:class:`batten.progress.Job`): a step per face fitted (in a worker thread), a step per face
+    added to the document, and one once the file is written (closed before that, it writes
+    nothing)."""
     import rhino3dm
 
     what = "3dm file"
     path = file_path(path, what)
-    faces, stats = cad_faces(model, tolerance, allow_holes)
+
+    def fit(face_done):
+        return cad_faces(model, tolerance, allow_holes, progress=face_done)
+
+    faces, stats = yield from in_worker(f"{what}: fitting", None, fit)
     doc = rhino3dm.File3dm()
     doc.Settings.ModelUnitSystem = rhino3dm.UnitSystem.Meters
     doc.Settings.ModelAbsoluteTolerance = tolerance

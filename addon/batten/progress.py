@@ -207,19 +207,21 @@ def deferred(function, *args, **kwargs) -> Job | None:
     return job if isinstance(job, Job) else None
 
 
-def in_worker(label: str, total: int, call: Callable[[Callable[[int, int], bool]], Any]) -> JobSteps:
+def in_worker(label: str, total: int | None, call: Callable[[Callable[[int, int], bool]], Any]) -> JobSteps:
     """Run ``call(round_done)`` (core work that touches no Blender data, its GIL released,
     calling ``round_done(done, total)`` after each round and stopping when it returns False) in
     a worker thread, yielding a :class:`Step` for every round (and at least every
-    :data:`POLL_S`, so that a modal operator's step returns to the event loop);
-    returns what ``call`` returned, raises what it raised. Closed between steps (a cancel),
-    it tells the core to stop at its next round and waits for it."""
-    rounds: queue.SimpleQueue[int] = queue.SimpleQueue()
+    :data:`POLL_S`, so that a modal operator's step returns to the event loop) out of ``total``
+    rounds, or (``total`` None) out of the total the core reports; returns what ``call``
+    returned, raises what it raised. The core may report from several threads: the steps count
+    the most rounds reported. Closed between steps (a cancel), it tells the core to stop at its
+    next round and waits for it."""
+    rounds: queue.SimpleQueue[tuple[int, int]] = queue.SimpleQueue()
     out: dict[str, Any] = {}
     stop = threading.Event()
 
-    def round_done(done: int, _total: int) -> bool:
-        rounds.put(done)
+    def round_done(done: int, of: int) -> bool:
+        rounds.put((done, of))
         return not stop.is_set()
 
     def work() -> None:
@@ -230,14 +232,16 @@ def in_worker(label: str, total: int, call: Callable[[Callable[[int, int], bool]
 
     worker = threading.Thread(target=work, name=f"batten: {label}", daemon=True)
     worker.start()
-    done = 0
+    done, of = 0, total if total is not None else 1
     try:
         while worker.is_alive() or not rounds.empty():
             try:
-                done = rounds.get(timeout=POLL_S)
+                reported, reported_of = rounds.get(timeout=POLL_S)
+                done = max(done, reported)
+                of = total if total is not None else reported_of
             except queue.Empty:
                 pass
-            yield Step(label, done, total)
+            yield Step(label, done, of)
     finally:
         stop.set()
         worker.join()

@@ -36,8 +36,8 @@ pub use defaults::{
 pub use diagnostic::Diagnostic;
 pub use error::Error;
 pub use export::{
-    cad_surface, iges_text, step_text, BsplineSurface, CadFace, CadHeader, CadSurface, ExportError,
-    ExportOptions, Timestamp, UnfittedFace, UnfittedFaces, BOUNDARY_SHARE,
+    cad_surface, cad_surface_with, iges_text, step_text, BsplineSurface, CadFace, CadHeader,
+    CadSurface, ExportError, ExportOptions, Timestamp, UnfittedFace, UnfittedFaces, BOUNDARY_SHARE,
     DEFAULT_EXPORT_TOLERANCE, EXPORT_DEGREE, FACE_SHARE, KNOT_MERGE, MAX_CURVE_SPANS,
     MAX_SURFACE_CELLS, MAX_SURFACE_SPANS,
 };

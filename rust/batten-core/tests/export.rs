@@ -3,7 +3,7 @@
 //! files well formed.
 
 use batten_core::{
-    build_hull, cad_surface, iges_text, step_text, CadHeader, ExportError, ExportOptions,
+    build_hull, cad_surface, cad_surface_with, iges_text, step_text, CadHeader, ExportError, ExportOptions,
     HullOptions, Network, BOUNDARY_SHARE,
 };
 
@@ -105,5 +105,43 @@ fn the_patches_whose_curves_cannot_be_fitted_are_named() {
             hull.patches.len()
         )),
         "{message}"
+    );
+}
+
+/// Each fitted face is reported once with the number of faces, and a callback that says stop
+/// ends the export early with nothing: no face is started after it.
+#[test]
+fn the_fitting_reports_each_face_and_stops_when_told() {
+    use std::sync::Mutex;
+    let hull = build_hull(&example("wigley_lines.json"), &HullOptions::default()).expect("builds");
+    let calls = Mutex::new(Vec::new());
+    let all = cad_surface_with(&hull, &ExportOptions::default(), &|done, total| {
+        calls.lock().expect("calls").push((done, total));
+        true
+    })
+    .expect("exports")
+    .expect("not stopped");
+    let mut seen = calls.into_inner().expect("calls");
+    let n = all.faces.len();
+    assert!(seen.iter().all(|&(_, t)| t == n), "the total is the faces");
+    seen.sort_unstable();
+    assert_eq!(
+        seen.iter().map(|&(d, _)| d).collect::<Vec<_>>(),
+        (1..=n).collect::<Vec<_>>(),
+        "each count once"
+    );
+    let calls = Mutex::new(0usize);
+    let stopped = cad_surface_with(&hull, &ExportOptions::default(), &|_, _| {
+        let mut c = calls.lock().expect("calls");
+        *c += 1;
+        *c < 3
+    })
+    .expect("no error");
+    assert!(stopped.is_none(), "stopped: no surface");
+    let calls = calls.into_inner().expect("calls");
+    let threads = rayon::current_num_threads();
+    assert!(
+        (3..3 + threads).contains(&calls) && calls < n,
+        "{calls} faces fitted of {n}, with {threads} workers"
     );
 }

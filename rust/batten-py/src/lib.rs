@@ -19,6 +19,7 @@ mod hull_model;
 mod hydro;
 mod live;
 mod network;
+mod progress;
 mod sections;
 mod surface_fair;
 mod topology;

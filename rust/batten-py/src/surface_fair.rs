@@ -10,7 +10,8 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::curve::{curves_of, network_of, Curve};
-use crate::errors::{arg_err, core_err, guard, Cancelled};
+use crate::errors::{arg_err, core_err, guard};
+use crate::progress::Progress;
 
 /// The options from Python's arguments, each bad value an InvalidArgumentError naming it.
 #[allow(clippy::too_many_arguments)]
@@ -132,26 +133,15 @@ pub(crate) fn fair_sections<'py>(
         model_tolerance,
     )?;
     let network = network_of("", &curves)?;
-    let mut stopped: Option<PyErr> = None;
+    let progress = Progress::new(progress);
     let faired = py.detach(|| {
         guard("fairing the sections", || {
-            let mut round_done = |done: usize, total: usize| match &progress {
-                None => true,
-                Some(callback) => {
-                    Python::attach(|py| match keeps_going(py, callback, done, total) {
-                        Ok(going) => going,
-                        Err(err) => {
-                            stopped = Some(err);
-                            false
-                        }
-                    })
-                }
-            };
+            let mut round_done = |done: usize, total: usize| progress.goes_on(done, total);
             batten_core::fair_sections_with(&network, &opts, &mut round_done).map_err(core_err)
         })
     })?;
     let Some(faired) = faired else {
-        return Err(stopped.unwrap_or_else(|| Cancelled::new_err("surface fairing cancelled")));
+        return Err(progress.stopped("surface fairing cancelled"));
     };
     let r = &faired.report;
     let d = PyDict::new(py);
@@ -185,13 +175,6 @@ pub(crate) fn fair_sections<'py>(
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("curves", per_curve)?;
     Ok((curves_of(&faired.network), d))
-}
-
-/// Whether long work goes on after `callback(done, total)`: anything but `False` (so a callback
-/// that only shows progress and returns None goes on).
-fn keeps_going(py: Python<'_>, callback: &Py<PyAny>, done: usize, total: usize) -> PyResult<bool> {
-    let answer = callback.call1(py, (done, total))?;
-    Ok(!answer.bind(py).is(&*pyo3::types::PyBool::new(py, false)))
 }
 
 /// The paper's test input (Pla et al. 1998 §5, `batten_core::section_noise`): every movable

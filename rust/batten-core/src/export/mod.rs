@@ -29,7 +29,7 @@ pub use fit::{MAX_CURVE_SPANS, MAX_SURFACE_CELLS, MAX_SURFACE_SPANS};
 pub use iges::iges_text;
 pub use step::step_text;
 pub use surface::{
-    cad_surface, CadFace, CadSurface, ExportOptions, BOUNDARY_SHARE, DEFAULT_EXPORT_TOLERANCE,
-    FACE_SHARE,
+    cad_surface, cad_surface_with, CadFace, CadSurface, ExportOptions, BOUNDARY_SHARE,
+    DEFAULT_EXPORT_TOLERANCE, FACE_SHARE,
 };
 pub use text::{CadHeader, Timestamp};

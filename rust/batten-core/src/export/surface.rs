@@ -1,7 +1,7 @@
 //! The hull's patches as B-spline faces for CAD: every shared edge fitted once, every patch
 //! side joined from its edges' curves, every quad of every patch fitted inside its sides.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::DVec2;
 use rayon::prelude::*;
@@ -231,6 +231,21 @@ pub fn cad_surface(
     surface: &HullSurface,
     options: &ExportOptions,
 ) -> Result<CadSurface, ExportError> {
+    let cad = cad_surface_with(surface, options, &|_, _| true)?;
+    Ok(cad.expect("a progress callback that always goes on never stops the export"))
+}
+
+/// [`cad_surface`], calling `face_done(faces fitted, faces)` each time a face (a quad of a
+/// patch) has been fitted, from whichever worker fitted it (so the count may reach the callback
+/// out of order); when it returns `false` no further face is started and the export gives
+/// `Ok(None)`. So a front end shows the fitting's progress and lets the designer cancel it.
+///
+/// Errors: as [`cad_surface`].
+pub fn cad_surface_with(
+    surface: &HullSurface,
+    options: &ExportOptions,
+    face_done: &(dyn Fn(usize, usize) -> bool + Sync),
+) -> Result<Option<CadSurface>, ExportError> {
     let tol = options.tolerance;
     if !(tol.is_finite() && tol > 0.0) {
         return Err(ExportError::Tolerance(tol));
@@ -268,11 +283,15 @@ pub fn cad_surface(
         })
         .collect();
     // A face that cannot be fitted refines up to MAX_SURFACE_CELLS (seconds each): once one
-    // has failed, the quads not yet started are left, so a failing export ends soon.
+    // has failed, the quads not yet started are left, so a failing export ends soon; so are
+    // they once the caller asked to stop.
     let failed = AtomicBool::new(false);
+    let stopped = AtomicBool::new(false);
+    let done = AtomicUsize::new(0);
+    let total = jobs.len();
     let fitted: Vec<(usize, Fitted<CadFace>)> = jobs
         .into_par_iter()
-        .filter(|_| !failed.load(Ordering::Relaxed))
+        .filter(|_| !failed.load(Ordering::Relaxed) && !stopped.load(Ordering::Relaxed))
         .map(|(p, k, quad)| {
             let fit = || {
                 let c = curves[p].as_ref().map_err(|&d| d)?;
@@ -297,9 +316,15 @@ pub fn cad_surface(
             if result.is_err() {
                 failed.store(true, Ordering::Relaxed);
             }
+            if !face_done(done.fetch_add(1, Ordering::Relaxed) + 1, total) {
+                stopped.store(true, Ordering::Relaxed);
+            }
             (p, result)
         })
         .collect();
+    if stopped.load(Ordering::Relaxed) {
+        return Ok(None);
+    }
     let mut unfitted: Vec<Option<f64>> = curves.iter().map(|c| c.as_ref().err().copied()).collect();
     let mut faces = Vec::with_capacity(fitted.len());
     for (p, f) in fitted {
@@ -326,10 +351,10 @@ pub fn cad_surface(
         });
     }
     let max_deviation = faces.iter().map(|f| f.deviation).fold(0.0, f64::max);
-    Ok(CadSurface {
+    Ok(Some(CadSurface {
         faces,
         tolerance: tol,
         max_deviation,
         patches: patches.len(),
-    })
+    }))
 }

@@ -280,9 +280,15 @@ def cad_text(
     file_name: str,
     author: str,
     timestamp: tuple[int, int, int, int, int, int],
+    *,
+    progress: Callable[[int, int], object] | None = None,
 ) -> tuple[str, dict]: ...
 def cad_faces(
-    model: HullModel, tolerance: float, allow_holes: bool
+    model: HullModel,
+    tolerance: float,
+    allow_holes: bool,
+    *,
+    progress: Callable[[int, int], object] | None = None,
 ) -> tuple[list[tuple[_F64, _F64, _F64]], dict]: ...
 def build_surface(
     curves: list[Curve],
