@@ -362,3 +362,36 @@ def test_invoked_headless_the_operator_still_runs_at_once(arcs):
     assert bpy.ops.batten.fair_curves("INVOKE_DEFAULT") == {"FINISHED"}
     assert _splines(arcs) != before
 
+
+def test_the_fair_surface_operator_fairs_as_the_api_and_cancels_on_esc():
+    coll = _noisy_wigley()
+    scene = bpy.context.scene
+    scene.batten.source = coll
+    scene.batten.surface_fair_tolerance = 0.01
+    assert operators.BATTEN_OT_fair_surface.poll(bpy.context)
+    objects = api.curve_objects(coll)
+    before = _splines(objects)
+    # Modal: a round or so, then Esc: nothing changed.
+    results, reports, _ = run_modal(operators.BATTEN_OT_fair_surface, bpy.context, ["TIMER", "ESC"])
+    assert results == [{"RUNNING_MODAL"}, {"CANCELLED"}]
+    assert reports == [({"WARNING"}, "fairing the surface: cancelled, nothing changed")]
+    assert _splines(objects) == before and progress.cancel_hint == ""
+    # Run to its end: the sections move, and the report is the API's figures.
+    result, reports = execute(operators.BATTEN_OT_fair_surface, bpy.context)
+    assert result == {"FINISHED"}, reports
+    faired = _splines(objects)
+    assert faired != before
+    message = reports[0][1]
+    assert message.startswith("Faired ") and "curvature variation" in message, message
+    # The same as the API's on the same noisy hull with the same settings (drawn again under
+    # the same names, which order the curves).
+    for obj in objects:
+        bpy.data.objects.remove(obj)
+    again = _noisy_wigley()
+    tolerance = scene.batten.surface_fair_tolerance  # 0.01 as Blender's float32 holds it
+    report = api.fair_surface(again, tolerance=tolerance, families=["stations", "waterlines"])
+    assert [c for _, _, c in _splines(api.curve_objects(again))] == [c for _, _, c in faired]
+    assert f"in {report['rounds']} round(s)" in message
+    # With no family chosen there is nothing to fair.
+    scene.batten.surface_fair_families = set()
+    assert not operators.BATTEN_OT_fair_surface.poll(bpy.context)

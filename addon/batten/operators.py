@@ -154,6 +154,39 @@ class BATTEN_OT_fair_curves(ModalJob, bpy.types.Operator):
         return {"FINISHED"}
 
 
+class BATTEN_OT_fair_surface(ModalJob, bpy.types.Operator):
+    """Fair the hull through its families of plane sections (stations, waterlines), each point
+    kept within the surface tolerance; the outline, midship, flats and knuckles stay fixed"""
+
+    bl_idname = "batten.fair_surface"
+    bl_label = "Fair Surface"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        settings = context.scene.batten
+        return settings.source is not None and bool(settings.surface_fair_families)
+
+    def job(self, context):
+        settings = context.scene.batten
+        families = [f for f in ("stations", "waterlines", "buttocks") if f in settings.surface_fair_families]
+        return api.start(
+            api.fair_surface, settings.source, tolerance=settings.surface_fair_tolerance, families=families
+        )
+
+    def finish(self, context, report):
+        before, after = report["before"], report["after"]
+        moved = sum(1 for c in report["curves"] if c["moves"] > 0)
+        self.report(
+            {"INFO"},
+            f"Faired {moved} section(s) in {report['rounds']} round(s); curvature variation "
+            f"{before['curvature_variation']:.4g} → {after['curvature_variation']:.4g} /m³, "
+            f"inflections {before['inflections']} → {after['inflections']}; largest move "
+            f"{report['max_deviation'] * 1e3:.2f} mm",
+        )
+        return {"FINISHED"}
+
+
 class BATTEN_OT_import_sections(ModalJob, bpy.types.Operator, ImportHelper):
     """Import sections or offsets (neutral JSON point lists, or CSV rows name,x,y,z) as fair curves"""
 
@@ -275,6 +308,7 @@ _CLASSES = (
     BATTEN_OT_export_network,
     BATTEN_OT_import_network,
     BATTEN_OT_fair_curves,
+    BATTEN_OT_fair_surface,
     BATTEN_OT_import_sections,
     BATTEN_OT_lines_plan,
     BATTEN_OT_export_lines_plan,

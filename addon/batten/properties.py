@@ -6,7 +6,13 @@ Everything lives in Blender data (saved with the file, seen by undo); nothing in
 import math
 
 import bpy
-from batten_native import DEFAULT_FAIR_TOLERANCE, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE, MAX_RESOLUTION
+from batten_native import (
+    DEFAULT_FAIR_TOLERANCE,
+    DEFAULT_RESOLUTION,
+    DEFAULT_SURFACE_FAIR_TOLERANCE,
+    DEFAULT_TOLERANCE,
+    MAX_RESOLUTION,
+)
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
 
 from ._registry import register_classes, unregister_classes
@@ -119,6 +125,27 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         max=1.0,
         precision=4,
         unit="LENGTH",
+    )
+    surface_fair_tolerance: FloatProperty(
+        name="Surface tolerance",
+        description="Largest distance a point of a section may move when the hull is faired through its "
+        "sections",
+        default=DEFAULT_SURFACE_FAIR_TOLERANCE,
+        min=1e-6,
+        max=1.0,
+        precision=4,
+        unit="LENGTH",
+    )
+    surface_fair_families: EnumProperty(
+        name="Families",
+        description="The families of plane sections the hull is faired through, one after the other",
+        items=(
+            ("stations", "Stations", "The network's curves in planes x = const"),
+            ("waterlines", "Waterlines", "The network's curves in planes z = const"),
+            ("buttocks", "Buttocks", "The network's curves in planes y = const"),
+        ),
+        options={"ENUM_FLAG"},
+        default={"stations", "waterlines"},
     )
     show_network: BoolProperty(
         name="Network markers",
