@@ -3,8 +3,8 @@
 //! files well formed.
 
 use batten_core::{
-    build_hull, cad_surface, cad_surface_with, iges_text, step_text, CadHeader, ExportError, ExportOptions,
-    HullOptions, Network, BOUNDARY_SHARE,
+    build_hull, cad_surface, cad_surface_with, iges_text, step_text, CadHeader, ExportError,
+    ExportOptions, HullOptions, Network, BOUNDARY_SHARE,
 };
 
 fn example(file: &str) -> Network {
