@@ -36,20 +36,27 @@ use crate::curve::NurbsCurve;
 /// Most constrained refits tried per piece (each costs about one fit on fixed knots).
 const MAX_TRIES: usize = 8;
 
+/// The share of its peak's |κ| a lobe keeps at the end of its piece to be an end lobe.
+pub(crate) const END_LOBE_SHARE: f64 = 0.5;
+
 /// One stretch of the curve where the in-plane curvature keeps its sign (beyond the
 /// threshold).
 #[derive(Clone, Copy, Debug)]
-struct Lobe {
+pub(crate) struct Lobe {
     /// Where |κ| peaks (the curve's end for an end lobe growing towards it).
-    peak: f64,
+    pub peak: f64,
     /// `∫|κ| ds` over the lobe's samples, its size.
     size: f64,
+    /// Whether it grows towards an end of its smooth piece: it runs to the end, and its |κ|
+    /// there is at least [`END_LOBE_SHARE`] of its peak's (a lobe that dies away before the
+    /// end, its curvature below the threshold from there on, is no end lobe).
+    pub at_end: bool,
 }
 
 /// The lobes of a curve from its curvature samples: runs of samples between sign changes
 /// of the curvature counted with hysteresis `thr` (the rule of the inflection count), within
 /// each smooth piece.
-fn lobes(samples: &CurvatureSamples, domain: (f64, f64), thr: f64) -> Vec<Lobe> {
+pub(crate) fn lobes(samples: &CurvatureSamples, domain: (f64, f64), thr: f64) -> Vec<Lobe> {
     let mut out: Vec<Lobe> = Vec::new();
     for piece in &samples.pieces {
         let from = out.len();
@@ -68,6 +75,9 @@ fn lobes(samples: &CurvatureSamples, domain: (f64, f64), thr: f64) -> Vec<Lobe> 
             out.push(Lobe {
                 peak: peak.t,
                 size: run.iter().map(|s| s.kappa.abs() * s.ds).sum(),
+                at_end: (start == 0 && piece[0].kappa.abs() >= END_LOBE_SHARE * peak.kappa.abs())
+                    || (end == piece.len()
+                        && piece[end - 1].kappa.abs() >= END_LOBE_SHARE * peak.kappa.abs()),
             });
             start = end;
         }

@@ -19,6 +19,7 @@
 //! their peaks, each accepted by a likelihood-ratio test (`lobes`).
 
 mod clean;
+mod convex;
 mod error;
 mod fit;
 mod frame;

@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use super::clean::ORDER_STEP;
+use super::convex::{keep_convexity, PieceData};
 use super::error::FairError;
 use super::fit::{fit_with_system, smoothing_spline, Ends, Spline, System, Target};
 use super::lobes::flatten;
@@ -129,6 +130,7 @@ pub(crate) fn fit_smooth(
     };
     let mut interior: Vec<f64> = Vec::new();
     let mut last_system = None;
+    let mut last_round = None;
     loop {
         let ends = Ends {
             start: pts[0],
@@ -163,6 +165,7 @@ pub(crate) fn fit_smooth(
         if exact {
             last = Some((spline, curve.clone()));
             last_system = system;
+            last_round = Some((round, ends, interior.clone()));
             if iterations >= max_iter {
                 break;
             }
@@ -183,6 +186,21 @@ pub(crate) fn fit_smooth(
             last = flat;
         }
         metrics = Some(m);
+    }
+    // In noise mode, the convexity the data show is kept where the spline rings (`convex`).
+    if let (true, Some((target, ends, knots)), Some((_, curve)), Some(m)) =
+        (s.noise, &last_round, &last, metrics)
+    {
+        let data = PieceData {
+            points: &pts,
+            params: &u,
+            ends,
+            target: *target,
+        };
+        if let Some((sp, curve, m)) = keep_convexity(&data, knots, curve, m.inflections) {
+            last = Some((sp, curve));
+            metrics = Some(m);
+        }
     }
     let (spline, curve) = match last {
         Some(fit) => fit,
