@@ -22,7 +22,7 @@
 //! Not removed: ringing after a jump in curvature, such as the negative lobe a cubic spline
 //! puts on a flat side just past the bilge radius of a midship section (line, arc, line). The
 //! data reject zero curvature there on the fit's knots; a fair fit needs knots placed for
-//! the jump.
+//! the jump, which `convex` adds (in noise mode).
 
 use glam::DVec3;
 

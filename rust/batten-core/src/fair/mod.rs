@@ -16,7 +16,9 @@
 //! than noise explains, knots go where that excess is largest (bias) rather than where the
 //! plain sum is (`knots::next_knots`); and small curvature lobes that the data do not demand
 //! (a hook at a free end, ripples on a flat) are flattened by refits with zero curvature at
-//! their peaks, each accepted by a likelihood-ratio test (`lobes`).
+//! their peaks, each accepted by a likelihood-ratio test (`lobes`); in noise mode, the lobes
+//! a spline rings with past a jump in curvature (a flat running into a bilge radius) are
+//! flattened the same way on knots refined around them (`convex`).
 
 mod clean;
 mod convex;
