@@ -445,6 +445,14 @@ fn a_noisy_knuckle_is_one_corner() {
     assert!(r.control_points < 40, "{} control points", r.control_points);
 }
 
+/// 4,001 points evenly spread in parameter along `fit`, ends included.
+fn samples(fit: &NurbsCurve) -> Vec<DVec3> {
+    let (a, b) = fit.domain();
+    (0..=4000)
+        .map(|i| fit.point(a + (b - a) * f64::from(i) / 4000.0))
+        .collect()
+}
+
 /// `m` points along a midship-like section in the plane x = 0 (flat bottom 0.6 m, bilge
 /// radius 0.4 m, flat side 0.6 m) with Gaussian noise of `sigma` along the normal (the end
 /// points exact), and the distance of a point from that section.
@@ -511,12 +519,6 @@ fn noise_mode_on_a_dense_scan_fits_the_curve_not_the_noise() {
     let sigma = 1e-3;
     let o = options(Smoothing::Noise(sigma));
     let radius = 2.0 / std::f64::consts::FRAC_PI_2;
-    let samples = |fit: &NurbsCurve| -> Vec<DVec3> {
-        let (a, b) = fit.domain();
-        (0..=4000)
-            .map(|i| fit.point(a + (b - a) * f64::from(i) / 4000.0))
-            .collect()
-    };
     for seed in [21, 1] {
         let fit = fair_points(&noisy_quarter_arc(10_000, sigma, seed), &o).unwrap();
         let r = &fit.report;
@@ -1123,9 +1125,9 @@ fn a_noisy_midship_section_keeps_its_convexity() {
             let (pts, distance) = noisy_midship_of(16.1, 2.0, m, sigma, seed);
             let fit = fair_points(&pts, &o).unwrap();
             let r = &fit.report;
-            let (a, b) = fit.curve.domain();
-            let off = (0..=4000)
-                .map(|i| distance(fit.curve.point(a + (b - a) * f64::from(i) / 4000.0)))
+            let off = samples(&fit.curve)
+                .iter()
+                .map(|&p| distance(p))
                 .fold(0.0, f64::max);
             println!(
                 "{m} points, seed {seed}: {} control points, {:.2} mm from the truth, {} inflections",
