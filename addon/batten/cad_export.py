@@ -41,9 +41,9 @@ def _written(path: Path, what: str, write) -> Path:
 def write_text_file(model, name: str, path, fmt: str, tolerance: float, allow_holes: bool) -> JobSteps:
     """Write ``model``'s surface (a ``batten_native.HullModel``) to ``path`` as ``fmt``
     (``"iges"`` or ``"step"``); returns the path and what the core measured (faces, patches,
-    control_points, max_deviation, tolerance). A job (:class:`batten.progress.Job`) of two
-    steps: a step per face fitted (the core fits them in a worker thread), then the file
-    written (closed before that, the fitting stops and nothing is written)."""
+    control_points, max_deviation, tolerance). A job (:class:`batten.progress.Job`): a step
+    per face fitted (the core fits them in a worker thread), then one once the file is written
+    (closed before that, the fitting stops and nothing is written)."""
     what = f"{fmt.upper()} file"
     path = file_path(path, what)
 
