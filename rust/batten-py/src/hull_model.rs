@@ -22,7 +22,7 @@ use crate::sections::PySection;
 /// the faces patched again and keeps the others from the model before (`cells_kept`). Every method releases the GIL and raises `HydrostaticsError` or `InvalidArgumentError`.
 #[pyclass(frozen, module = "batten_native")]
 pub(crate) struct HullModel {
-    surface: HullSurface,
+    surface: Arc<HullSurface>,
     model: Arc<OnceLock<PatchHydroModel>>,
     live: Arc<OnceLock<PatchHydroModel>>,
     sections: OnceLock<SectionModel>,
@@ -49,11 +49,11 @@ pub(crate) struct Seeds {
 impl HullModel {
     /// Keep `surface`.
     pub(crate) fn new(surface: HullSurface) -> HullModel {
-        HullModel::seeded(surface, Seeds::default())
+        HullModel::seeded(Arc::new(surface), Seeds::default())
     }
 
     /// Keep `surface`, a live rebuild of an earlier model's (see [`HullModel::successor`]).
-    pub(crate) fn seeded(surface: HullSurface, seeds: Seeds) -> HullModel {
+    pub(crate) fn seeded(surface: Arc<HullSurface>, seeds: Seeds) -> HullModel {
         HullModel {
             surface,
             model: Arc::new(OnceLock::new()),

@@ -50,7 +50,7 @@ fn outputs<'py>(
         }
     }
     report.set_item("rebuild", rebuild)?;
-    let model = Py::new(py, HullModel::seeded(surface.clone(), seeds))?;
+    let model = Py::new(py, HullModel::seeded(hull.shared_surface(), seeds))?;
     Ok((arrays, report, model))
 }
 

@@ -16,8 +16,8 @@ use super::{HullOptions, HullReport, HullSurface};
 use crate::error::Error;
 use crate::network::Network;
 use crate::patch::{
-    weld_face_meshes, EdgeNormal, FaceBoundary, FaceMesh, Patch, PatchError, PatchKind,
-    PatchOptions, PatchWarning, Side, SideParam, SideRibbon, SurfaceMesh, MAX_SIDES,
+    weld_face_meshes_with, EdgeNormal, FaceBoundary, FaceMesh, Patch, PatchError, PatchKind,
+    PatchOptions, PatchWarning, Side, SideParam, SideRibbon, SurfaceMesh, Weld, MAX_SIDES,
 };
 use crate::topo::{TopoFace, Topology};
 
@@ -564,6 +564,11 @@ pub(crate) fn assemble(
     network: &Network,
     stages: &Stages,
 ) -> Result<(Vec<PatchedFace>, SurfaceMesh, bool), Error> {
+    assemble_welded(network, stages).map(|(patched, mesh, outward, _)| (patched, mesh, outward))
+}
+
+/// The patched faces of `stages` in topology face order, and their meshes.
+fn built(stages: &Stages) -> (Vec<PatchedFace>, Vec<&FaceMesh>) {
     let mut patched = Vec::new();
     let mut meshes = Vec::new();
     for (fi, outcome) in stages.faces.iter().enumerate() {
@@ -581,6 +586,15 @@ pub(crate) fn assemble(
             meshes.push(mesh);
         }
     }
+    (patched, meshes)
+}
+
+/// [`assemble`], with how the faces' meshes were welded (what [`reassemble`] starts from).
+pub(crate) fn assemble_welded(
+    network: &Network,
+    stages: &Stages,
+) -> Result<(Vec<PatchedFace>, SurfaceMesh, bool, Weld), Error> {
+    let (patched, meshes) = built(stages);
     if patched.is_empty() {
         let (warnings, _) = stages.warnings();
         return Err(Error::NoSurface(format!(
@@ -590,7 +604,7 @@ pub(crate) fn assemble(
             join(&warnings)
         )));
     }
-    let mut mesh = weld_face_meshes(&meshes);
+    let (mut mesh, weld) = weld_face_meshes_with(&meshes);
     let outward = report::area_vector(&mesh).y >= 0.0;
     if !outward {
         flip(&mut mesh);
@@ -598,7 +612,67 @@ pub(crate) fn assemble(
     if !report::signed_volume(&mesh).is_finite() {
         return Err(overflow(network, f64::INFINITY, f64::NAN));
     }
-    Ok((patched, mesh, outward))
+    Ok((patched, mesh, outward, weld))
+}
+
+/// The surface of `stages`, a live rebuild of `before` (whose surface, report aside, is
+/// `surface`, welded as `weld`) that patched some faces again and kept the others' outcomes
+/// (the same `Arc`): `surface`'s mesh with only the vertices of the faces patched again
+/// rewritten ([`Weld::rewrite`]), which is bit for bit the mesh [`assemble`] gives, and the
+/// weld of it. `None` where that cannot be shown — other faces patched, a face's mesh of
+/// another shape, vertices welded otherwise, the mesh turned the other way, figures that
+/// overflow — and the stages must be assembled afresh. The report is `surface`'s.
+pub(crate) fn reassemble(
+    stages: &Stages,
+    before: &Stages,
+    surface: &HullSurface,
+    weld: &Weld,
+) -> Option<(HullSurface, Weld)> {
+    if stages.faces.len() != before.faces.len() {
+        return None;
+    }
+    let mut changed = Vec::new();
+    let mut k = 0;
+    for (now, then) in stages.faces.iter().zip(&before.faces) {
+        match (now.as_ref(), then.as_ref()) {
+            (FaceOutcome::Built { mesh: new, .. }, FaceOutcome::Built { mesh: old, .. }) => {
+                if !Arc::ptr_eq(now, then) {
+                    changed.push((k, old, new));
+                }
+                k += 1;
+            }
+            (FaceOutcome::Built { .. }, _) | (_, FaceOutcome::Built { .. }) => return None,
+            _ => {}
+        }
+    }
+    let mut weld = weld.clone();
+    let mut mesh = surface.mesh.clone();
+    if !weld.rewrite(&mut mesh.positions, &changed) {
+        return None;
+    }
+    // `surface`'s mesh is turned outward already: assembled afresh, it would be turned the
+    // same way when its area vector still points to +y (flipped: still to −y unflipped).
+    let area = report::area_vector(&mesh).y;
+    let same_way = if surface.patches_outward {
+        area >= 0.0
+    } else {
+        area > 0.0
+    };
+    if !same_way || !report::signed_volume(&mesh).is_finite() {
+        return None;
+    }
+    let (patched, _) = built(stages);
+    let patch_faces = patched.iter().map(|p| p.face).collect();
+    let (patches, layouts) = patched.into_iter().map(|p| (p.patch, p.layout)).unzip();
+    let rebuilt = HullSurface {
+        mesh,
+        report: surface.report.clone(),
+        patches,
+        patch_faces,
+        layouts,
+        patches_outward: surface.patches_outward,
+    };
+    Some((rebuilt, weld))
 }
 
 /// The report of assembled stages ([`assemble`]), refused with [`Error::NoSurface`] when its

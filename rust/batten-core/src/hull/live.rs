@@ -1,14 +1,19 @@
 //! The live rebuild: a hull kept with everything its build computed, rebuilt after an edit by
 //! computing again only the edges, ribbons, patches and patch meshes that the moved curves
-//! reach, with the same result as a full build bit for bit. The report's quality sampling
+//! reach, and rewriting only their vertices in the welded mesh it keeps (where the weld is
+//! shown to be what welding afresh gives, `build::reassemble`), with the same result as a full
+//! build bit for bit. The report's quality sampling
 //! (gaps, normal jumps, holes, folds) is the slow part of a build; a rebuild leaves it for
 //! [`LiveHull::settle`], which the caller runs once the edits pause.
 
-use super::build::{assemble, into_surface, measure, Stages};
+use std::sync::Arc;
+
+use super::build::{assemble_welded, into_surface, measure, reassemble, Stages};
 use super::patched::PatchedFace;
 use super::{HullOptions, HullSurface};
 use crate::error::Error;
 use crate::network::Network;
+use crate::patch::Weld;
 
 /// What the last build or rebuild of a [`LiveHull`] did.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -34,11 +39,14 @@ pub struct LiveHull {
     network: Network,
     options: HullOptions,
     stages: Stages,
-    surface: HullSurface,
+    surface: Arc<HullSurface>,
     measured: bool,
     last: Rebuild,
     /// The topology faces the last rebuild patched again (`None` after a full build).
     rebuilt: Option<Vec<usize>>,
+    /// How the surface's mesh was welded from its faces' meshes: a rebuild rewrites only the
+    /// vertices of the faces it patched again.
+    weld: Weld,
 }
 
 impl LiveHull {
@@ -46,16 +54,17 @@ impl LiveHull {
     /// errors it returns).
     pub fn new(network: &Network, options: &HullOptions) -> Result<LiveHull, Error> {
         let stages = Stages::full(network, options)?;
-        let (patched, mesh, outward) = assemble(network, &stages)?;
+        let (patched, mesh, outward, weld) = assemble_welded(network, &stages)?;
         let report = measure(network, options, &stages, &patched, &mesh)?;
         Ok(LiveHull {
             network: network.clone(),
             options: *options,
-            surface: into_surface(patched, mesh, outward, report),
+            surface: Arc::new(into_surface(patched, mesh, outward, report)),
             stages,
             measured: true,
             last: Rebuild::Full { reason: None },
             rebuilt: None,
+            weld,
         })
     }
 
@@ -77,15 +86,26 @@ impl LiveHull {
                 },
             ),
         };
-        let (patched, mesh, outward) = assemble(network, &stages)?;
+        let incremental = matches!(last, Rebuild::Incremental { .. });
+        let kept = incremental
+            .then(|| reassemble(&stages, &self.stages, &self.surface, &self.weld))
+            .flatten();
+        let (surface, weld) = match kept {
+            Some(kept) => kept,
+            None => {
+                let (patched, mesh, outward, weld) = assemble_welded(network, &stages)?;
+                let report = self.surface.report.clone();
+                (into_surface(patched, mesh, outward, report), weld)
+            }
+        };
         // A kept face shares its outcome with the stages it was kept from.
-        let rebuilt = matches!(last, Rebuild::Incremental { .. }).then(|| {
+        let rebuilt = incremental.then(|| {
             (0..stages.faces.len())
-                .filter(|&f| !std::sync::Arc::ptr_eq(&stages.faces[f], &self.stages.faces[f]))
+                .filter(|&f| !Arc::ptr_eq(&stages.faces[f], &self.stages.faces[f]))
                 .collect()
         });
-        let report = self.surface.report.clone();
-        self.surface = into_surface(patched, mesh, outward, report);
+        self.surface = Arc::new(surface);
+        self.weld = weld;
         self.stages = stages;
         self.network = network.clone();
         self.measured = false;
@@ -122,7 +142,7 @@ impl LiveHull {
                 *p = index_of[&(*p as usize)];
             }
             let report = measure(&self.network, &self.options, &self.stages, &patched, &mesh)?;
-            self.surface.report = report;
+            Arc::make_mut(&mut self.surface).report = report;
             self.measured = true;
         }
         Ok(&self.surface)
@@ -132,6 +152,12 @@ impl LiveHull {
     /// measured one ([`LiveHull::is_measured`] says whether that is of the current surface).
     pub fn surface(&self) -> &HullSurface {
         &self.surface
+    }
+
+    /// The current surface, shared: what [`LiveHull::surface`] gives, without a copy (a later
+    /// rebuild replaces the hull's surface and leaves this one as it is).
+    pub fn shared_surface(&self) -> Arc<HullSurface> {
+        Arc::clone(&self.surface)
     }
 
     /// True when the surface's report was measured on the current surface.
@@ -160,5 +186,83 @@ impl LiveHull {
     /// The options the hull is built with.
     pub fn options(&self) -> &HullOptions {
         &self.options
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hull::build::assemble;
+    use crate::network::NetworkCurve;
+    use crate::NurbsCurve;
+    use glam::DVec3;
+
+    fn frigate() -> Network {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../examples/frigate_network.json"
+        );
+        Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network")
+    }
+
+    /// `net` with control point `index` of its curve `curve` moved by `by`.
+    fn moved(net: &Network, curve: usize, index: usize, by: DVec3) -> Network {
+        let mut curves: Vec<NetworkCurve> = net.curves().to_vec();
+        let c = &curves[curve].curve;
+        let mut points = c.control_points();
+        points[index] += by;
+        curves[curve].curve =
+            NurbsCurve::try_new(c.degree(), c.knots().to_vec(), points, c.weights())
+                .expect("curve");
+        Network::try_new(net.name.clone(), curves).expect("network")
+    }
+
+    #[test]
+    fn a_small_move_rewrites_the_kept_mesh_to_exactly_a_fresh_weld() {
+        let net = frigate();
+        let options = HullOptions::try_new(1e-4, 8).expect("options");
+        let hull = LiveHull::new(&net, &options).expect("builds");
+        let deck = net
+            .curves()
+            .iter()
+            .position(|c| c.role.name() == "deck")
+            .expect("deck");
+        let after = moved(&net, deck, 2, DVec3::new(0.0, 2e-5, 0.0));
+        let (stages, rebuilt) = hull
+            .stages
+            .updated(&net, &after, &options)
+            .expect("no error")
+            .expect("connectivity kept");
+        assert!(
+            rebuilt > 0 && rebuilt < stages.faces.len(),
+            "{rebuilt} faces patched again"
+        );
+        let (kept, _) = reassemble(&stages, &hull.stages, &hull.surface, &hull.weld)
+            .expect("the kept mesh is rewritten");
+        let (_, fresh, outward) = assemble(&after, &stages).expect("assembles");
+        assert_eq!(
+            kept.mesh.positions, fresh.positions,
+            "positions bit for bit"
+        );
+        assert_eq!(kept.mesh.face_vertices, fresh.face_vertices, "polygons");
+        assert_eq!(kept.patches_outward, outward, "orientation");
+        // Against the kept hull's own stages (nothing patched again) it is the same mesh.
+        let (same, _) = reassemble(&hull.stages, &hull.stages, &hull.surface, &hull.weld)
+            .expect("nothing to rewrite");
+        assert_eq!(same.mesh, hull.surface.mesh, "unchanged");
+    }
+
+    #[test]
+    fn stages_of_other_faces_are_assembled_afresh() {
+        let net = frigate();
+        let options = HullOptions::try_new(1e-4, 8).expect("options");
+        let hull = LiveHull::new(&net, &options).expect("builds");
+        // Another resolution: every face's mesh has another shape.
+        let finer =
+            Stages::full(&net, &HullOptions::try_new(1e-4, 9).expect("options")).expect("stages");
+        assert!(
+            reassemble(&finer, &hull.stages, &hull.surface, &hull.weld).is_none(),
+            "other mesh shapes"
+        );
     }
 }

@@ -38,4 +38,4 @@ pub use ribbon::{
     MIN_CROSSING_ANGLE_DEGREES,
 };
 pub use tessellate::{tessellate_patches, SurfaceMesh};
-pub(crate) use tessellate::{weld_face_meshes, FaceMesh};
+pub(crate) use tessellate::{weld_face_meshes_with, FaceMesh, Weld};

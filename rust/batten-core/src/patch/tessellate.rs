@@ -377,25 +377,61 @@ impl FaceMesh {
 /// index of its mesh in `meshes`): boundary vertices that are bitwise identical (shared
 /// segments and shared node positions) become one vertex.
 pub(crate) fn weld_face_meshes<M: Borrow<FaceMesh>>(meshes: &[M]) -> SurfaceMesh {
+    weld_face_meshes_with(meshes).0
+}
+
+/// How [`weld_face_meshes_with`] welded its meshes: where every vertex of each mesh went, which
+/// welded vertex each boundary position became, and how many mesh vertices each welded vertex
+/// stands for. A live rebuild keeps it and rewrites only the vertices of the faces it patched
+/// again ([`Weld::rewrite`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Weld {
+    /// Per mesh (in weld order), the welded vertex of each of its vertices.
+    maps: Vec<Vec<u32>>,
+    /// The bit pattern of every welded boundary position → its welded vertex.
+    boundary: HashMap<[u64; 3], u32>,
+    /// Per welded vertex, how many mesh vertices it stands for.
+    uses: Vec<u32>,
+}
+
+/// The bit pattern of a position: the weld's key (exact equality, never a distance).
+fn bits(p: [f64; 3]) -> [u64; 3] {
+    p.map(f64::to_bits)
+}
+
+/// [`weld_face_meshes`], with how it welded them.
+pub(crate) fn weld_face_meshes_with<M: Borrow<FaceMesh>>(meshes: &[M]) -> (SurfaceMesh, Weld) {
     let total = meshes.iter().map(|m| m.borrow().positions.len()).sum();
     let mut out = SurfaceMesh::default();
     out.positions.reserve(total);
-    let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
-    let mut local = Vec::new();
+    let mut weld = Weld {
+        maps: Vec::with_capacity(meshes.len()),
+        boundary: HashMap::new(),
+        uses: Vec::with_capacity(total),
+    };
     for (pid, m) in meshes.iter().enumerate() {
         let m = m.borrow();
-        local.clear();
+        let mut local = Vec::with_capacity(m.positions.len());
         for (q, p) in m.positions.iter().enumerate() {
-            let key = p.to_array().map(f64::to_bits);
-            let idx = if q < m.boundary {
-                *welded.entry(key).or_insert_with(|| {
-                    out.positions.push(p.to_array());
-                    (out.positions.len() - 1) as u32
-                })
-            } else {
-                out.positions.push(p.to_array());
+            let p = p.to_array();
+            let fresh = |out: &mut SurfaceMesh, uses: &mut Vec<u32>| {
+                out.positions.push(p);
+                uses.push(0);
                 (out.positions.len() - 1) as u32
             };
+            let idx = if q < m.boundary {
+                match weld.boundary.get(&bits(p)) {
+                    Some(&idx) => idx,
+                    None => {
+                        let idx = fresh(&mut out, &mut weld.uses);
+                        weld.boundary.insert(bits(p), idx);
+                        idx
+                    }
+                }
+            } else {
+                fresh(&mut out, &mut weld.uses)
+            };
+            weld.uses[idx as usize] += 1;
             local.push(idx);
         }
         out.face_vertices
@@ -403,6 +439,151 @@ pub(crate) fn weld_face_meshes<M: Borrow<FaceMesh>>(meshes: &[M]) -> SurfaceMesh
         out.face_sizes.extend_from_slice(&m.sizes);
         out.face_patch
             .extend(std::iter::repeat_n(pid as u32, m.sizes.len()));
+        weld.maps.push(local);
     }
-    out
+    (out, weld)
+}
+
+impl Weld {
+    /// Rewrite `positions` (those of the mesh this weld made, vertices in its order) for the
+    /// meshes in `changed` — `(index in weld order, its mesh before, its mesh now)` — when
+    /// welding every mesh again would give the same welded vertices and polygons: each changed
+    /// mesh has the shape it had (vertex, polygon and boundary counts), the vertices that were one
+    /// are still bitwise equal (those shared with an unchanged mesh where they were), and no new
+    /// boundary position equals another vertex's. Then the positions are exactly those of a new
+    /// weld, the weld is updated, and the answer is true; otherwise nothing changes (false).
+    pub(crate) fn rewrite(
+        &mut self,
+        positions: &mut [[f64; 3]],
+        changed: &[(usize, &FaceMesh, &FaceMesh)],
+    ) -> bool {
+        let same_shape = |a: &FaceMesh, b: &FaceMesh| {
+            a.positions.len() == b.positions.len()
+                && a.boundary == b.boundary
+                && a.faces == b.faces
+                && a.sizes == b.sizes
+        };
+        if changed
+            .iter()
+            .any(|&(k, old, new)| k >= self.maps.len() || !same_shape(old, new))
+        {
+            return false;
+        }
+        // The new bit pattern of every welded boundary vertex a changed mesh writes, and how
+        // many of its mesh vertices write it.
+        let mut written: HashMap<u32, ([u64; 3], u32)> = HashMap::new();
+        for &(k, _, new) in changed {
+            for (q, p) in new.positions[..new.boundary].iter().enumerate() {
+                let key = bits(p.to_array());
+                let entry = written.entry(self.maps[k][q]).or_insert((key, 0));
+                if entry.0 != key {
+                    return false;
+                }
+                entry.1 += 1;
+            }
+        }
+        let mut taken: HashMap<[u64; 3], u32> = HashMap::with_capacity(written.len());
+        for (&g, &(key, count)) in &written {
+            let kept_elsewhere = count < self.uses[g as usize];
+            let moved = bits(positions[g as usize]) != key;
+            let held = self.boundary.get(&key).is_some_and(|&h| h != g);
+            let twice = taken.insert(key, g).is_some_and(|h| h != g);
+            if (kept_elsewhere && moved) || held || twice {
+                return false;
+            }
+        }
+        for &g in written.keys() {
+            let old = bits(positions[g as usize]);
+            if self.boundary.get(&old) == Some(&g) {
+                self.boundary.remove(&old);
+            }
+        }
+        self.boundary.extend(taken);
+        for &(k, _, new) in changed {
+            for (&g, p) in self.maps[k].iter().zip(&new.positions) {
+                positions[g as usize] = p.to_array();
+            }
+        }
+        true
+    }
+}
+
+#[cfg(test)]
+mod weld_tests {
+    use super::*;
+
+    /// A fan of three triangles: corners `a`, `b`, `c` on the boundary, `m` inside.
+    fn fan(a: [f64; 3], b: [f64; 3], c: [f64; 3], m: [f64; 3]) -> FaceMesh {
+        FaceMesh {
+            positions: [a, b, c, m].map(DVec3::from).to_vec(),
+            boundary: 3,
+            faces: vec![0, 1, 3, 1, 2, 3, 2, 0, 3],
+            sizes: vec![3, 3, 3],
+        }
+    }
+
+    /// Two fans sharing the edge (1,0,0)–(0,1,0); the second's corner and centre as given.
+    fn pair(shared: [f64; 3], corner: [f64; 3], centre: [f64; 3]) -> [FaceMesh; 2] {
+        let x = [1.0, 0.0, 0.0];
+        [
+            fan([0.0, 0.0, 0.0], x, shared, [0.3, 0.3, 0.1]),
+            fan(x, corner, shared, centre),
+        ]
+    }
+
+    /// Rewrite the weld of `before` for the meshes `now` (all of them changed); the positions
+    /// when accepted.
+    fn rewritten(before: &[FaceMesh; 2], now: &[FaceMesh; 2]) -> Option<Vec<[f64; 3]>> {
+        let (mesh, mut weld) = weld_face_meshes_with(before);
+        let mut positions = mesh.positions.clone();
+        let changed: Vec<_> = (0..2).map(|k| (k, &before[k], &now[k])).collect();
+        weld.rewrite(&mut positions, &changed).then_some(positions)
+    }
+
+    #[test]
+    fn a_rewrite_is_a_fresh_weld_or_refused() {
+        let y = [0.0, 1.0, 0.0];
+        let before = pair(y, [1.0, 1.0, 0.0], [0.7, 0.7, 0.1]);
+        assert_eq!(
+            weld_face_meshes_with(&before).0.positions.len(),
+            6,
+            "two vertices shared"
+        );
+        // The second fan's corner and centre moved: the same as welding afresh.
+        let now = pair(y, [1.0, 1.2, 0.0], [0.7, 0.8, 0.2]);
+        let fresh = weld_face_meshes(&now);
+        assert_eq!(
+            rewritten(&before, &now),
+            Some(fresh.positions),
+            "corner and centre"
+        );
+        // The shared vertex moved in both fans: still one vertex, as a fresh weld has it.
+        let moved = [0.0, 1.1, 0.0];
+        let both = [
+            fan([0.0; 3], [1.0, 0.0, 0.0], moved, [0.3, 0.3, 0.1]),
+            pair(moved, [1.0, 1.0, 0.0], [0.7, 0.7, 0.1])[1].clone(),
+        ];
+        let fresh = weld_face_meshes(&both);
+        assert_eq!(fresh.positions.len(), 6, "still shared");
+        assert_eq!(
+            rewritten(&before, &both),
+            Some(fresh.positions),
+            "shared vertex moved"
+        );
+        // Moved in one fan only: the fans no longer share it; refused.
+        let one = [
+            before[0].clone(),
+            pair(moved, [1.0, 1.0, 0.0], [0.7, 0.7, 0.1])[1].clone(),
+        ];
+        assert_eq!(rewritten(&before, &one), None, "split");
+        // A corner moved onto the first fan's own corner: a fresh weld would join them.
+        let onto = pair(y, [0.0, 0.0, 0.0], [0.7, 0.7, 0.1]);
+        assert_eq!(weld_face_meshes(&onto).positions.len(), 5, "joined afresh");
+        assert_eq!(rewritten(&before, &onto), None, "joined");
+        // Another shape: refused.
+        let mut other = now.clone();
+        other[1].sizes = vec![3, 3];
+        other[1].faces.truncate(6);
+        assert_eq!(rewritten(&before, &other), None, "another shape");
+    }
 }
