@@ -451,6 +451,17 @@ impl Stages {
                 }
             })
             .unzip();
+        // A field computed again that came out bit for bit as it was changes no patch.
+        let normal_changed: Vec<bool> = (0..brep.edges.len())
+            .map(|k| {
+                let same = match (&shared[k], &self.shared[k]) {
+                    (Some(a), Some(b)) => a.same_bits(b),
+                    (None, None) => true,
+                    _ => false,
+                };
+                dirty_normal[k] && (changed[k] || !same)
+            })
+            .collect();
         let dirty_faces: Vec<bool> = topology
             .faces
             .iter()
@@ -461,7 +472,7 @@ impl Stages {
                 let composite = f.sides.len() < f.edges.len();
                 f.edges.iter().any(|e| {
                     let k = e.index();
-                    dirty_normal[k] || knuckle_changed[k] || (composite && dirty_info[k])
+                    normal_changed[k] || knuckle_changed[k] || (composite && dirty_info[k])
                 })
             })
             .collect();

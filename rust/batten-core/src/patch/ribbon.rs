@@ -111,6 +111,30 @@ pub struct EdgeNormal {
 }
 
 impl EdgeNormal {
+    /// Whether `other` is this field bit for bit (so a patch built on either is the same; `==`
+    /// would take −0 for 0 and refuse NaN).
+    pub(crate) fn same_bits(&self, other: &EdgeNormal) -> bool {
+        let vec_bits = |v: &DVec3| v.to_array().map(f64::to_bits);
+        self.ts.len() == other.ts.len()
+            && self.normals.len() == other.normals.len()
+            && self.slopes.len() == other.slopes.len()
+            && self
+                .ts
+                .iter()
+                .zip(&other.ts)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+            && self
+                .normals
+                .iter()
+                .zip(&other.normals)
+                .all(|(a, b)| vec_bits(a) == vec_bits(b))
+            && self
+                .slopes
+                .iter()
+                .zip(&other.slopes)
+                .all(|(a, b)| vec_bits(a) == vec_bits(b))
+    }
+
     /// Build from the crossing curves at nodes along `segment` (eq. 8 with the 15° rule at each
     /// node; several crossing tangents at one node are averaged). Returns `Ok(None)` when no
     /// crossing tangent survives the angle rule: the face's default ribbon then applies.
@@ -623,4 +647,30 @@ pub(crate) fn prepare_ribbons(
         out.push(rib);
     }
     out
+}
+
+#[cfg(test)]
+mod same_bits_tests {
+    use super::*;
+
+    fn field(n: f64) -> EdgeNormal {
+        EdgeNormal {
+            ts: vec![0.0, 1.0],
+            normals: vec![DVec3::new(n, 0.0, 1.0), DVec3::Z],
+            slopes: vec![DVec3::ZERO, DVec3::ZERO],
+        }
+    }
+
+    #[test]
+    fn same_bits_tells_minus_zero_from_zero_and_takes_a_nan_as_itself() {
+        assert!(field(0.5).same_bits(&field(0.5)), "equal");
+        assert!(!field(0.5).same_bits(&field(0.5 + 1e-16)), "one ulp apart");
+        assert!(field(0.0) == field(-0.0), "== takes -0 for 0");
+        assert!(!field(0.0).same_bits(&field(-0.0)), "the bits differ");
+        assert!(field(f64::NAN) != field(f64::NAN), "== refuses NaN");
+        assert!(
+            field(f64::NAN).same_bits(&field(f64::NAN)),
+            "the same NaN bits"
+        );
+    }
 }
