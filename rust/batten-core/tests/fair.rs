@@ -453,6 +453,33 @@ fn samples(fit: &NurbsCurve) -> Vec<DVec3> {
         .collect()
 }
 
+/// The fit of a noisy midship section's points `pts` (`distance` from the true section),
+/// checked within 3 `sigma` of the truth with at most 30 control points, its figures printed
+/// under `label`.
+fn midship_fit(
+    pts: &[DVec3],
+    distance: impl Fn(DVec3) -> f64,
+    o: &FairOptions,
+    sigma: f64,
+    label: &str,
+) -> batten_core::FairedCurve {
+    let fit = fair_points(pts, o).unwrap();
+    let r = &fit.report;
+    let off = samples(&fit.curve)
+        .iter()
+        .map(|&p| distance(p))
+        .fold(0.0, f64::max);
+    println!(
+        "{label}: {} control points, {:.2} mm from the truth, {} inflections",
+        r.control_points,
+        off * 1e3,
+        r.metrics.inflections
+    );
+    assert!(off <= 3.0 * sigma, "{label}: {off} m from the section");
+    assert!(r.control_points <= 30, "{label}: {}", r.control_points);
+    fit
+}
+
 /// `m` points along a midship-like section in the plane x = 0 (flat bottom 0.6 m, bilge
 /// radius 0.4 m, flat side 0.6 m) with Gaussian noise of `sigma` along the normal (the end
 /// points exact), and the distance of a point from that section.
@@ -543,27 +570,8 @@ fn noise_mode_on_a_dense_scan_fits_the_curve_not_the_noise() {
     }
     for seed in [21, 1] {
         let (pts, distance) = noisy_midship(10_000, sigma, seed);
-        let fit = fair_points(&pts, &o).unwrap();
+        let fit = midship_fit(&pts, distance, &o, sigma, &format!("midship seed {seed}"));
         let r = &fit.report;
-        let off = samples(&fit.curve)
-            .iter()
-            .map(|&p| distance(p))
-            .fold(0.0, f64::max);
-        println!(
-            "midship seed {seed}: {} control points, {:.3} mm from the truth, {} inflections",
-            r.control_points,
-            off * 1e3,
-            r.metrics.inflections
-        );
-        assert!(
-            off <= 3.0 * sigma,
-            "midship seed {seed}: {off} m from the section"
-        );
-        assert!(
-            r.control_points <= 30,
-            "midship seed {seed}: {}",
-            r.control_points
-        );
         assert_eq!(
             r.corners,
             Vec::<usize>::new(),
@@ -1123,27 +1131,8 @@ fn a_noisy_midship_section_keeps_its_convexity() {
     for m in [400, 2000] {
         for seed in 1..=5 {
             let (pts, distance) = noisy_midship_of(16.1, 2.0, m, sigma, seed);
-            let fit = fair_points(&pts, &o).unwrap();
-            let r = &fit.report;
-            let off = samples(&fit.curve)
-                .iter()
-                .map(|&p| distance(p))
-                .fold(0.0, f64::max);
-            println!(
-                "{m} points, seed {seed}: {} control points, {:.2} mm from the truth, {} inflections",
-                r.control_points,
-                off * 1e3,
-                r.metrics.inflections
-            );
-            assert!(
-                off <= 3.0 * sigma,
-                "{m} points, seed {seed}: {off} m from the section"
-            );
-            assert!(
-                r.control_points <= 30,
-                "{m} points, seed {seed}: {}",
-                r.control_points
-            );
+            let label = format!("{m} points, seed {seed}");
+            let r = midship_fit(&pts, distance, &o, sigma, &label).report;
             if r.metrics.inflections > 0 {
                 inflected.push((m, seed, r.metrics.inflections));
             }
