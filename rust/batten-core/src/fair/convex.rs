@@ -26,8 +26,9 @@
 
 use glam::DVec3;
 
-use super::fit::CHI2_99;
-use super::fit::{constrained_fit, fit_with_system, Ends, Spline, System, Target, ZeroCurvature};
+use super::fit::{
+    constrained_fit, fit_with_system, Ends, Spline, System, Target, ZeroCurvature, CHI2_99,
+};
 use super::lobes::{lobes, Lobe};
 use super::metrics::{
     bending_energy, curvature_samples, CurvatureSamples, FairnessMetrics, INFLECTION_THRESHOLD,
@@ -140,10 +141,8 @@ fn flatten_against(
             break;
         }
     }
-    best.map(|(s, c)| {
-        let samples = curvature_samples(&c, false);
-        (s, c, samples)
-    })
+    // `samples` are those of the last accepted fit (a rejected round leaves them).
+    best.map(|(s, c)| (s, c, samples))
 }
 
 /// The fit of `data` with the convexity the data show kept (see the module note), where
