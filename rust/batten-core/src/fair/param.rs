@@ -222,8 +222,9 @@ fn foot(curve: &PowerForm, q: DVec3, t0: f64, lo: f64, hi: f64, eps: f64) -> (f6
 }
 
 /// Move every interior parameter to the foot point of its data point on `curve` (Newton's
-/// method on `f(t) = C'(t)·(C(t) − q)` started at the current parameter, kept inside the domain,
-/// a step taken only when it brings the curve point closer), then sort the pairs by parameter.
+/// method on `f(t) = C'(t)·(C(t) − q)` started at the current parameter, kept between the
+/// neighbouring points' parameters, a step taken only when it brings the curve point closer),
+/// then sort the pairs by parameter.
 /// The end parameters stay put (the ends are interpolated). Returns the largest change and
 /// the sum of squared distances at the new parameters. The curve is evaluated in power form
 /// (see `PowerForm`), built once per call.
@@ -238,8 +239,14 @@ pub(crate) fn reproject(
     let mut largest: f64 = 0.0;
     let mut e = 0.0;
     let eps = (hi - lo) * 1e-14;
+    let old = params.to_vec();
     for i in 1..m - 1 {
-        let (t, dist2) = foot(&power, points[i], params[i], lo, hi, eps);
+        // Each foot point stays between its neighbours' parameters before the step: a point
+        // that jumped across a span (past a loop the fit made there) would leave the span
+        // without data, and the next least-squares fit free to swing there without bound.
+        let (a, b) = (old[i - 1].max(lo), old[i + 1].min(hi));
+        let (a, b) = if a <= b { (a, b) } else { (lo, hi) };
+        let (t, dist2) = foot(&power, points[i], params[i], a, b, eps);
         largest = largest.max((t - params[i]).abs());
         e += dist2;
         params[i] = t;
