@@ -378,6 +378,26 @@ pub(crate) struct Deviation {
 /// or the previous point's foot) cannot, so the answer is the same global minimum as over all
 /// pieces, at a fraction of the cost on curves with many knots.
 pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviation, CurveError> {
+    let mut out = Deviation {
+        max: 0.0,
+        max_index: 0,
+        rms: 0.0,
+    };
+    let mut sum2 = 0.0;
+    for (i, d) in distances(curve, points)?.into_iter().enumerate() {
+        sum2 += d * d;
+        if d > out.max {
+            out.max = d;
+            out.max_index = i;
+        }
+    }
+    out.rms = (sum2 / points.len().max(1) as f64).sqrt();
+    Ok(out)
+}
+
+/// The distance of each of `points` (in order along the curve, for speed) from `curve`: the
+/// global closest-point distance, as [`deviation`] measures it.
+pub(crate) fn distances(curve: &NurbsCurve, points: &[DVec3]) -> Result<Vec<f64>, CurveError> {
     let bez = curve.bezier_decomposition();
     let size = bez.hull_box().diagonal();
     let accuracy = (size * 1e-10).max(1e-12);
@@ -390,16 +410,11 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
         })
         .collect();
     let mut sub = bez.empty_like();
-    let mut out = Deviation {
-        max: 0.0,
-        max_index: 0,
-        rms: 0.0,
-    };
-    let mut sum2 = 0.0;
+    let mut out = Vec::with_capacity(points.len());
     let mut last_t: Option<f64> = None;
     let mut step: Option<f64> = None;
     let mut lower = vec![0.0; bez.pieces.len()];
-    for (i, q) in points.iter().enumerate() {
+    for q in points {
         for (l, (boxed, a, b, flat)) in lower.iter_mut().zip(&bounds) {
             *l = boxed
                 .distance_to(*q)
@@ -438,13 +453,8 @@ pub(crate) fn deviation(curve: &NurbsCurve, points: &[DVec3]) -> Result<Deviatio
         };
         step = last_t.map(|l| t - l);
         last_t = Some(t);
-        sum2 += d * d;
-        if d > out.max {
-            out.max = d;
-            out.max_index = i;
-        }
+        out.push(d);
     }
-    out.rms = (sum2 / points.len().max(1) as f64).sqrt();
     Ok(out)
 }
 

@@ -25,6 +25,7 @@ mod convex;
 mod error;
 mod fit;
 mod frame;
+mod gaps;
 mod knots;
 mod lobes;
 mod lsq;
@@ -53,7 +54,8 @@ use crate::tolerance::Tolerance;
 use clean::ORDER_STEP;
 use fit::Target;
 use frame::Frame;
-use piece::{fit_smooth, fit_within, join, Directions, PieceFit};
+use gaps::fit_within_gaps;
+use piece::{fit_smooth, join, Directions, PieceFit};
 
 /// Largest coordinate (m) the fitter takes: its squared distances and their sums over the
 /// points must stay finite (f64 squares overflow beyond about 1.3e154).
@@ -327,7 +329,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
         };
         let iters = options.max_parameter_iterations;
         let fit = match smoothing {
-            Smoothing::MaxDeviation(t) => match fit_within(piece, k, t, dirs, iters)? {
+            Smoothing::MaxDeviation(t) => match fit_within_gaps(piece, k, t, dirs, iters)? {
                 Ok(fit) => fit,
                 Err((achieved, index)) => {
                     return Err(FairError::ToleranceNotReached {
