@@ -112,7 +112,7 @@ def test_kcs_fold_is_refused_by_name(tmp_path):
     message = str(err.value)
     assert "fair or move the curves around it" in message, "what the user can do"
     # The fold's spokes cannot be fitted: always found, before any face is fitted.
-    assert 70 in err.value.faces and "face 70 (reached 1.9" in message, message
+    assert 70 in err.value.faces and "face 70 (reached 1.6" in message, message
     faces = api.topology(coll)["faces"]
     assert sorted(faces[70]["curves"]) == folded[0]["curves"], "the topology numbers faces as the build"
     around = dict(part.split(": ", 1) for part in message.split("the curves around them: ")[1].split("; "))
