@@ -27,8 +27,20 @@ def _array(collection, attr: str, count: int, width: int) -> np.ndarray:
     return buf.reshape(count, width).astype(np.float64)
 
 
-def _transform(matrix: np.ndarray, xyz: np.ndarray) -> np.ndarray:
+def _world(obj) -> np.ndarray | None:
+    """The object's world matrix, or None where it is the identity (most hull curves): their
+    coordinates are then read as they are, without a product per spline."""
+    matrix = np.array(obj.matrix_world, dtype=np.float64)
+    return None if np.array_equal(matrix, _IDENTITY) else matrix
+
+
+_IDENTITY = np.eye(4)
+
+
+def _transform(matrix: np.ndarray | None, xyz: np.ndarray) -> np.ndarray:
     # NaN/inf coordinates pass through; the core rejects them with the curve's name.
+    if matrix is None:
+        return np.ascontiguousarray(xyz)
     with np.errstate(invalid="ignore", over="ignore"):
         return xyz @ matrix[:3, :3].T + matrix[:3, 3]
 
@@ -63,7 +75,7 @@ def read_object(obj) -> list[Curve]:
     splines = obj.data.splines
     if len(splines) == 0:
         raise CurveError(f"curve '{obj.name}' has no splines", obj.name)
-    matrix = np.array(obj.matrix_world, dtype=np.float64)
+    matrix = _world(obj)
     role = role_of(obj)
     names = [obj.name] if len(splines) == 1 else [f"{obj.name}[{i}]" for i in range(len(splines))]
     with errors_named_by_object(dict.fromkeys(names, obj.name)):
@@ -73,7 +85,7 @@ def read_object(obj) -> list[Curve]:
 def control_points(obj) -> np.ndarray:
     """Every control point (with a Bézier spline's handles) of the curve object ``obj``, in
     world coordinates, (n, 3): the curves lie in their box (NaN and inf pass through)."""
-    matrix = np.array(obj.matrix_world, dtype=np.float64)
+    matrix = _world(obj)
     points = []
     for spline in obj.data.splines:
         if spline.type == "BEZIER":
@@ -84,7 +96,7 @@ def control_points(obj) -> np.ndarray:
     return _transform(matrix, np.concatenate(points)) if points else np.zeros((0, 3))
 
 
-def _read_spline(spline, name: str, role: str, matrix: np.ndarray) -> Curve:
+def _read_spline(spline, name: str, role: str, matrix: np.ndarray | None) -> Curve:
     cyclic = bool(spline.use_cyclic_u)
     if spline.type == "BEZIER":
         pts = spline.bezier_points
