@@ -76,7 +76,8 @@ pub(crate) fn fit_within_gaps(
     let probe: Vec<DVec3> = gaps.iter().map(|g| g.point).collect();
     // The fit before, and how far past its slack its worst gap point was.
     let mut last: Option<(PieceFit, f64)> = None;
-    for round in 0..=GAP_ROUNDS {
+    let mut round = 0;
+    loop {
         let mut fit = match (fit_within(&pts, degree, tol, dirs, max_iter)?, last.take()) {
             (Ok(fit), before) => {
                 last = before;
@@ -102,9 +103,10 @@ pub(crate) fn fit_within_gaps(
                 return Ok(Ok(before));
             }
         }
-        if excess <= 0.0 || round == GAP_ROUNDS {
+        if excess <= 0.0 || round >= GAP_ROUNDS {
             return Ok(Ok(fit));
         }
+        round += 1;
         for (g, &d) in gaps.iter_mut().zip(&far) {
             if d > g.slack {
                 g.held = true;
@@ -123,7 +125,6 @@ pub(crate) fn fit_within_gaps(
             }
         }
     }
-    unreachable!("the last round returns")
 }
 
 /// The centripetal Catmull–Rom point at fraction `f` of the gap between `points[i]` and
