@@ -944,20 +944,24 @@ fn hull(name: &str) -> Vec<HullCurve> {
         .iter()
         .map(|c| HullCurve {
             name: c["name"].as_str().expect("name").to_owned(),
-            points: c["points"]
+            points: points_of(&c["points"]),
+        })
+        .collect()
+}
+
+/// The points of a JSON array of `[x, y, z]` arrays.
+fn points_of(json: &serde_json::Value) -> Vec<DVec3> {
+    json.as_array()
+        .expect("points")
+        .iter()
+        .map(|p| {
+            let v: Vec<f64> = p
                 .as_array()
-                .expect("points")
+                .expect("xyz")
                 .iter()
-                .map(|p| {
-                    let v: Vec<f64> = p
-                        .as_array()
-                        .expect("xyz")
-                        .iter()
-                        .map(|x| x.as_f64().expect("number"))
-                        .collect();
-                    DVec3::new(v[0], v[1], v[2])
-                })
-                .collect(),
+                .map(|x| x.as_f64().expect("number"))
+                .collect();
+            DVec3::new(v[0], v[1], v[2])
         })
         .collect()
 }
@@ -1194,20 +1198,7 @@ fn a_dense_waterline_fits_without_a_loop_between_its_points() {
         .join("tests/data/kcs_round_trip_waterline.json");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(path).expect("test data")).expect("JSON");
-    let points: Vec<DVec3> = json["points"]
-        .as_array()
-        .expect("points")
-        .iter()
-        .map(|p| {
-            let v: Vec<f64> = p
-                .as_array()
-                .expect("xyz")
-                .iter()
-                .map(|x| x.as_f64().expect("number"))
-                .collect();
-            DVec3::new(v[0], v[1], v[2])
-        })
-        .collect();
+    let points = points_of(&json["points"]);
     let opts = FairOptions {
         smoothing: Smoothing::MaxDeviation(0.005),
         model_tolerance: Tolerance::try_new(1e-3).unwrap(),
