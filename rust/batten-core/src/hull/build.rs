@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::edges::FaceEdges;
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
-use super::report::{self, Findings};
+use super::report::{self, Findings, MeshShares};
 use super::ribbons::{beyond, one_sided_normal, shared_normal};
 use super::warning::{FaceError, Warning, WarningKind};
 use super::{HullOptions, HullReport, HullSurface};
@@ -168,6 +168,8 @@ pub(crate) enum FaceOutcome {
         patch: Patch,
         layout: PatchLayout,
         mesh: FaceMesh,
+        /// The mesh's share of the checks on the welded mesh.
+        shares: MeshShares,
     },
     /// No patch: why.
     Failed(FaceError),
@@ -298,6 +300,7 @@ fn face_outcomes(
                     FaceOutcome::Built {
                         patch,
                         layout,
+                        shares: MeshShares::of(&mesh),
                         mesh,
                     }
                 } else {
@@ -587,6 +590,7 @@ fn built(stages: &Stages) -> (Vec<PatchedFace>, Vec<&FaceMesh>) {
             patch,
             layout,
             mesh,
+            ..
         } = outcome.as_ref()
         {
             patched.push(PatchedFace {
@@ -598,6 +602,15 @@ fn built(stages: &Stages) -> (Vec<PatchedFace>, Vec<&FaceMesh>) {
         }
     }
     (patched, meshes)
+}
+
+/// The shares of the built faces' meshes, added in face order: the welded mesh's area vector
+/// (y) and volume before it is turned outward.
+fn total_shares(stages: &Stages) -> MeshShares {
+    MeshShares::total(stages.faces.iter().filter_map(|f| match f.as_ref() {
+        FaceOutcome::Built { shares, .. } => Some(shares),
+        _ => None,
+    }))
 }
 
 /// [`assemble`], with how the faces' meshes were welded (what [`reassemble`] starts from).
@@ -616,11 +629,12 @@ pub(crate) fn assemble_welded(
         )));
     }
     let (mut mesh, weld) = weld_face_meshes_with(&meshes);
-    let outward = report::area_vector(&mesh).y >= 0.0;
+    let shares = total_shares(stages);
+    let outward = shares.area_y >= 0.0;
     if !outward {
         flip(&mut mesh);
     }
-    if !report::signed_volume(&mesh).is_finite() {
+    if !shares.volume.is_finite() {
         return Err(overflow(network, f64::INFINITY, f64::NAN));
     }
     Ok((patched, mesh, outward, weld))
@@ -629,17 +643,24 @@ pub(crate) fn assemble_welded(
 /// The surface of `stages`, a live rebuild of `before` (whose surface, report aside, is
 /// `surface`, welded as `weld`) that patched some faces again and kept the others' outcomes
 /// (the same `Arc`): `surface`'s mesh with only the vertices of the faces patched again
-/// rewritten ([`Weld::rewrite`]), which is bit for bit the mesh [`assemble`] gives, and the
-/// weld of it. `None` where that cannot be shown — other faces patched, a face's mesh of
-/// another shape, vertices welded otherwise, the mesh turned the other way, figures that
-/// overflow — and the stages must be assembled afresh. The report is `surface`'s.
+/// rewritten ([`Weld::rewrite`]), which is bit for bit the mesh [`assemble`] gives, with
+/// `weld` updated to it. `None` where that cannot be shown — other faces patched, a face's
+/// mesh of another shape, vertices welded otherwise, the mesh turned the other way, figures
+/// that overflow — and the stages must be assembled afresh; `weld` is then unchanged. The
+/// report is `surface`'s.
 pub(crate) fn reassemble(
     stages: &Stages,
     before: &Stages,
     surface: &HullSurface,
-    weld: &Weld,
-) -> Option<(HullSurface, Weld)> {
+    weld: &mut Weld,
+) -> Option<HullSurface> {
     if stages.faces.len() != before.faces.len() {
+        return None;
+    }
+    // Assembled afresh, the mesh would be turned the way `surface`'s is when the faces'
+    // shares decide alike (the same shares, added in the same order, as `assemble_welded`).
+    let shares = total_shares(stages);
+    if (shares.area_y >= 0.0) != surface.patches_outward || !shares.volume.is_finite() {
         return None;
     }
     let mut changed = Vec::new();
@@ -656,34 +677,21 @@ pub(crate) fn reassemble(
             _ => {}
         }
     }
-    let mut weld = weld.clone();
     let mut mesh = surface.mesh.clone();
     if !weld.rewrite(&mut mesh.positions, &changed) {
-        return None;
-    }
-    // `surface`'s mesh is turned outward already: assembled afresh, it would be turned the
-    // same way when its area vector still points to +y (flipped: still to −y unflipped).
-    let area = report::area_vector(&mesh).y;
-    let same_way = if surface.patches_outward {
-        area >= 0.0
-    } else {
-        area > 0.0
-    };
-    if !same_way || !report::signed_volume(&mesh).is_finite() {
         return None;
     }
     let (patched, _) = built(stages);
     let patch_faces = patched.iter().map(|p| p.face).collect();
     let (patches, layouts) = patched.into_iter().map(|p| (p.patch, p.layout)).unzip();
-    let rebuilt = HullSurface {
+    Some(HullSurface {
         mesh,
         report: surface.report.clone(),
         patches,
         patch_faces,
         layouts,
         patches_outward: surface.patches_outward,
-    };
-    Some((rebuilt, weld))
+    })
 }
 
 /// The report of assembled stages ([`assemble`]), refused with [`Error::NoSurface`] when its

@@ -87,15 +87,16 @@ impl LiveHull {
             ),
         };
         let incremental = matches!(last, Rebuild::Incremental { .. });
+        // Rewritten in place: `reassemble` changes the weld only when it gives the surface.
         let kept = incremental
-            .then(|| reassemble(&stages, &self.stages, &self.surface, &self.weld))
+            .then(|| reassemble(&stages, &self.stages, &self.surface, &mut self.weld))
             .flatten();
-        let (surface, weld) = match kept {
+        let surface = match kept {
             Some(kept) => kept,
             None => {
                 let (patched, mesh, outward, weld) = assemble_welded(network, &stages)?;
-                let report = self.surface.report.clone();
-                (into_surface(patched, mesh, outward, report), weld)
+                self.weld = weld;
+                into_surface(patched, mesh, outward, self.surface.report.clone())
             }
         };
         // A kept face shares its outcome with the stages it was kept from.
@@ -105,7 +106,6 @@ impl LiveHull {
                 .collect()
         });
         self.surface = Arc::new(surface);
-        self.weld = weld;
         self.stages = stages;
         self.network = network.clone();
         self.measured = false;
@@ -237,7 +237,8 @@ mod tests {
             rebuilt > 0 && rebuilt < stages.faces.len(),
             "{rebuilt} faces patched again"
         );
-        let (kept, _) = reassemble(&stages, &hull.stages, &hull.surface, &hull.weld)
+        let mut weld = hull.weld.clone();
+        let kept = reassemble(&stages, &hull.stages, &hull.surface, &mut weld)
             .expect("the kept mesh is rewritten");
         let (_, fresh, outward) = assemble(&after, &stages).expect("assembles");
         assert_eq!(
@@ -247,7 +248,8 @@ mod tests {
         assert_eq!(kept.mesh.face_vertices, fresh.face_vertices, "polygons");
         assert_eq!(kept.patches_outward, outward, "orientation");
         // Against the kept hull's own stages (nothing patched again) it is the same mesh.
-        let (same, _) = reassemble(&hull.stages, &hull.stages, &hull.surface, &hull.weld)
+        let mut weld = hull.weld.clone();
+        let same = reassemble(&hull.stages, &hull.stages, &hull.surface, &mut weld)
             .expect("nothing to rewrite");
         assert_eq!(same.mesh, hull.surface.mesh, "unchanged");
     }
@@ -260,8 +262,9 @@ mod tests {
         // Another resolution: every face's mesh has another shape.
         let finer =
             Stages::full(&net, &HullOptions::try_new(1e-4, 9).expect("options")).expect("stages");
+        let mut weld = hull.weld.clone();
         assert!(
-            reassemble(&finer, &hull.stages, &hull.surface, &hull.weld).is_none(),
+            reassemble(&finer, &hull.stages, &hull.surface, &mut weld).is_none(),
             "other mesh shapes"
         );
     }

@@ -15,7 +15,7 @@ use super::knuckles::{knuckle_report, Knuckle, KnuckleEdge};
 use super::patched::{LayoutSegment, PatchedFace};
 use super::warning::Warning;
 use crate::network::Network;
-use crate::patch::{Patch, SurfaceMesh};
+use crate::patch::{FaceMesh, Patch, SurfaceMesh};
 use crate::tolerance::Tolerance;
 use crate::topo::{NodeKind, Topology};
 
@@ -106,13 +106,6 @@ struct EdgeAngles {
     hi_at: DVec3,
 }
 
-/// Σ over the mesh polygons of their area vectors: the surface's mean normal times its area.
-pub(crate) fn area_vector(mesh: &SurfaceMesh) -> DVec3 {
-    let mut sum = DVec3::ZERO;
-    for_each_triangle(mesh, |a, b, c| sum += (b - a).cross(c - a) * 0.5);
-    sum
-}
-
 /// `Σ ȳ · (area vector)_y` over the triangles: the volume between the mesh and `y = 0`, closed
 /// by lids perpendicular to the centreplane (divergence theorem with the field `(0, y, 0)`:
 /// the centreplane has `y = 0` and the lids `n_y = 0`, so only the surface contributes, and
@@ -122,10 +115,64 @@ pub(crate) fn area_vector(mesh: &SurfaceMesh) -> DVec3 {
 /// does not depend on which corner the quad starts at (curve directions and order in the
 /// network do not change the volume).
 pub(crate) fn signed_volume(mesh: &SurfaceMesh) -> f64 {
-    let p = |v: u32| DVec3::from(mesh.positions[v as usize]);
+    polygons_volume(|v| DVec3::from(mesh.positions[v as usize]), mesh.faces())
+}
+
+/// One face's mesh's share, before welding, of the two figures a build checks on the welded
+/// mesh: the y component of its area vector ([`polygons_area_vector`]), whose sign over all faces tells
+/// which way the mesh is turned, and its volume ([`signed_volume`]), which must be finite.
+/// Kept per face, so a live rebuild adds up the faces' shares instead of running over the
+/// whole mesh; the full build adds up the same shares, so both decide alike, bit for bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct MeshShares {
+    /// Σ of the y components of the polygons' area vectors.
+    pub(crate) area_y: f64,
+    /// The signed volume of the polygons against `y = 0`.
+    pub(crate) volume: f64,
+}
+
+impl MeshShares {
+    /// The shares of one face's mesh.
+    pub(crate) fn of(mesh: &FaceMesh) -> MeshShares {
+        let p = |v: u32| mesh.positions()[v as usize];
+        MeshShares {
+            area_y: polygons_area_vector(p, mesh.polygons()).y,
+            volume: polygons_volume(p, mesh.polygons()),
+        }
+    }
+
+    /// The shares of several meshes together, added in order.
+    pub(crate) fn total<'a>(shares: impl Iterator<Item = &'a MeshShares>) -> MeshShares {
+        shares.fold(MeshShares::default(), |acc, s| MeshShares {
+            area_y: acc.area_y + s.area_y,
+            volume: acc.volume + s.volume,
+        })
+    }
+}
+
+/// Σ of the area vectors of the polygons `polygons` (vertex indices) over the positions `p`
+/// (the polygons fanned into triangles from their first vertex): their mean normal times their
+/// area.
+fn polygons_area_vector<'a>(
+    p: impl Fn(u32) -> DVec3,
+    polygons: impl Iterator<Item = &'a [u32]>,
+) -> DVec3 {
+    let mut sum = DVec3::ZERO;
+    for face in polygons {
+        let a = p(face[0]);
+        for w in face[1..].windows(2) {
+            let (b, c) = (p(w[0]), p(w[1]));
+            sum += (b - a).cross(c - a) * 0.5;
+        }
+    }
+    sum
+}
+
+/// [`signed_volume`] of the polygons `polygons` (vertex indices) over the positions `p`.
+fn polygons_volume<'a>(p: impl Fn(u32) -> DVec3, polygons: impl Iterator<Item = &'a [u32]>) -> f64 {
     let tri = |a: DVec3, b: DVec3, c: DVec3| (a.y + b.y + c.y) / 6.0 * (b - a).cross(c - a).y;
     let mut sum = 0.0;
-    for face in mesh.faces() {
+    for face in polygons {
         if let [a, b, c, d] = *face {
             let (a, b, c, d) = (p(a), p(b), p(c), p(d));
             sum += 0.5 * (tri(a, b, c) + tri(a, c, d) + tri(b, c, d) + tri(b, d, a));
@@ -137,17 +184,6 @@ pub(crate) fn signed_volume(mesh: &SurfaceMesh) -> f64 {
         }
     }
     sum
-}
-
-/// Call `f` on the triangles of a fan triangulation of every mesh polygon.
-fn for_each_triangle(mesh: &SurfaceMesh, mut f: impl FnMut(DVec3, DVec3, DVec3)) {
-    let p = |v: u32| DVec3::from(mesh.positions[v as usize]);
-    for face in mesh.faces() {
-        let a = p(face[0]);
-        for w in face[1..].windows(2) {
-            f(a, p(w[0]), p(w[1]));
-        }
-    }
 }
 
 /// The normal of `patch` at fraction `lambda` (of the curve's parameter interval, from `t0`)

@@ -45,12 +45,7 @@ impl SurfaceMesh {
 
     /// The vertex indices of every face, as slices (in face order).
     pub fn faces(&self) -> impl Iterator<Item = &[u32]> + '_ {
-        let mut start = 0;
-        self.face_sizes.iter().map(move |&k| {
-            let f = &self.face_vertices[start..start + k as usize];
-            start += k as usize;
-            f
-        })
+        polygons(&self.face_vertices, &self.face_sizes)
     }
 }
 
@@ -371,6 +366,27 @@ impl FaceMesh {
     pub(crate) fn vertex_count(&self) -> usize {
         self.positions.len()
     }
+
+    /// Its vertex positions (the first `boundary` of them on the face boundary).
+    pub(crate) fn positions(&self) -> &[DVec3] {
+        &self.positions
+    }
+
+    /// The vertex indices of each of its polygons, in order.
+    pub(crate) fn polygons(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        polygons(&self.faces, &self.sizes)
+    }
+}
+
+/// The polygons of `vertices` (their indices, polygon after polygon) with `sizes` vertices
+/// each, as slices.
+fn polygons<'a>(vertices: &'a [u32], sizes: &'a [u8]) -> impl Iterator<Item = &'a [u32]> + 'a {
+    let mut start = 0;
+    sizes.iter().map(move |&k| {
+        let f = &vertices[start..start + k as usize];
+        start += k as usize;
+        f
+    })
 }
 
 /// The faces' meshes welded into one, in order (face `k` of the result's `face_patch` is the
