@@ -10,6 +10,7 @@ mod joins;
 mod narrow;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::Network;
 use crate::curve::{BezierDecomposition, NurbsCurve};
@@ -108,6 +109,27 @@ fn sine_between(ta: DVec3, tb: DVec3) -> f64 {
     ta.cross(tb).length() / (ta.length() * tb.length()).max(f64::MIN_POSITIVE)
 }
 
+/// Curve pairs handed to one parallel task of the narrow phase at least (a pair of crossing
+/// curves takes about a microsecond; fewer per task and the scheduling costs more than it
+/// saves).
+const NARROW_PAIRS_PER_TASK: usize = 64;
+
+/// The runs of `pairs` (sorted by curves) that share one pair of curves, as `start..end`.
+fn pair_groups(pairs: &[broad::CandidatePair]) -> Vec<(usize, usize)> {
+    let mut groups = Vec::new();
+    let mut k = 0;
+    while k < pairs.len() {
+        let key = (pairs[k].curve_a, pairs[k].curve_b);
+        let mut end = k + 1;
+        while end < pairs.len() && (pairs[end].curve_a, pairs[end].curve_b) == key {
+            end += 1;
+        }
+        groups.push((k, end));
+        k = end;
+    }
+    groups
+}
+
 impl Network {
     /// Find every node where the curves meet within `tolerance` (H-rep paper §3.1 and §5.2:
     /// curves start and end on other curves; T-joints are allowed).
@@ -176,48 +198,50 @@ impl Network {
         // Broad phase: sort-and-sweep along the axis of largest spread.
         let pairs = broad::candidate_pairs(&prepared, &excluded, tolerance.sweep_margin());
 
-        // Narrow phase, one curve pair at a time.
+        // Narrow phase, one curve pair at a time: the pairs are independent, so they run in
+        // parallel; what they found is then sorted out in pair order, as one thread would.
+        let groups = pair_groups(&pairs);
+        let found: Vec<Vec<Hit>> = groups
+            .par_iter()
+            .with_min_len(NARROW_PAIRS_PER_TASK)
+            .map(|&(k, end)| {
+                let (ca, cb) = (pairs[k].curve_a, pairs[k].curve_b);
+                let mut pair_hits = Vec::new();
+                let mut narrow = narrow::Narrow {
+                    a: &prepared[ca],
+                    b: &prepared[cb],
+                    ca,
+                    cb,
+                    near,
+                    accuracy: tolerance.newton_accuracy(),
+                    leaves: 0,
+                    hits: &mut pair_hits,
+                };
+                for &broad::CandidatePair {
+                    piece_a: sa,
+                    piece_b: sb,
+                    ..
+                } in &pairs[k..end]
+                {
+                    let (pa, pb) = (&prepared[ca], &prepared[cb]);
+                    narrow.recurse(
+                        &pa.decomposition.pieces[sa],
+                        &pb.decomposition.pieces[sb],
+                        Some(pa.bounds[sa]),
+                        Some(pb.bounds[sb]),
+                        0,
+                    );
+                }
+                pair_hits
+            })
+            .collect();
         let mut hits: Vec<Hit> = Vec::with_capacity(pairs.len());
-        let mut pair_hits: Vec<Hit> = Vec::new();
-        let mut k = 0;
-        while k < pairs.len() {
+        for (&(k, _), pair_hits) in groups.iter().zip(&found) {
             let (ca, cb) = (pairs[k].curve_a, pairs[k].curve_b);
-            let mut group_end = k;
-            while group_end < pairs.len()
-                && (pairs[group_end].curve_a, pairs[group_end].curve_b) == (ca, cb)
-            {
-                group_end += 1;
-            }
-            pair_hits.clear();
-            let mut narrow = narrow::Narrow {
-                a: &prepared[ca],
-                b: &prepared[cb],
-                ca,
-                cb,
-                near,
-                accuracy: tolerance.newton_accuracy(),
-                leaves: 0,
-                hits: &mut pair_hits,
-            };
-            for &broad::CandidatePair {
-                piece_a: sa,
-                piece_b: sb,
-                ..
-            } in &pairs[k..group_end]
-            {
-                let (pa, pb) = (&prepared[ca], &prepared[cb]);
-                narrow.recurse(
-                    &pa.decomposition.pieces[sa],
-                    &pb.decomposition.pieces[sb],
-                    Some(pa.bounds[sa]),
-                    Some(pb.bounds[sb]),
-                    0,
-                );
-            }
             if ca == cb {
                 joins::self_hits(
                     &prepared[ca],
-                    &pair_hits,
+                    pair_hits,
                     tolerance,
                     &mut diagnostics,
                     &curves[ca].name,
@@ -225,7 +249,7 @@ impl Network {
             } else {
                 joins::sort_out_pair(
                     &prepared,
-                    &pair_hits,
+                    pair_hits,
                     tolerance,
                     curves,
                     joins::PairOutcome {
@@ -236,7 +260,6 @@ impl Network {
                     },
                 );
             }
-            k = group_end;
         }
         // A duplicate found late must not keep joins made with it.
         hits.retain(|h| !excluded[h.a] && !excluded[h.b]);
