@@ -46,16 +46,19 @@ pub(crate) type MeshArrays<'py> = (
 /// `u32` mesh indices as the `int32` Blender's mesh arrays take; a mesh whose indices do not fit
 /// is refused (`NoSurfaceError`) rather than wrapped to negative indices.
 fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
-    indices
-        .iter()
-        .map(|&i| {
-            i32::try_from(i).map_err(|_| {
-                NoSurfaceError::new_err(format!(
-                    "no surface: {what} index {i} is beyond the int32 indices of a Blender mesh"
-                ))
-            })
-        })
-        .collect()
+    // The largest index checked first, then every index converted: two plain loops the
+    // compiler vectorises (a checked conversion per index took most of a live frame's
+    // hand-over on a 660k-corner mesh).
+    match indices.iter().copied().max() {
+        Some(i) if i32::try_from(i).is_err() => Err(NoSurfaceError::new_err(format!(
+            "no surface: {what} index {i} is beyond the int32 indices of a Blender mesh"
+        ))),
+        #[allow(
+            clippy::cast_possible_wrap,
+            reason = "every index is at most i32::MAX here: the largest was checked"
+        )]
+        _ => Ok(indices.iter().map(|&i| i as i32).collect()),
+    }
 }
 
 /// Build the hull surface of `curves` (H-rep pipeline): returns `(arrays, report)` where arrays
@@ -139,7 +142,7 @@ pub(crate) fn surface_outputs<'py>(
     hull: &HullSurface,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
     let mesh = &hull.mesh;
-    let positions: Vec<f64> = mesh.positions.iter().flatten().copied().collect();
+    let positions: Vec<f64> = mesh.positions.as_flattened().to_vec();
     let rows = mesh.positions.len();
     let arrays = (
         PyArray1::from_vec(py, positions).reshape([rows, 3])?,
