@@ -1019,3 +1019,34 @@ fn a_node_beyond_that_is_not_finite_is_an_error() {
         EdgeNormal::from_crossings_along(&seg, &inner, &outer, MIN_CROSSING_ANGLE_DEGREES).is_err()
     );
 }
+
+#[test]
+fn a_gregory_patch_meshes_its_inside_as_the_points_of_its_grid() {
+    // The tessellation samples a 4-sided patch with sides of one segment on the tensor grid
+    // (a/r, c/r), each side's ribbon sampled once per column or row: every inside vertex must
+    // be the patch's own point there, bit for bit.
+    let boundary = single_sides(&saddle_face(4));
+    let p = Patch::try_new(&boundary, &[], &PatchOptions::default()).expect("patch");
+    assert_eq!(p.kind(), PatchKind::Gregory);
+    let r = 7;
+    let mesh = p.tessellate(r).expect("mesh");
+    let bits = |q: [f64; 3]| q.map(f64::to_bits);
+    let vertices: std::collections::HashSet<[u64; 3]> =
+        mesh.positions.iter().map(|&q| bits(q)).collect();
+    let mut inside = 0;
+    for c in 1..r {
+        for a in 1..r {
+            let x = [a as f64 / r as f64, c as f64 / r as f64];
+            assert!(
+                vertices.contains(&bits(p.eval(x).to_array())),
+                "the patch's point at {x:?} is a vertex"
+            );
+            inside += 1;
+        }
+    }
+    assert_eq!(
+        mesh.positions.len(),
+        4 * r + inside,
+        "boundary and grid, nothing else"
+    );
+}

@@ -153,6 +153,35 @@ impl Patch {
         }
     }
 
+    /// The interior points of a tensor grid on the unit square of a Gregory patch, rows of
+    /// `v` (outer) by columns of `u`, appended to `out`: each point is exactly
+    /// `eval_v((u, v))`, with each side's ribbon sampled once per column or row instead of
+    /// once per point (the sides' ribbons depend on one of the two parameters only). `None`
+    /// (and nothing appended) for a patch of another kind.
+    pub(crate) fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut Vec<DVec3>) -> Option<()> {
+        if self.kind != PatchKind::Gregory {
+            return None;
+        }
+        let (sides, ribbons) = (&self.sides, &self.ribbons);
+        let us: Vec<(f64, gregory4::RibbonPair)> = us
+            .iter()
+            .map(|&u| {
+                let u = gregory4::square_parameter(u);
+                (u, gregory4::RibbonPair::at(sides, ribbons, 0, u))
+            })
+            .collect();
+        out.reserve(us.len() * vs.len());
+        for &v in vs {
+            let v = gregory4::square_parameter(v);
+            let along_v = gregory4::RibbonPair::at(sides, ribbons, 1, v);
+            out.extend(
+                us.iter()
+                    .map(|(u, along_u)| gregory4::blend(&self.corners, *u, v, along_u, &along_v)),
+            );
+        }
+        Some(())
+    }
+
     /// Evaluate many domain points into `out` (same length); allocates nothing.
     pub fn eval_into(&self, xs: &[[f64; 2]], out: &mut [DVec3]) {
         for (x, o) in xs.iter().zip(out.iter_mut()) {

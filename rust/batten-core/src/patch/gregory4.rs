@@ -39,6 +39,36 @@ struct CornerJet {
     twist: DVec3,
 }
 
+/// The two ribbons of opposite sides sampled at one parameter of the square: side `i` at `w`
+/// and side `i + 2` at `1 − w` (position and cross derivative each). Sides 0 and 2 depend on
+/// `u` only, sides 1 and 3 on `v` only, so a tensor grid samples each once per column or row.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RibbonPair {
+    near: (DVec3, DVec3),
+    far: (DVec3, DVec3),
+}
+
+impl RibbonPair {
+    /// Sides `i` and `i + 2` (`i` 0 for `u`, 1 for `v`) at parameter `w` of the square.
+    #[inline]
+    pub(crate) fn at(sides: &[PreparedSide], ribbons: &[PreparedRibbon], i: usize, w: f64) -> Self {
+        RibbonPair {
+            near: ribbons[i].eval(&sides[i], w),
+            far: ribbons[i + 2].eval(&sides[i + 2], 1.0 - w),
+        }
+    }
+}
+
+/// A parameter of the square as the patch takes it: clamped into [0, 1], NaN as ½.
+#[inline]
+pub(crate) fn square_parameter(w: f64) -> f64 {
+    if w.is_nan() {
+        0.5
+    } else {
+        w.clamp(0.0, 1.0)
+    }
+}
+
 /// Evaluate the Gregory patch at `(u, v)` (clamped into the unit square).
 #[inline]
 pub(crate) fn eval(
@@ -47,20 +77,26 @@ pub(crate) fn eval(
     corners: &[CornerData],
     x: DVec2,
 ) -> DVec3 {
-    let u = if x.x.is_nan() {
-        0.5
-    } else {
-        x.x.clamp(0.0, 1.0)
-    };
-    let v = if x.y.is_nan() {
-        0.5
-    } else {
-        x.y.clamp(0.0, 1.0)
-    };
-    let (b, bv) = ribbons[0].eval(&sides[0], u);
-    let (r, r1) = ribbons[1].eval(&sides[1], v);
-    let (t, t2) = ribbons[2].eval(&sides[2], 1.0 - u);
-    let (l, lu) = ribbons[3].eval(&sides[3], 1.0 - v);
+    let (u, v) = (square_parameter(x.x), square_parameter(x.y));
+    let along_u = RibbonPair::at(sides, ribbons, 0, u);
+    let along_v = RibbonPair::at(sides, ribbons, 1, v);
+    blend(corners, u, v, &along_u, &along_v)
+}
+
+/// The Gregory patch at `(u, v)` (in the square) from its ribbons sampled there: `along_u`
+/// the bottom and top sides at `u`, `along_v` the right and left sides at `v`
+/// ([`RibbonPair::at`]). [`eval`] is this with the ribbons sampled for the one point; a grid
+/// samples them once per column and row, with the same result bit for bit.
+#[inline]
+pub(crate) fn blend(
+    corners: &[CornerData],
+    u: f64,
+    v: f64,
+    along_u: &RibbonPair,
+    along_v: &RibbonPair,
+) -> DVec3 {
+    let ((b, bv), (t, t2)) = (along_u.near, along_u.far);
+    let ((r, r1), (l, lu)) = (along_v.near, along_v.far);
     let (ru, tv) = (-r1, -t2);
     let hu = hermite(u);
     let hv = hermite(v);

@@ -208,19 +208,30 @@ impl Patch {
                 let bd = |a: usize, c: usize| dom[bidx(a, c).expect("on the boundary")];
                 let (p00, p10, p11, p01) = (bd(0, 0), bd(nu, 0), bd(nu, nv), bd(0, nv));
                 positions.reserve((nu - 1) * (nv - 1));
-                for c in 1..nv {
-                    let v = c as f64 / nv as f64;
-                    for a in 1..nu {
-                        let u = a as f64 / nu as f64;
-                        let x = bd(a, 0) * (1.0 - v)
-                            + bd(a, nv) * v
-                            + bd(0, c) * (1.0 - u)
-                            + bd(nu, c) * u
-                            - (p00 * ((1.0 - u) * (1.0 - v))
-                                + p10 * (u * (1.0 - v))
-                                + p11 * (u * v)
-                                + p01 * ((1.0 - u) * v));
-                        positions.push(self.eval_v(x));
+                // Sides of one segment each sample the square evenly, so the inside is the
+                // tensor grid of those parameters (what the blend below gives, up to
+                // rounding), evaluated a column and a row at a time.
+                let even = self.prepared_sides().iter().all(|s| s.segs.len() == 1);
+                let grid = |n: usize| (1..n).map(|k| k as f64 / n as f64).collect::<Vec<_>>();
+                let gridded = even
+                    && self
+                        .eval_grid(&grid(nu), &grid(nv), &mut positions)
+                        .is_some();
+                if !gridded {
+                    for c in 1..nv {
+                        let v = c as f64 / nv as f64;
+                        for a in 1..nu {
+                            let u = a as f64 / nu as f64;
+                            let x = bd(a, 0) * (1.0 - v)
+                                + bd(a, nv) * v
+                                + bd(0, c) * (1.0 - u)
+                                + bd(nu, c) * u
+                                - (p00 * ((1.0 - u) * (1.0 - v))
+                                    + p10 * (u * (1.0 - v))
+                                    + p11 * (u * v)
+                                    + p01 * ((1.0 - u) * v));
+                            positions.push(self.eval_v(x));
+                        }
                     }
                 }
                 for c in 0..nv {
