@@ -30,6 +30,9 @@ pub(crate) const KNUCKLE_NODE_DEGREES: f64 = 15.0;
 /// of their own sides. (Found a little off the corner, the parameter would give both edges the
 /// tangent of one side, and the faces around the node would be traced wrong.)
 fn at_corner(c: &mut CurvePoint, curve: &NurbsCurve, corners: &[f64], tol: f64) {
+    if corners.is_empty() {
+        return; // most curves are smooth: nothing to evaluate
+    }
     let here = curve.point(c.incidence.t);
     if let Some(&t) = corners
         .iter()
