@@ -3,6 +3,7 @@
 //! ("implemented as a half-edge-based data structure \[Mäntylä\]").
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 macro_rules! handle {
     ($(#[$doc:meta])* $name:ident) => {
@@ -56,7 +57,7 @@ pub struct Vertex {
     pub position: DVec3,
     /// The designer curves through the node (indices into the network, and into
     /// [`Topology::curve_names`](crate::Topology::curve_names)), sorted, without repeats.
-    pub curves: Vec<usize>,
+    pub curves: SmallVec<[usize; 4]>,
     /// One half-edge leaving the vertex, `None` when no face edge touches it.
     pub outgoing: Option<HalfEdgeId>,
     /// The oriented unit surface normal estimated from the incident tangents (zero when the

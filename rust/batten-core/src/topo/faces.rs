@@ -4,6 +4,7 @@
 //! §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use super::brep::{Brep, EdgeId, HalfEdgeId, LoopId};
 use crate::curve::BezierDecomposition;
@@ -23,10 +24,10 @@ const AREA_SAMPLES_PER_EDGE: usize = 2;
 #[derive(Clone, Debug, PartialEq)]
 pub struct FaceSide {
     /// The edges of the side, in loop order.
-    pub edges: Vec<EdgeId>,
+    pub edges: SmallVec<[EdgeId; 2]>,
     /// The designer curves along the side (indices into the network), in order, without
     /// consecutive repeats.
-    pub curves: Vec<usize>,
+    pub curves: SmallVec<[usize; 2]>,
 }
 
 /// The unit direction in which half-edge `h` leaves its origin.
@@ -52,7 +53,7 @@ pub(crate) fn corners_and_sides(
     dirs: &[DVec3],
     half_edges: &[HalfEdgeId],
     corner: &mut Vec<bool>,
-) -> (usize, Vec<FaceSide>) {
+) -> (usize, SmallVec<[FaceSide; 4]>) {
     let n = half_edges.len();
     let limit = CORNER_ANGLE_DEGREES.to_radians();
     // corner[i]: the vertex where half_edges[i] starts is a corner.
@@ -62,7 +63,7 @@ pub(crate) fn corners_and_sides(
     );
     let count = corner.iter().filter(|&&c| c).count();
     let start = corner.iter().position(|&c| c).unwrap_or(0);
-    let mut sides: Vec<FaceSide> = Vec::with_capacity(count.max(1));
+    let mut sides: SmallVec<[FaceSide; 4]> = SmallVec::with_capacity(count.max(1));
     for k in 0..n {
         let i = (start + k) % n;
         if k == 0 || corner[i] {
@@ -71,8 +72,8 @@ pub(crate) fn corners_and_sides(
                 .position(|j| corner[(i + j) % n])
                 .map_or(n - k, |j| j + 1);
             sides.push(FaceSide {
-                edges: Vec::with_capacity(len),
-                curves: Vec::with_capacity(1),
+                edges: SmallVec::with_capacity(len),
+                curves: SmallVec::new(),
             });
         }
         let side = sides.last_mut().expect("a side was opened");

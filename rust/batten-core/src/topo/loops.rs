@@ -4,6 +4,7 @@
 //! no edge twice is a face; the others are boundary loops.
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use super::brep::{Brep, Face, FaceId, HalfEdgeId, Loop, LoopId, ShellId};
 use super::faces;
@@ -56,7 +57,7 @@ pub(crate) fn sort_loops(
     let mut topo_faces = Vec::with_capacity(brep.loops.len());
     let mut boundary_loops = Vec::new();
     let mut edge_stamp = vec![0u32; brep.edges.len()];
-    let (mut hs, mut corner_flags, mut names_buf) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut hs, mut corner_flags) = (Vec::new(), Vec::new());
     for li in 0..brep.loops.len() {
         let l = LoopId::from_index(li);
         brep.loop_half_edges_into(l, &mut hs);
@@ -64,7 +65,7 @@ pub(crate) fn sort_loops(
         let is_face_side = area.dot(normal) > 0.0;
         let bridge = faces::has_bridge(brep, &hs, &mut edge_stamp, li as u32 + 1);
         let shell = brep.loops[li].shell;
-        let names = sorted_curves(brep, &hs, &mut names_buf);
+        let names = sorted_curves(brep, &hs);
         if is_face_side && !bridge {
             let f = FaceId::from_index(brep.faces.len());
             brep.faces.push(Face { outer: l, shell });
@@ -88,21 +89,20 @@ pub(crate) fn sort_loops(
             brep.shells[shell.index()].boundaries.push(l);
             boundary_loops.push(BoundaryLoop {
                 edges: hs.iter().map(|&h| brep.half_edge(h).edge).collect(),
-                curves: names,
+                curves: names.to_vec(),
             });
         }
     }
     (topo_faces, boundary_loops)
 }
 
-/// The designer curves along a loop, sorted, without repeats (`scratch` is a work buffer).
-fn sorted_curves(brep: &Brep, hs: &[HalfEdgeId], scratch: &mut Vec<usize>) -> Vec<usize> {
-    scratch.clear();
-    scratch.extend(
-        hs.iter()
-            .map(|&h| brep.edges[brep.half_edge(h).edge.index()].curve),
-    );
-    scratch.sort_unstable();
-    scratch.dedup();
-    scratch.clone()
+/// The designer curves along a loop, sorted, without repeats.
+fn sorted_curves(brep: &Brep, hs: &[HalfEdgeId]) -> SmallVec<[usize; 4]> {
+    let mut curves: SmallVec<[usize; 4]> = hs
+        .iter()
+        .map(|&h| brep.edges[brep.half_edge(h).edge.index()].curve)
+        .collect();
+    curves.sort_unstable();
+    curves.dedup();
+    curves
 }

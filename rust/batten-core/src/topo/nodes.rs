@@ -2,6 +2,7 @@
 //! network (H-rep paper §3.1: where the designer's curves meet, or a free curve end).
 
 use glam::DVec3;
+use smallvec::SmallVec;
 
 use super::brep::Vertex;
 use crate::network::Junctions;
@@ -13,8 +14,8 @@ pub(crate) fn vertices(junctions: &Junctions) -> Vec<Vertex> {
         .nodes
         .iter()
         .map(|j| {
-            let mut names: Vec<usize> = j.incidences.iter().map(|i| i.curve).collect();
-            names.sort();
+            let mut names: SmallVec<[usize; 4]> = j.incidences.iter().map(|i| i.curve).collect();
+            names.sort_unstable();
             names.dedup();
             Vertex {
                 position: j.position,

@@ -4,6 +4,8 @@
 
 use std::collections::BTreeMap;
 
+use smallvec::SmallVec;
+
 use super::brep::{Brep, EdgeId};
 use super::faces::FaceSide;
 use crate::diagnostic::Diagnostic;
@@ -13,16 +15,16 @@ use crate::diagnostic::Diagnostic;
 #[derive(Clone, Debug, PartialEq)]
 pub struct TopoFace {
     /// Its edges, counter-clockwise about the surface normal.
-    pub edges: Vec<EdgeId>,
+    pub edges: SmallVec<[EdgeId; 6]>,
     /// For each edge, true when the loop runs along the curve (from `t0` to `t1`).
-    pub forward: Vec<bool>,
+    pub forward: SmallVec<[bool; 6]>,
     /// The number of true corners (3 for a triangle, 4 for a quad …).
     pub corners: usize,
     /// The sides between corners.
-    pub sides: Vec<FaceSide>,
+    pub sides: SmallVec<[FaceSide; 4]>,
     /// The designer curves of its boundary (indices into the network and into
     /// [`Topology::curve_names`]), sorted, without repeats.
-    pub curves: Vec<usize>,
+    pub curves: SmallVec<[usize; 4]>,
 }
 
 /// A boundary loop of the network (the open edge of a half hull: keel, stem, deck, transom …).
