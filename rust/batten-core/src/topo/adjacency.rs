@@ -1,6 +1,8 @@
 //! Lists per vertex kept in one flat array (compressed rows), so building the topology does
 //! not allocate a small vector for every node.
 
+use rayon::prelude::*;
+
 /// One list of items per row (vertex), stored back to back: row `r` is
 /// `items[start[r]..start[r + 1]]`.
 #[derive(Clone, Debug)]
@@ -44,6 +46,22 @@ impl<T: Copy> Adjacency<T> {
         }
     }
 
+    /// A list of the same shape with `f(row, item)` applied to every item, rows in parallel.
+    pub(super) fn par_map_rows<U>(&self, f: impl Fn(usize, T) -> U + Sync) -> Adjacency<U>
+    where
+        T: Sync,
+        U: Copy + Send,
+    {
+        let f = &f;
+        Adjacency {
+            start: self.start.clone(),
+            items: (0..self.rows())
+                .into_par_iter()
+                .flat_map_iter(|r| self.row(r).iter().map(move |&x| f(r, x)))
+                .collect(),
+        }
+    }
+
     /// Number of rows.
     pub(super) fn rows(&self) -> usize {
         self.start.len() - 1
@@ -75,5 +93,17 @@ mod tests {
         assert_eq!(adj.row(3), ['d']);
         let upper = adj.map(|c| c.to_ascii_uppercase());
         assert_eq!(upper.row(2), ['A', 'C']);
+        let tagged = adj.par_map_rows(|r, c| (r, c));
+        assert_eq!(
+            tagged.row(0),
+            [(0, 'b'), (0, 'e')],
+            "each item with its own row"
+        );
+        assert_eq!(
+            tagged.row(1),
+            [] as [(usize, char); 0],
+            "an empty row stays empty"
+        );
+        assert_eq!(tagged.row(3), [(3, 'd')], "the last row");
     }
 }

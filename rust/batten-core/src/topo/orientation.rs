@@ -67,6 +67,17 @@ type Candidate = (u64, Reverse<usize>, usize);
 /// unit normal per node (zero for nodes without edges).
 pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>) -> Vec<DVec3> {
     let n = raw.len();
+    // The raw normal of every step's node carried along it, and how far it agrees with the
+    // far node's raw normal: worked out once, in parallel. A node's oriented normal is its raw
+    // normal or its opposite, and carrying is linear (exactly so in floating point: negation
+    // only flips signs), so what it carries is this or its opposite, and the agreement
+    // |carried · raw| is this one's.
+    let carried_raw: Adjacency<Option<(DVec3, f64)>> = steps.par_map_rows(|u, s| {
+        raw[u].map(|r| {
+            let c = transport(r.normal, s.leaving, s.arriving);
+            (c, raw[s.to].map_or(1.0, |q| q.normal.dot(c).abs()))
+        })
+    });
     let mut out = vec![DVec3::ZERO; n];
     let mut seen = vec![false; n];
     let mut order: Vec<usize> = (0..n).filter(|&v| !steps.row(v).is_empty()).collect();
@@ -77,17 +88,25 @@ pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>)
     });
     let mut heap: BinaryHeap<Candidate> = BinaryHeap::new();
     let mut carried: Vec<DVec3> = Vec::new();
+    // `normal` is `u`'s oriented normal: its raw normal (`flipped` false), the opposite
+    // (true), or a carried one where `u` has no raw normal.
     let push_steps = |u: usize,
                       normal: DVec3,
+                      flipped: bool,
                       seen: &[bool],
                       heap: &mut BinaryHeap<Candidate>,
                       carried: &mut Vec<DVec3>| {
-        for s in steps.row(u) {
+        for (s, fixed) in steps.row(u).iter().zip(carried_raw.row(u)) {
             if seen[s.to] {
                 continue;
             }
-            let c = transport(normal, s.leaving, s.arriving);
-            let agreement = raw[s.to].map_or(1.0, |r| r.normal.dot(c).abs());
+            let (c, agreement) = match *fixed {
+                Some((c, agreement)) => (if flipped { -c } else { c }, agreement),
+                None => {
+                    let c = transport(normal, s.leaving, s.arriving);
+                    (c, raw[s.to].map_or(1.0, |r| r.normal.dot(c).abs()))
+                }
+            };
             heap.push((agreement.to_bits(), Reverse(s.to), carried.len()));
             carried.push(c);
         }
@@ -98,19 +117,20 @@ pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>)
         }
         seen[start] = true;
         out[start] = raw[start].map_or(DVec3::Z, |r| r.normal);
-        push_steps(start, out[start], &seen, &mut heap, &mut carried);
+        push_steps(start, out[start], false, &seen, &mut heap, &mut carried);
         while let Some((_, Reverse(v), k)) = heap.pop() {
             if seen[v] {
                 continue;
             }
             seen[v] = true;
             let c = carried[k];
-            out[v] = match raw[v] {
-                Some(RawNormal { normal, .. }) if normal.dot(c) < 0.0 => -normal,
-                Some(RawNormal { normal, .. }) => normal,
-                None => c.normalize_or_zero(),
+            let (normal, flipped) = match raw[v] {
+                Some(RawNormal { normal, .. }) if normal.dot(c) < 0.0 => (-normal, true),
+                Some(RawNormal { normal, .. }) => (normal, false),
+                None => (c.normalize_or_zero(), false),
             };
-            push_steps(v, out[v], &seen, &mut heap, &mut carried);
+            out[v] = normal;
+            push_steps(v, normal, flipped, &seen, &mut heap, &mut carried);
         }
         carried.clear();
     }
