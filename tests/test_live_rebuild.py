@@ -4,6 +4,8 @@ positions, with exactly the mesh of a full build; the report's quality figures a
 again by ``settle``; a change of connectivity falls back to a full build and says why; a failed
 rebuild keeps the previous mesh."""
 
+import json
+
 import batten.api as api
 import bpy
 import numpy as np
@@ -125,6 +127,68 @@ def test_switching_live_off_leaves_no_timer_behind(frigate):
     assert live._on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post
     live.register()
     settings.live = False
+
+
+def _drag_pending(frigate):
+    """Live on for ``frigate``, built, and a point moved: a rebuild and a measurement wait."""
+    settings = bpy.context.scene.batten
+    settings.source = frigate
+    settings.live = True
+    scene_build.build_into_scene(bpy.context.scene, live=True)
+    frigate.objects["st4"].data.splines[0].points[2].co.y += 4e-5
+    bpy.context.view_layer.update()
+    pending = list(scene_build._settling.values()) + list(live._scheduled.values())
+    assert len(pending) == 2, "a rebuild and a measurement wait"
+    return pending
+
+
+def test_switching_live_off_measures_now_and_leaves_no_handler_or_timer(frigate):
+    handlers = bpy.app.handlers.depsgraph_update_post
+    assert live._on_depsgraph_update not in handlers, "no handler before Live is on"
+    _drag_pending(frigate)
+    assert live._on_depsgraph_update in handlers, "Live on: the handler is there"
+    scene = bpy.context.scene
+    live._scheduled[scene.name]()  # the rebuild runs, as its timer would
+    report = json.loads(scene.batten.last_report)
+    assert report["rebuild"]["kind"] == "incremental"
+    assert report["measured"] is False, "the live rebuild's report waits for a pause"
+    assert frigate.name in hull_models._live
+    frigate.objects["st4"].data.splines[0].points[2].co.y -= 4e-5
+    bpy.context.view_layer.update()
+    pending = list(scene_build._settling.values()) + list(live._scheduled.values())
+    assert len(pending) == 2, "a rebuild and a measurement wait again"
+    scene.batten.live = False
+    assert not any(bpy.app.timers.is_registered(f) for f in pending), "no timer left behind"
+    assert not live._scheduled and not scene_build._settling
+    assert live._on_depsgraph_update not in handlers, "no handler left behind"
+    assert frigate.name not in hull_models._live, "the live hull is dropped"
+    report = json.loads(bpy.context.scene.batten.last_report)
+    assert report["measured"] is True, "what waited for the pause ran: the report is measured"
+    # An edit now rebuilds nothing.
+    frigate.objects["st4"].data.splines[0].points[2].co.y += 4e-5
+    bpy.context.view_layer.update()
+    assert not live._scheduled, "Live off: an edit schedules nothing"
+
+
+def test_opening_a_file_leaves_nothing_of_live_behind_and_resumes_its_live(frigate, tmp_path):
+    handlers = bpy.app.handlers.depsgraph_update_post
+    pending = _drag_pending(frigate)
+    path = str(tmp_path / "live.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    assert not any(bpy.app.timers.is_registered(f) for f in pending), "no timer left behind"
+    assert not live._scheduled and not scene_build._settling
+    assert live._on_depsgraph_update not in handlers, "the new file has no Live: no handler"
+    assert not hull_models._live and not hull_models._kept, "the session's hulls forgotten"
+    bpy.ops.wm.open_mainfile(filepath=path)
+    assert bpy.context.scene.batten.live, "the saved file has Live on"
+    assert live._on_depsgraph_update in handlers, "and Live resumes with it"
+    coll = bpy.context.scene.batten.source
+    coll.objects["st4"].data.splines[0].points[2].co.y += 4e-5
+    bpy.context.view_layer.update()
+    assert bpy.context.scene.name in live._scheduled, "an edit schedules a rebuild again"
+    bpy.context.scene.batten.live = False
+    assert live._on_depsgraph_update not in handlers
 
 
 def test_sections_and_exports_read_a_measured_report_after_a_live_rebuild(frigate):

@@ -99,6 +99,14 @@ def kept_tolerance(name: str) -> float:
     return kept.tolerance if kept else DEFAULT_TOLERANCE
 
 
+def forget_live(name: str) -> None:
+    """Drop ``name``'s live hull (Live switched off), its surface measured first when the last
+    live rebuild left it unmeasured, so the kept surface stays whole for hydrostatics, sections
+    and exports."""
+    settle(name)
+    _live.pop(name, None)
+
+
 def forget(name: str | None = None) -> None:
     """Drop the kept surface and live hull of ``name`` (all of them with ``None``)."""
     if name is None:

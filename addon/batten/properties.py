@@ -61,6 +61,13 @@ def _hull_changed(settings, _context):
     set_default_drafts(settings)
 
 
+def _live_changed(settings, context):
+    """Live switched on or off: the live machinery follows (:func:`batten.live.live_changed`)."""
+    from .live import live_changed
+
+    live_changed(settings, context)
+
+
 def _flotation_changed(settings, _context):
     """Draft, trim, heel, density or Lpp changed: recompute the figures if the panel shows some
     (an error too: the change may be its fix)."""
@@ -110,6 +117,7 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         name="Live",
         description="Rebuild the surface whenever a curve of the hull changes",
         default=False,
+        update=_live_changed,
     )
     last_report: StringProperty(
         name="Last report",

@@ -89,13 +89,28 @@ def _settle_later(scene_name: str) -> None:
 
 
 def cancel_pending() -> None:
-    """Unregister every pending deferred cut and report measurement (Live switched off, the
+    """Unregister every pending deferred cut and report measurement (another file opened, the
     add-on unregistered)."""
     for pending in list(_deferred.values()) + list(_settling.values()):
         if bpy.app.timers.is_registered(pending):
             bpy.app.timers.unregister(pending)
     _deferred.clear()
     _settling.clear()
+
+
+def flush_pending(scene_name: str, source_name: str | None) -> None:
+    """Run now what waits for a pause of ``scene_name``'s live rebuilds — the measurement of
+    its report and the cut of its hull's (``source_name``) drawn sections — and unregister
+    their timers (Live switched off: the report and sections then describe the surface)."""
+    waiting = [_settling.pop(scene_name, None)]
+    if source_name is not None:
+        waiting.append(_deferred.pop(source_name, None))
+    for pending in waiting:
+        if pending is None:
+            continue
+        if bpy.app.timers.is_registered(pending):
+            bpy.app.timers.unregister(pending)
+        pending()
 
 
 def refresh_sections(source, *, live: bool = False) -> None:
