@@ -104,21 +104,33 @@ def closest_on_triangles(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndar
 #: stay well under a millimetre on the real ships' patches.
 DISTANCE_RESOLUTION = 48
 
-#: Triangles (nearest by centroid) searched for each point's closest point on the mesh.
+#: Triangles (nearest by centroid) that give each point a first bound on its distance.
 CANDIDATES = 24
 
 
 def surface_distance(points: np.ndarray, tris: np.ndarray) -> np.ndarray:
-    """Distance of each point from the triangle mesh ``tris`` ((m, 3, 3)): the least over the
-    ``CANDIDATES`` triangles with the nearest centroids of the exact point–triangle distance."""
+    """Distance of each point from the triangle mesh ``tris`` ((m, 3, 3)), exactly: the
+    ``CANDIDATES`` triangles with the nearest centroids give a bound ``d``; every triangle
+    nearer than ``d`` has its centroid within ``d`` plus the largest centroid-to-corner
+    distance of the mesh, so those triangles are all searched. (The nearest centroids alone
+    missed the nearest triangle among long thin ones — a flat side's patches are 100 m long —
+    and put 5 of KCS's and 8 of KVLCC2's points past 5 mm that were not.)"""
     from scipy.spatial import cKDTree
 
-    _, idx = cKDTree(tris.mean(axis=1)).query(points, k=CANDIDATES)
+    centroids = tris.mean(axis=1)
+    reach = float(np.linalg.norm(tris - centroids[:, None, :], axis=2).max())
+    tree = cKDTree(centroids)
+    _, idx = tree.query(points, k=min(CANDIDATES, len(tris)))
     best = np.full(len(points), np.inf)
-    for j in range(CANDIDATES):
+    for j in range(idx.shape[1]):
         t = tris[idx[:, j]]
         q = closest_on_triangles(points, t[:, 0], t[:, 1], t[:, 2])
         best = np.minimum(best, np.linalg.norm(points - q, axis=1))
+    for i, near in enumerate(tree.query_ball_point(points, best + reach)):
+        t = tris[near]
+        p = np.broadcast_to(points[i], (len(near), 3))
+        q = closest_on_triangles(p, t[:, 0], t[:, 1], t[:, 2])
+        best[i] = min(best[i], float(np.linalg.norm(p - q, axis=1).min()))
     return best
 
 
