@@ -111,22 +111,9 @@ def test_fifty_drags_on_kcs_end_in_the_full_build(hulls_dir):
     hull_models.forget()
 
 
-def test_switching_live_off_leaves_no_timer_behind(frigate):
-    settings = bpy.context.scene.batten
-    settings.source = frigate
-    settings.live = True
-    scene_build.build_into_scene(bpy.context.scene, live=True)
-    frigate.objects["st4"].data.splines[0].points[2].co.y += 4e-5
-    bpy.context.view_layer.update()  # the edit reaches the handler: a rebuild is scheduled
-    pending = list(scene_build._settling.values()) + list(live._scheduled.values())
-    assert len(pending) == 2, "a rebuild and a measurement wait"
-    assert all(bpy.app.timers.is_registered(f) for f in pending)
-    live.unregister()
-    assert not scene_build._settling and not live._scheduled
-    assert not any(bpy.app.timers.is_registered(f) for f in pending), "no timer left behind"
-    assert live._on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post
-    live.register()
-    settings.live = False
+def _pending() -> list:
+    """The timers waiting: the measurement of the report and the coalesced rebuild."""
+    return list(scene_build._settling.values()) + list(live._scheduled.values())
 
 
 def _drag_pending(frigate):
@@ -136,10 +123,21 @@ def _drag_pending(frigate):
     settings.live = True
     scene_build.build_into_scene(bpy.context.scene, live=True)
     frigate.objects["st4"].data.splines[0].points[2].co.y += 4e-5
-    bpy.context.view_layer.update()
-    pending = list(scene_build._settling.values()) + list(live._scheduled.values())
+    bpy.context.view_layer.update()  # the edit reaches the handler: a rebuild is scheduled
+    pending = _pending()
     assert len(pending) == 2, "a rebuild and a measurement wait"
     return pending
+
+
+def test_unregistering_the_add_on_leaves_no_handler_or_timer_behind(frigate):
+    pending = _drag_pending(frigate)
+    assert all(bpy.app.timers.is_registered(f) for f in pending)
+    live.unregister()
+    assert not scene_build._settling and not live._scheduled
+    assert not any(bpy.app.timers.is_registered(f) for f in pending), "no timer left behind"
+    assert live._on_depsgraph_update not in bpy.app.handlers.depsgraph_update_post
+    live.register()
+    bpy.context.scene.batten.live = False
 
 
 def test_switching_live_off_measures_now_and_leaves_no_handler_or_timer(frigate):
@@ -155,7 +153,7 @@ def test_switching_live_off_measures_now_and_leaves_no_handler_or_timer(frigate)
     assert frigate.name in hull_models._live
     frigate.objects["st4"].data.splines[0].points[2].co.y -= 4e-5
     bpy.context.view_layer.update()
-    pending = list(scene_build._settling.values()) + list(live._scheduled.values())
+    pending = _pending()
     assert len(pending) == 2, "a rebuild and a measurement wait again"
     scene.batten.live = False
     assert not any(bpy.app.timers.is_registered(f) for f in pending), "no timer left behind"
