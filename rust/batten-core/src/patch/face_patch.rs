@@ -156,11 +156,11 @@ impl Patch {
     /// The interior points of a tensor grid on the unit square of a Gregory patch, rows of
     /// `v` (outer) by columns of `u`, appended to `out`: each point is exactly
     /// `eval_v((u, v))`, with each side's ribbon sampled once per column or row instead of
-    /// once per point (the sides' ribbons depend on one of the two parameters only). `None`
+    /// once per point (the sides' ribbons depend on one of the two parameters only). False
     /// (and nothing appended) for a patch of another kind.
-    pub(crate) fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut Vec<DVec3>) -> Option<()> {
+    pub(crate) fn eval_grid(&self, us: &[f64], vs: &[f64], out: &mut Vec<DVec3>) -> bool {
         if self.kind != PatchKind::Gregory {
-            return None;
+            return false;
         }
         let (sides, ribbons) = (&self.sides, &self.ribbons);
         let us: Vec<(f64, gregory4::RibbonPair)> = us
@@ -179,7 +179,7 @@ impl Patch {
                     .map(|(u, along_u)| gregory4::blend(&self.corners, *u, v, along_u, &along_v)),
             );
         }
-        Some(())
+        true
     }
 
     /// Evaluate many domain points into `out` (same length); allocates nothing.

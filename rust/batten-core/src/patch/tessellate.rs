@@ -213,10 +213,7 @@ impl Patch {
                 // rounding), evaluated a column and a row at a time.
                 let even = self.prepared_sides().iter().all(|s| s.segs.len() == 1);
                 let grid = |n: usize| (1..n).map(|k| k as f64 / n as f64).collect::<Vec<_>>();
-                let gridded = even
-                    && self
-                        .eval_grid(&grid(nu), &grid(nv), &mut positions)
-                        .is_some();
+                let gridded = even && self.eval_grid(&grid(nu), &grid(nv), &mut positions);
                 if !gridded {
                     for c in 1..nv {
                         let v = c as f64 / nv as f64;

@@ -52,6 +52,13 @@ fn transport(normal: DVec3, leaving: DVec3, arriving: DVec3) -> DVec3 {
     DQuat::from_rotation_arc(a, b) * normal
 }
 
+/// `normal` carried along step `s` ([`transport`]), and how far it agrees with the raw normal
+/// of the node it reaches: |carried · raw|, 1 for a node without a raw normal.
+fn carry(normal: DVec3, s: &Step, raw: &[Option<RawNormal>]) -> (DVec3, f64) {
+    let c = transport(normal, s.leaving, s.arriving);
+    (c, raw[s.to].map_or(1.0, |r| r.normal.dot(c).abs()))
+}
+
 /// A node to reach next, as kept in the heap: how far the normal carried to it can be trusted
 /// to decide its sign (|carried · raw|, in [0, 1]; 1 for a node without a raw normal, which
 /// takes the carried normal and decides nothing) as the bits of that non-negative float (which
@@ -72,12 +79,8 @@ pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>)
     // normal or its opposite, and carrying is linear (exactly so in floating point: negation
     // only flips signs), so what it carries is this or its opposite, and the agreement
     // |carried · raw| is this one's.
-    let carried_raw: Adjacency<Option<(DVec3, f64)>> = steps.par_map_rows(|u, s| {
-        raw[u].map(|r| {
-            let c = transport(r.normal, s.leaving, s.arriving);
-            (c, raw[s.to].map_or(1.0, |q| q.normal.dot(c).abs()))
-        })
-    });
+    let carried_raw: Adjacency<Option<(DVec3, f64)>> =
+        steps.par_map_rows(|u, s| raw[u].map(|r| carry(r.normal, &s, raw)));
     let mut out = vec![DVec3::ZERO; n];
     let mut seen = vec![false; n];
     let mut order: Vec<usize> = (0..n).filter(|&v| !steps.row(v).is_empty()).collect();
@@ -102,10 +105,7 @@ pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>)
             }
             let (c, agreement) = match *fixed {
                 Some((c, agreement)) => (if flipped { -c } else { c }, agreement),
-                None => {
-                    let c = transport(normal, s.leaving, s.arriving);
-                    (c, raw[s.to].map_or(1.0, |r| r.normal.dot(c).abs()))
-                }
+                None => carry(normal, s, raw),
             };
             heap.push((agreement.to_bits(), Reverse(s.to), carried.len()));
             carried.push(c);
