@@ -1,8 +1,6 @@
 //! Lists per vertex kept in one flat array (compressed rows), so building the topology does
 //! not allocate a small vector for every node.
 
-use rayon::prelude::*;
-
 /// One list of items per row (vertex), stored back to back: row `r` is
 /// `items[start[r]..start[r + 1]]`.
 #[derive(Clone, Debug)]
@@ -46,19 +44,15 @@ impl<T: Copy> Adjacency<T> {
         }
     }
 
-    /// A list of the same shape with `f(row, item)` applied to every item, rows in parallel.
-    pub(super) fn par_map_rows<U>(&self, f: impl Fn(usize, T) -> U + Sync) -> Adjacency<U>
-    where
-        T: Sync,
-        U: Copy + Send,
-    {
-        let f = &f;
+    /// A list of the same shape with `f(row, item)` applied to every item.
+    pub(super) fn map_rows<U: Copy>(&self, f: impl Fn(usize, T) -> U) -> Adjacency<U> {
+        let mut items = Vec::with_capacity(self.items.len());
+        for r in 0..self.rows() {
+            items.extend(self.row(r).iter().map(|&x| f(r, x)));
+        }
         Adjacency {
             start: self.start.clone(),
-            items: (0..self.rows())
-                .into_par_iter()
-                .flat_map_iter(|r| self.row(r).iter().map(move |&x| f(r, x)))
-                .collect(),
+            items,
         }
     }
 
@@ -93,7 +87,7 @@ mod tests {
         assert_eq!(adj.row(3), ['d']);
         let upper = adj.map(|c| c.to_ascii_uppercase());
         assert_eq!(upper.row(2), ['A', 'C']);
-        let tagged = adj.par_map_rows(|r, c| (r, c));
+        let tagged = adj.map_rows(|r, c| (r, c));
         assert_eq!(
             tagged.row(0),
             [(0, 'b'), (0, 'e')],

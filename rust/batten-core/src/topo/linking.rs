@@ -73,12 +73,11 @@ pub(crate) fn link(
         })
         .collect();
     let neighbours = outgoing.map(|h| brep.destination(h).index());
-    let steps = outgoing.map(|h| Step {
+    let normals = orient_normals(&raw, &outgoing, |h| Step {
         to: brep.destination(h).index(),
         leaving: dirs[h.index()],
         arriving: -dirs[brep.half_edge(h).twin.index()],
     });
-    let normals = orient_normals(&raw, &steps);
 
     let mut position_in_rotation = vec![0usize; brep.half_edges.len()];
     let (mut keys, mut order, mut hs) = (Vec::new(), Vec::new(), Vec::new());

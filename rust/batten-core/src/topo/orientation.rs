@@ -16,7 +16,7 @@
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-use glam::{DQuat, DVec3};
+use glam::DVec3;
 
 use super::adjacency::Adjacency;
 use super::rotation::RawNormal;
@@ -40,16 +40,20 @@ pub(crate) struct Step {
 const REVERSAL_SINE: f64 = 1e-3;
 
 /// `normal` carried along an edge from its start, where it travels along `leaving`, to its
-/// end, where it travels along `arriving`: rotated by the least rotation between the two.
-/// Unrotated where a direction is missing (zero) or the edge turns back on itself.
+/// end, where it travels along `arriving` (both unit vectors, or zero where missing): rotated
+/// by the least rotation between the two, written out by Rodrigues' formula for the rotation
+/// taking unit `a` to unit `b` (axis `k = a × b`, cosine `c = a · b`):
+/// `v c + k × v + k (k · v) / (1 + c)`. Unrotated where a direction is missing or the edge
+/// turns back on itself (`1 + c` near 0, where the axis is undetermined).
 fn transport(normal: DVec3, leaving: DVec3, arriving: DVec3) -> DVec3 {
-    let (Some(a), Some(b)) = (leaving.try_normalize(), arriving.try_normalize()) else {
-        return normal;
-    };
-    if a.dot(b) < 0.0 && a.cross(b).length() < REVERSAL_SINE {
+    if leaving == DVec3::ZERO || arriving == DVec3::ZERO {
         return normal;
     }
-    DQuat::from_rotation_arc(a, b) * normal
+    let (k, c) = (leaving.cross(arriving), leaving.dot(arriving));
+    if c < 0.0 && k.length_squared() < REVERSAL_SINE * REVERSAL_SINE {
+        return normal;
+    }
+    normal * c + k.cross(normal) + k * (k.dot(normal) / (1.0 + c))
 }
 
 /// `normal` carried along step `s` ([`transport`]), and how far it agrees with the raw normal
@@ -63,32 +67,56 @@ fn carry(normal: DVec3, s: &Step, raw: &[Option<RawNormal>]) -> (DVec3, f64) {
 /// to decide its sign (|carried · raw|, in [0, 1]; 1 for a node without a raw normal, which
 /// takes the carried normal and decides nothing) as the bits of that non-negative float (which
 /// order as the numbers do), the node (among equals the lower first, so the result does not
-/// depend on the heap's internals), and the index of the carried normal in a side list.
-type Candidate = (u64, Reverse<usize>, usize);
+/// depend on the heap's internals), and what it is reached with (packed as [`KEEP`] says).
+type Candidate = (u64, Reverse<u32>, u32);
+
+/// What a node is reached with, packed into a heap [`Candidate`]: between two nodes with raw
+/// normals only whether the far one is to be flipped ([`KEEP`], [`FLIP`]); where either has
+/// none, the carried normal itself, by its index in a side list (`CARRIED + index`).
+const KEEP: u32 = 0;
+/// See [`KEEP`].
+const FLIP: u32 = 1;
+/// See [`KEEP`].
+const CARRIED: u32 = 2;
 
 /// Orient the raw normals consistently over each connected part of the graph `steps` (per
-/// node, its edges): each part starts at its most confident normal, taken as it is, and grows
-/// by the candidate edge whose far node's raw normal agrees best with the normal carried to it
-/// ([`transport`]); that node's normal is flipped when it points against the carried one.
-/// Nodes without a raw normal (all tangents parallel) take the carried normal. Returns one
-/// unit normal per node (zero for nodes without edges).
-pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>) -> Vec<DVec3> {
+/// node, its edges, each made into a [`Step`] by `step`): each part starts at its most
+/// confident normal, taken as it is, and grows by the candidate edge whose far node's raw
+/// normal agrees best with the normal carried to it ([`transport`]); that node's normal is
+/// flipped when it points against the carried one. Nodes without a raw normal (all tangents
+/// parallel) take the carried normal. Returns one unit normal per node (zero for nodes
+/// without edges).
+pub(crate) fn orient_normals<T: Copy>(
+    raw: &[Option<RawNormal>],
+    steps: &Adjacency<T>,
+    step: impl Fn(T) -> Step,
+) -> Vec<DVec3> {
     let n = raw.len();
-    // The raw normal of every step's node carried along it, and how far it agrees with the
-    // far node's raw normal: worked out once, in parallel. A node's oriented normal is its raw
-    // normal or its opposite, and carrying is linear (exactly so in floating point: negation
-    // only flips signs), so what it carries is this or its opposite, and the agreement
-    // |carried · raw| is this one's.
-    let carried_raw: Adjacency<Option<(DVec3, f64)>> =
-        steps.par_map_rows(|u, s| raw[u].map(|r| carry(r.normal, &s, raw)));
+    // Between two nodes with raw normals: the raw normal carried along the step, against the
+    // far node's raw normal (worked out once). A node's oriented normal is its raw normal or
+    // its opposite, and carrying is linear (exactly so in floating point: negation only flips
+    // signs), so what it carries is that or its opposite: the agreement is this figure's size
+    // and the far node is flipped when its sign differs from the near node's flip. NaN where
+    // either node has no raw normal (carried as the search reaches it).
+    let signed: Adjacency<f64> = steps.map_rows(|u, x| {
+        let s = step(x);
+        match (raw[u], raw[s.to]) {
+            (Some(a), Some(b)) => b.normal.dot(transport(a.normal, s.leaving, s.arriving)),
+            _ => f64::NAN,
+        }
+    });
     let mut out = vec![DVec3::ZERO; n];
     let mut seen = vec![false; n];
-    let mut order: Vec<usize> = (0..n).filter(|&v| !steps.row(v).is_empty()).collect();
-    order.sort_by(|&a, &b| {
-        let ca = raw[a].map_or(0.0, |r| r.confidence);
-        let cb = raw[b].map_or(0.0, |r| r.confidence);
-        cb.total_cmp(&ca).then(a.cmp(&b))
-    });
+    // Parts start at their most confident node: the nodes in order of confidence, highest
+    // first, lower index among equals.
+    let mut order: Vec<(u64, u32)> = (0..n)
+        .filter(|&v| !steps.row(v).is_empty())
+        .map(|v| {
+            let c = raw[v].map_or(0.0, |r| r.confidence);
+            (c.to_bits(), v as u32)
+        })
+        .collect();
+    order.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
     let mut heap: BinaryHeap<Candidate> = BinaryHeap::new();
     let mut carried: Vec<DVec3> = Vec::new();
     // `normal` is `u`'s oriented normal: its raw normal (`flipped` false), the opposite
@@ -99,35 +127,44 @@ pub(crate) fn orient_normals(raw: &[Option<RawNormal>], steps: &Adjacency<Step>)
                       seen: &[bool],
                       heap: &mut BinaryHeap<Candidate>,
                       carried: &mut Vec<DVec3>| {
-        for (s, fixed) in steps.row(u).iter().zip(carried_raw.row(u)) {
+        for (&x, &sign) in steps.row(u).iter().zip(signed.row(u)) {
+            let s = step(x);
             if seen[s.to] {
                 continue;
             }
-            let (c, agreement) = match *fixed {
-                Some((c, agreement)) => (if flipped { -c } else { c }, agreement),
-                None => carry(normal, s, raw),
+            let (agreement, reached) = if sign.is_nan() {
+                let (c, agreement) = carry(normal, &s, raw);
+                carried.push(c);
+                (agreement, CARRIED + (carried.len() - 1) as u32)
+            } else {
+                let flip = (sign < 0.0) != flipped;
+                (sign.abs(), if flip { FLIP } else { KEEP })
             };
-            heap.push((agreement.to_bits(), Reverse(s.to), carried.len()));
-            carried.push(c);
+            heap.push((agreement.to_bits(), Reverse(s.to as u32), reached));
         }
     };
-    for start in order {
+    for (_, start) in order {
+        let start = start as usize;
         if seen[start] {
             continue;
         }
         seen[start] = true;
         out[start] = raw[start].map_or(DVec3::Z, |r| r.normal);
         push_steps(start, out[start], false, &seen, &mut heap, &mut carried);
-        while let Some((_, Reverse(v), k)) = heap.pop() {
+        while let Some((_, Reverse(v), reached)) = heap.pop() {
+            let v = v as usize;
             if seen[v] {
                 continue;
             }
             seen[v] = true;
-            let c = carried[k];
-            let (normal, flipped) = match raw[v] {
-                Some(RawNormal { normal, .. }) if normal.dot(c) < 0.0 => (-normal, true),
-                Some(RawNormal { normal, .. }) => (normal, false),
-                None => (c.normalize_or_zero(), false),
+            let (normal, flipped) = match (raw[v], reached) {
+                (Some(r), FLIP) => (-r.normal, true),
+                (Some(r), KEEP) => (r.normal, false),
+                (Some(r), k) if r.normal.dot(carried[(k - CARRIED) as usize]) < 0.0 => {
+                    (-r.normal, true)
+                }
+                (Some(r), _) => (r.normal, false),
+                (None, k) => (carried[(k - CARRIED) as usize].normalize_or_zero(), false),
             };
             out[v] = normal;
             push_steps(v, normal, flipped, &seen, &mut heap, &mut carried);
@@ -188,7 +225,7 @@ mod tests {
         );
         let mut normals = vec![raw(DVec3::Z), raw(-outward)];
         normals[1].as_mut().expect("a normal").confidence = 0.5;
-        let out = orient_normals(&normals, &steps);
+        let out = orient_normals(&normals, &steps, |s| s);
         assert!(
             (out[0] - DVec3::Z).length() < 1e-12,
             "start kept: {}",
