@@ -50,7 +50,14 @@ impl BezierDecomposition {
     /// C(t) as [`BezierDecomposition::derivs`] gives it.
     #[inline]
     pub(crate) fn point(&self, t: f64) -> DVec3 {
-        self.derivs(t).point
+        self.pieces[self.piece_at(t, false)].point_at(t)
+    }
+
+    /// C(t) and C′(t) on piece `k` as [`BezierDecomposition::derivs_in`] gives them, bit for
+    /// bit, without C″.
+    #[inline]
+    pub(crate) fn point_tangent_in(&self, k: usize, t: f64) -> (DVec3, DVec3) {
+        self.pieces[k].point_tangent_at(t)
     }
 
     /// C(t) and C′(t) (t clamped into the domain; at a knot, of the piece after it) by

@@ -76,6 +76,13 @@ fn casteljau_down_to(work: &mut [DVec4], n: usize, stop: usize, u: f64, blend: B
     }
 }
 
+/// The point at `u` of the quadratic Bézier `q0 q1 q2` (homogeneous), in Bernstein form: the
+/// last step of [`casteljau_derivs`].
+#[inline]
+fn quadratic_point(q0: DVec4, q1: DVec4, q2: DVec4, u: f64) -> DVec4 {
+    q0 * ((1.0 - u) * (1.0 - u)) + q1 * (2.0 * u * (1.0 - u)) + q2 * (u * u)
+}
+
 /// Homogeneous point, first and second derivative (with respect to the local parameter
 /// `u ∈ [0, 1]`) of a rational Bézier piece whose `n` control points fill `work[..n]`, by de
 /// Casteljau down to three points (the last step blended as a quadratic).
@@ -86,7 +93,7 @@ fn casteljau_derivs(work: &mut [DVec4], n: usize, u: f64) -> [DVec4; 3] {
     casteljau_down_to(work, n, stop, u, Blend::Lerp);
     if stop == 3 {
         let (q0, q1, q2) = (work[0], work[1], work[2]);
-        let h = q0 * ((1.0 - u) * (1.0 - u)) + q1 * (2.0 * u * (1.0 - u)) + q2 * (u * u);
+        let h = quadratic_point(q0, q1, q2, u);
         let d1 = ((q1 - q0) * (1.0 - u) + (q2 - q1) * u) * p;
         let d2 = (q2 - q1 * 2.0 + q0) * (p * (p - 1.0));
         [h, d1, d2]
@@ -278,6 +285,48 @@ impl BezierPiece {
         let len = self.t1 - self.t0;
         let [h, d1, d2] = self.homogeneous_derivs(self.local(t));
         cartesian([h, d1 * (1.0 / len), d2 * (1.0 / (len * len))])
+    }
+
+    /// The point and first derivative of [`BezierPiece::derivs_at`], bit for bit, without
+    /// working out the second derivative.
+    #[inline]
+    pub(crate) fn point_tangent_at(&self, t: f64) -> (DVec3, DVec3) {
+        let len = self.t1 - self.t0;
+        let u = self.local(t);
+        let n = self.n;
+        let [h, d1] = self.with_work(|work| {
+            let p = (n - 1) as f64;
+            let stop = n.min(3);
+            casteljau_down_to(work, n, stop, u, Blend::Lerp);
+            if stop == 3 {
+                let (q0, q1, q2) = (work[0], work[1], work[2]);
+                [
+                    quadratic_point(q0, q1, q2, u),
+                    ((q1 - q0) * (1.0 - u) + (q2 - q1) * u) * p,
+                ]
+            } else {
+                let (q0, q1) = (work[0], work[1]);
+                [q0.lerp(q1, u), q1 - q0]
+            }
+        });
+        cartesian_d1(h, d1 * (1.0 / len))
+    }
+
+    /// The point of [`BezierPiece::derivs_at`], bit for bit, without the derivatives.
+    #[inline]
+    pub(crate) fn point_at(&self, t: f64) -> DVec3 {
+        let u = self.local(t);
+        let n = self.n;
+        let h = self.with_work(|work| {
+            let stop = n.min(3);
+            casteljau_down_to(work, n, stop, u, Blend::Lerp);
+            if stop == 3 {
+                quadratic_point(work[0], work[1], work[2], u)
+            } else {
+                work[0].lerp(work[1], u)
+            }
+        });
+        h.truncate() / h.w
     }
 
     /// Point and first derivative at the curve parameter `t` (clamped into the piece), with

@@ -36,11 +36,20 @@ pub(crate) fn leaving(brep: &Brep, dirs: &[DVec3], h: HalfEdgeId) -> DVec3 {
     dirs[h.index()]
 }
 
-/// Angle (radians) by which a loop turns at the vertex between `h_in` and `h_out`.
-pub(crate) fn turn_angle(brep: &Brep, dirs: &[DVec3], h_in: HalfEdgeId, h_out: HalfEdgeId) -> f64 {
+/// True when a loop turns by [`CORNER_ANGLE_DEGREES`] or more at the vertex between `h_in`
+/// and `h_out`: the cosine of the turn, from the unit leaving directions, against the cosine
+/// of the limit (no arc cosine per vertex). A missing (zero) direction makes no corner.
+pub(crate) fn turns_at_corner(
+    brep: &Brep,
+    dirs: &[DVec3],
+    h_in: HalfEdgeId,
+    h_out: HalfEdgeId,
+    cos_limit: f64,
+) -> bool {
     let arriving = -leaving(brep, dirs, brep.half_edge(h_in).twin);
     let out = leaving(brep, dirs, h_out);
-    arriving.angle_between(out)
+    let cos = arriving.dot(out) / (arriving.length_squared() * out.length_squared()).sqrt();
+    cos <= cos_limit
 }
 
 /// Corners and sides of a loop: a vertex is a corner when the boundary turns there by at least
@@ -55,12 +64,18 @@ pub(crate) fn corners_and_sides(
     corner: &mut Vec<bool>,
 ) -> (usize, SmallVec<[FaceSide; 4]>) {
     let n = half_edges.len();
-    let limit = CORNER_ANGLE_DEGREES.to_radians();
+    let cos_limit = CORNER_ANGLE_DEGREES.to_radians().cos();
     // corner[i]: the vertex where half_edges[i] starts is a corner.
     corner.clear();
-    corner.extend(
-        (0..n).map(|i| turn_angle(brep, dirs, half_edges[(i + n - 1) % n], half_edges[i]) >= limit),
-    );
+    corner.extend((0..n).map(|i| {
+        turns_at_corner(
+            brep,
+            dirs,
+            half_edges[(i + n - 1) % n],
+            half_edges[i],
+            cos_limit,
+        )
+    }));
     let count = corner.iter().filter(|&&c| c).count();
     let start = corner.iter().position(|&c| c).unwrap_or(0);
     let mut sides: SmallVec<[FaceSide; 4]> = SmallVec::with_capacity(count.max(1));

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use crate::curve::{BezierDecomposition, PointDerivs};
+use crate::curve::BezierDecomposition;
 
 /// Below this sine of the angle between two tangents they are taken as parallel, so they do
 /// not define a plane (about 0.06°).
@@ -30,7 +30,7 @@ pub(crate) fn leaving_direction(
     cache: &mut EvalCache,
 ) -> DVec3 {
     let forward = t_to > t_from;
-    let PointDerivs { point: p0, d1, .. } = cache.eval(curve, t_from, forward);
+    let (p0, d1) = cache.eval(curve, t_from, forward);
     let d = if forward { d1 } else { -d1 };
     let step = (t_to - t_from).abs();
     if d.length() * step > VANISHING_DERIVATIVE * (1.0 + p0.length()) {
@@ -47,7 +47,7 @@ pub(crate) fn leaving_direction(
 pub(crate) struct EvalCache {
     curve: usize,
     key: Option<(u64, usize)>,
-    value: PointDerivs,
+    value: (DVec3, DVec3),
 }
 
 impl EvalCache {
@@ -59,10 +59,10 @@ impl EvalCache {
         }
     }
 
-    fn eval(&mut self, curve: &BezierDecomposition, t: f64, after: bool) -> PointDerivs {
+    fn eval(&mut self, curve: &BezierDecomposition, t: f64, after: bool) -> (DVec3, DVec3) {
         let key = (t.to_bits(), curve.piece_at(t, after));
         if self.key != Some(key) {
-            self.value = curve.derivs_in(key.1, t);
+            self.value = curve.point_tangent_in(key.1, t);
             self.key = Some(key);
         }
         self.value
