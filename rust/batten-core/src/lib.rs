@@ -54,8 +54,8 @@ pub use form::{
 pub use form::{parametric_moves, transform, transform_to};
 pub use hull::{
     build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
-    LiveHull, Rebuild, Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES, KNUCKLE_EDGE_SAMPLES,
-    KNUCKLE_POINT_ANGLE_DEGREES,
+    LiveHull, Rebuild, VertexCurvature, Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES,
+    KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES,
 };
 pub use hydro::{
     default_datums, float_to, hydrostatics, immersed_section_area, is_port_half, level_draft,
@@ -70,7 +70,8 @@ pub use network::{
 pub use patch::{
     gram_schmidt_cross_tangent, tessellate_patches, Domain, EdgeNormal, FaceBoundary, Patch,
     PatchError, PatchKind, PatchOptions, PatchWarning, RibbonNode, Side, SideParam, SideRibbon,
-    SideSegment, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES, MIN_CROSSING_ANGLE_DEGREES,
+    SideSegment, SurfaceCurvature, SurfaceMesh, MAX_SIDES, MIN_CORNER_ANGLE_DEGREES,
+    MIN_CROSSING_ANGLE_DEGREES,
 };
 pub use sections::{
     knuckle_lines, KnuckleLine, SectionModel, SectionPlane, SectionPolyline, DEFAULT_CUT_TOLERANCE,

@@ -22,6 +22,7 @@
 //! `build` → `ribbons` → `edges`, and `warning`, `patched` at the bottom.
 
 mod build;
+mod curvature;
 mod edges;
 mod folds;
 mod holes;
@@ -39,6 +40,7 @@ use crate::network::Network;
 use crate::patch::{Patch, SurfaceMesh};
 use crate::tolerance::Tolerance;
 
+pub use curvature::VertexCurvature;
 pub use folds::{BOX_SLACK, FOLD_ANGLE_DEGREES};
 // The CAD export fits each shared edge once from the patches' layouts.
 pub(crate) use edges::{edge_curve, snap_to_knot};

@@ -22,6 +22,7 @@
 mod boundary;
 mod charrot_gregory;
 mod corner;
+mod curvature;
 mod domain;
 mod error;
 mod face_patch;
@@ -30,6 +31,7 @@ mod ribbon;
 mod tessellate;
 
 pub use boundary::{FaceBoundary, Side, SideParam, SideSegment};
+pub use curvature::SurfaceCurvature;
 pub use domain::{Domain, MAX_SIDES};
 pub use error::{PatchError, PatchWarning};
 pub use face_patch::{Patch, PatchKind, PatchOptions};

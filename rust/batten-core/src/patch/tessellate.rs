@@ -172,6 +172,41 @@ impl Patch {
         }
     }
 
+    /// The domain points of the inside of a face meshed on `k` rings ([`Interior::Rings`]), in
+    /// the order of [`Patch::face_mesh`]'s vertices: ring 1 to ring `k − 1` (ring `r` scaled
+    /// by `1 − r/k` about the centre, `k − r` intervals per side), then the centre.
+    fn ring_domain(&self, k: usize) -> Vec<DVec2> {
+        let n = self.sides();
+        let centre = self.domain().centre_v();
+        let mut out = Vec::with_capacity(Interior::Rings { k }.vertices(n));
+        for rr in 1..k {
+            let scale = 1.0 - rr as f64 / k as f64;
+            let m = k - rr;
+            for i in 0..n {
+                let a = centre + (self.domain().vertex(i) - centre) * scale;
+                let c = centre + (self.domain().vertex(i + 1) - centre) * scale;
+                out.extend((0..m).map(|j| a + (c - a) * (j as f64 / m as f64)));
+            }
+        }
+        out.push(centre);
+        out
+    }
+
+    /// The domain point of every vertex of [`Patch::face_mesh`] at resolution `r`, in its
+    /// vertex order: where the surface point of each vertex was evaluated (for figures taken
+    /// at the vertices, such as the curvature).
+    pub(crate) fn mesh_domain(&self, r: usize) -> Vec<DVec2> {
+        let ring = self.boundary_ring(r);
+        let counts: Vec<usize> = ring.starts.windows(2).map(|w| w[1] - w[0]).collect();
+        let inside = match Interior::of(&counts) {
+            Interior::Grid { nu, nv } => grid_domain(&ring.domain, nu, nv),
+            Interior::Rings { k } => self.ring_domain(k),
+        };
+        let mut out = ring.domain;
+        out.extend(inside);
+        out
+    }
+
     /// This patch's own mesh at resolution `r`, before welding ([`weld_face_meshes`]).
     pub(crate) fn face_mesh(&self, r: usize) -> FaceMesh {
         let n = self.sides();
@@ -205,8 +240,6 @@ impl Patch {
                     bidx(a, c)
                         .map_or_else(|| (b + (c - 1) * (nu - 1) + (a - 1)) as u32, |q| q as u32)
                 };
-                let bd = |a: usize, c: usize| dom[bidx(a, c).expect("on the boundary")];
-                let (p00, p10, p11, p01) = (bd(0, 0), bd(nu, 0), bd(nu, nv), bd(0, nv));
                 positions.reserve((nu - 1) * (nv - 1));
                 // Sides of one segment each sample the square evenly, so the inside is the
                 // tensor grid of those parameters (what the blend below gives, up to
@@ -215,21 +248,8 @@ impl Patch {
                 let grid = |n: usize| (1..n).map(|k| k as f64 / n as f64).collect::<Vec<_>>();
                 let gridded = even && self.eval_grid(&grid(nu), &grid(nv), &mut positions);
                 if !gridded {
-                    for c in 1..nv {
-                        let v = c as f64 / nv as f64;
-                        for a in 1..nu {
-                            let u = a as f64 / nu as f64;
-                            let x = bd(a, 0) * (1.0 - v)
-                                + bd(a, nv) * v
-                                + bd(0, c) * (1.0 - u)
-                                + bd(nu, c) * u
-                                - (p00 * ((1.0 - u) * (1.0 - v))
-                                    + p10 * (u * (1.0 - v))
-                                    + p11 * (u * v)
-                                    + p01 * ((1.0 - u) * v));
-                            positions.push(self.eval_v(x));
-                        }
-                    }
+                    let inside = grid_domain(&dom, nu, nv);
+                    positions.extend(inside.into_iter().map(|x| self.eval_v(x)));
                 }
                 for c in 0..nv {
                     for a in 0..nu {
@@ -239,25 +259,17 @@ impl Patch {
                 }
             }
             Interior::Rings { k } => {
-                let centre = self.domain().centre_v();
-                // Ring r ≥ 1: (k − r) intervals per side, starting index base[r].
+                // Ring r ≥ 1: (k − r) intervals per side, starting index base[r]; then the
+                // centre.
                 let mut base = vec![0usize; k];
                 let mut next = b;
                 for (rr, bs) in base.iter_mut().enumerate().skip(1) {
                     *bs = next;
-                    let scale = 1.0 - rr as f64 / k as f64;
-                    let m = k - rr;
-                    for i in 0..n {
-                        let a = centre + (self.domain().vertex(i) - centre) * scale;
-                        let c = centre + (self.domain().vertex(i + 1) - centre) * scale;
-                        for j in 0..m {
-                            positions.push(self.eval_v(a + (c - a) * (j as f64 / m as f64)));
-                        }
-                    }
-                    next += n * m;
+                    next += n * (k - rr);
                 }
                 let centre_idx = next as u32;
-                positions.push(self.eval_v(centre));
+                let inside = self.ring_domain(k);
+                positions.extend(inside.into_iter().map(|x| self.eval_v(x)));
                 let ring_side = |rr: usize, i: usize| -> Vec<RingPoint> {
                     let m = k - rr;
                     (0..=m)
@@ -300,6 +312,40 @@ impl Patch {
             sizes,
         }
     }
+}
+
+/// The inside domain points of a 4-sided face meshed as an `nu × nv` grid
+/// ([`Interior::Grid`]), row after row, from the domain points `dom` of its boundary ring
+/// (counter-clockwise from corner 0): the discrete Coons interpolation of the boundary.
+fn grid_domain(dom: &[DVec2], nu: usize, nv: usize) -> Vec<DVec2> {
+    let b = dom.len();
+    let bd = |a: usize, c: usize| -> DVec2 {
+        dom[if c == 0 {
+            a
+        } else if a == nu {
+            nu + c
+        } else if c == nv {
+            nu + nv + (nu - a)
+        } else {
+            (2 * nu + nv + (nv - c)) % b
+        }]
+    };
+    let (p00, p10, p11, p01) = (bd(0, 0), bd(nu, 0), bd(nu, nv), bd(0, nv));
+    let mut out = Vec::with_capacity((nu - 1) * (nv - 1));
+    for c in 1..nv {
+        let v = c as f64 / nv as f64;
+        for a in 1..nu {
+            let u = a as f64 / nu as f64;
+            out.push(
+                bd(a, 0) * (1.0 - v) + bd(a, nv) * v + bd(0, c) * (1.0 - u) + bd(nu, c) * u
+                    - (p00 * ((1.0 - u) * (1.0 - v))
+                        + p10 * (u * (1.0 - v))
+                        + p11 * (u * v)
+                        + p01 * ((1.0 - u) * v)),
+            );
+        }
+    }
+    out
 }
 
 /// Triangles from a polyline to one point (counter-clockwise when the point lies to the left).
