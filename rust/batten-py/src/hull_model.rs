@@ -285,6 +285,33 @@ impl HullModel {
         crate::sections::knuckle_lines(py, model)
     }
 
+    /// Gaussian (1/m²) and mean (1/m, positive where the hull bulges outwards) curvature at
+    /// every vertex of the surface's mesh, which was built at `resolution`, from the patches
+    /// themselves: `(gaussian (n,), mean (n,), defined (n,) bool)`; undefined vertices (no
+    /// regular patch there) hold 0. Raises `InvalidArgumentError` when the mesh was built at
+    /// another resolution. The GIL is released.
+    #[allow(clippy::type_complexity)]
+    fn vertex_curvature<'py>(
+        &self,
+        py: Python<'py>,
+        resolution: usize,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<bool>>,
+    )> {
+        let c = py.detach(|| {
+            guard("working out the curvature", || {
+                self.surface.vertex_curvature(resolution).map_err(core_err)
+            })
+        })?;
+        Ok((
+            PyArray1::from_vec(py, c.gaussian),
+            PyArray1::from_vec(py, c.mean),
+            PyArray1::from_vec(py, c.defined),
+        ))
+    }
+
     /// `((x, y, z) lowest, (x, y, z) highest)`: the box of the drawn surface.
     #[getter]
     fn bounds(&self, py: Python<'_>) -> ([f64; 3], [f64; 3]) {
