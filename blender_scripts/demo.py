@@ -231,6 +231,33 @@ def render_zebra(scene, collection, filepath: Path) -> None:
             lights.remove(light)
 
 
+def render_curvature(api, scene, collection, filepath: Path, kind: str) -> dict:
+    """Render the hull's curvature map (:func:`batten.api.show_curvature`, ``kind``): Workbench
+    with the mesh's colour attribute unlit (flat: the colours are the figures, not shading),
+    the curve tubes hidden. The map is
+    cleared and the scene settings and tubes restored after. Returns the map's figures."""
+    shading = scene.display.shading
+    saved = (shading.light, shading.color_type)
+    saved_render = scene.render.engine
+    info = api.show_curvature(collection, kind=kind)
+    tubes = [o for o in collection.objects if not o.hide_render]
+    try:
+        for obj in tubes:
+            obj.hide_render = True
+        scene.render.engine = "BLENDER_WORKBENCH"
+        shading.light = "FLAT"
+        shading.color_type = "VERTEX"
+        scene.render.filepath = str(filepath.resolve())
+        bpy.ops.render.render(write_still=True)
+    finally:
+        for obj in tubes:
+            obj.hide_render = False
+        shading.light, shading.color_type = saved
+        scene.render.engine = saved_render
+        api.clear_curvature(collection)
+    return info
+
+
 def run_example(api, path: Path, out: Path, engine: str, size: str, resolution: int, zebra: bool) -> dict:
     """An example network file: drawn as curves, built, reported, rendered, saved."""
     bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
@@ -442,6 +469,18 @@ def deliver(
             _log(f"{name}: rendered reflection lines {zpng} (resolution {zebra_resolution}, {view})")
         if zebra_resolution != resolution:
             api.build(coll, resolution=resolution)
+    aim_camera(scene, views[0], view_lo, view_hi)
+    report["curvature"] = {}
+    for kind in CURVATURE_KINDS:
+        cpng = out / f"{name}_{kind}_curvature.png"
+        t0 = time.perf_counter()
+        info = render_curvature(api, scene, coll, cpng, kind)
+        report["curvature"][kind] = info
+        _log(
+            f"{name}: rendered the {kind} curvature {cpng} (blue {-info['scale']:.3g}, red "
+            f"{info['scale']:.3g}; range {info['min']:.3g} to {info['max']:.3g}) in "
+            f"{time.perf_counter() - t0:.1f} s"
+        )
     blend = out / f"{name}.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(blend.resolve()))
     _log(f"{name}: saved {blend}")
@@ -449,6 +488,9 @@ def deliver(
     _log(f"{name}: report {out / (name + '.json')}")
     return report
 
+
+#: The curvature maps rendered for each hull (:func:`render_curvature`), from its first view.
+CURVATURE_KINDS = ("gaussian", "mean")
 
 #: The whole-hull renders: the camera's direction from the hull (three-quarter bow from port and
 #: above; the side from starboard, level, so the bow is to the right as in a profile) and whether

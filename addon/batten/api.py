@@ -70,7 +70,7 @@ from batten_native import (
 from batten_native import form_topology as _form_topology
 from batten_native import topology as _topology
 
-from . import cad_export, closed_mesh, form_stack, hull_models, sections_draw
+from . import cad_export, closed_mesh, curvature_map, form_stack, hull_models, sections_draw
 from .atomic_write import write_atomically
 from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors
 from .bridge import curves_in, curves_out, mesh_out, sections_in
@@ -113,6 +113,9 @@ __all__ = [
     "NoSurfaceError",
     "Curve",
     "curvature_comb",
+    "clear_curvature",
+    "show_curvature",
+    "surface_curvature",
     "curve_objects",
     "example_files",
     "DEFAULT_EXPORT_TOLERANCE",
@@ -846,6 +849,9 @@ def build(
             f"{name} surface", positions, corners, sizes, patch, obj=obj, mirror=mirror
         )
     obj[SURFACE_TAG] = name
+    if report.get("measured", True):
+        # A live drag's surface is mapped once it settles (:func:`settle`), not every frame.
+        _remap_curvature(source, obj)
     return BuildResult(obj, _build_report(report, object_of, mirror))
 
 
@@ -873,7 +879,118 @@ def settle(source, *, mirror: bool = True) -> dict | None:
         return None
     _arrays, report, _model = settled
     _curves, object_of = _read_source(source)
+    obj = _surface_object(_source_name(source))
+    if obj is not None:
+        _remap_curvature(source, obj)
     return _build_report(report, object_of, mirror)
+
+
+# --- Curvature ---------------------------------------------------------------------------------
+
+#: Custom property of a surface object showing a curvature map: its kind (``"gaussian"`` or
+#: ``"mean"``), kept so that a rebuild (and a live drag, once it settles) maps the new surface.
+CURVATURE_MAP_PROPERTY = "batten_curvature_map"
+#: Custom property holding the map's fixed scale (1/m² or 1/m), when one was asked for.
+CURVATURE_SCALE_PROPERTY = "batten_curvature_scale"
+
+
+def _built_surface(source):
+    """``(surface object, model)`` of the hull in ``source`` as last built, or NoSurfaceError
+    when it has no surface object or the object's mesh is not the kept surface's (the curves
+    moved since, or the mesh was edited)."""
+    name = _source_name(source)
+    obj = _surface_object(name)
+    if obj is None:
+        raise NoSurfaceError(f"'{name}' has no surface yet: build it first (batten.api.build)")
+    model = _hull_model(source, measured=False)
+    return obj, model
+
+
+def surface_curvature(source) -> dict:
+    """The Gaussian and mean curvature of the hull surface of ``source`` at every vertex of its
+    surface mesh, from the exact patches (do Carmo §3-3; not from the mesh): ``gaussian``
+    (1/m², positive on a dome such as the bilge turning into the bottom, negative on a saddle
+    such as the run into the skeg, zero where flat or developable), ``mean`` (1/m, positive
+    where the hull bulges outwards, negative where it is hollow), ``defined`` (bool; False at a
+    singular point of a patch, where both hold 0), each an array in the mesh's vertex order,
+    and ``positions`` (n, 3) of the vertices. A vertex on an edge between patches takes their
+    mean, so a curvature step across a G1 edge shows.
+
+    Raises NoSurfaceError when ``source`` has not been built (or its curves moved since and
+    it cannot be built)."""
+    obj, model = _built_surface(source)
+    name = _source_name(source)
+    resolution = hull_models.kept_resolution(name)
+    gaussian, mean, defined = model.vertex_curvature(resolution)
+    n = len(obj.data.vertices)
+    if len(gaussian) != n:
+        raise NoSurfaceError(
+            f"the mesh of '{obj.name}' ({n} vertices) is not the surface of '{name}' "
+            f"({len(gaussian)} vertices): build it again"
+        )
+    positions = np.empty(n * 3, dtype=np.float32)
+    obj.data.vertices.foreach_get("co", positions)
+    return {
+        "gaussian": gaussian,
+        "mean": mean,
+        "defined": defined,
+        "positions": positions.reshape(n, 3).astype(np.float64),
+    }
+
+
+def show_curvature(source, *, kind: str = "gaussian", scale: float | None = None) -> dict:
+    """Colour the surface mesh of ``source`` by its curvature (:func:`surface_curvature`):
+    ``kind`` ``"gaussian"`` or ``"mean"``, blue negative, white zero, red positive, full colour
+    at ± ``scale`` (1/m² or 1/m; default: the 95th percentile of the magnitudes on this hull).
+    Both curvatures are written as point attributes (``batten_gaussian_curvature``,
+    ``batten_mean_curvature``) and the colour as ``batten_curvature``, the mesh's active and
+    render colour (Solid mode: Attribute colour; a material: the Color Attribute node). The map
+    follows rebuilds: every build of the hull, and a live drag once it settles, maps the new
+    surface until :func:`clear_curvature`.
+
+    Returns ``{"kind", "scale", "min", "max", "defined"}`` (the range over defined vertices and
+    their count). Raises InvalidArgumentError for an unknown kind or a scale that is not a
+    positive number, NoSurfaceError as :func:`surface_curvature`."""
+    if kind not in curvature_map.KINDS:
+        raise InvalidArgumentError(f"kind must be one of {sorted(curvature_map.KINDS)}, not {kind!r}")
+    if scale is not None and not (np.isfinite(scale) and scale > 0.0):
+        raise InvalidArgumentError(f"scale must be a positive number, not {scale!r}")
+    c = surface_curvature(source)
+    values, defined = c[kind], c["defined"]
+    used = scale if scale is not None else curvature_map.default_scale(values, defined)
+    obj = _surface_object(_source_name(source))
+    curvature_map.write(obj.data, c["gaussian"], c["mean"], defined, kind, used)
+    obj[CURVATURE_MAP_PROPERTY] = kind
+    if scale is None:
+        obj.pop(CURVATURE_SCALE_PROPERTY, None)
+    else:
+        obj[CURVATURE_SCALE_PROPERTY] = float(scale)
+    on = values[defined]
+    return {
+        "kind": kind,
+        "scale": float(used),
+        "min": float(on.min()) if len(on) else 0.0,
+        "max": float(on.max()) if len(on) else 0.0,
+        "defined": int(defined.sum()),
+    }
+
+
+def clear_curvature(source) -> bool:
+    """Remove the curvature map of ``source``'s surface (its attributes, and the setting that
+    maps rebuilds); True when there was one."""
+    obj = _surface_object(_source_name(source))
+    if obj is None:
+        return False
+    had = obj.pop(CURVATURE_MAP_PROPERTY, None) is not None
+    obj.pop(CURVATURE_SCALE_PROPERTY, None)
+    return curvature_map.clear(obj.data) or had
+
+
+def _remap_curvature(source, obj) -> None:
+    """Map the new surface in ``obj`` as the last :func:`show_curvature` asked, if it did."""
+    kind = obj.get(CURVATURE_MAP_PROPERTY)
+    if kind in curvature_map.KINDS:
+        show_curvature(source, kind=kind, scale=obj.get(CURVATURE_SCALE_PROPERTY))
 
 
 # --- Hydrostatics -------------------------------------------------------------------------------

@@ -99,6 +99,12 @@ def kept_tolerance(name: str) -> float:
     return kept.tolerance if kept else DEFAULT_TOLERANCE
 
 
+def kept_resolution(name: str) -> int:
+    """The resolution ``name``'s kept surface was meshed at (the default if none)."""
+    kept = _kept.get(name)
+    return kept.resolution if kept else DEFAULT_RESOLUTION
+
+
 def forget_live(name: str) -> None:
     """Drop ``name``'s live hull (Live switched off), its surface measured first when the last
     live rebuild left it unmeasured, so the kept surface stays whole for hydrostatics, sections

@@ -290,6 +290,59 @@ class BATTEN_OT_export_lines_plan(ModalJob, _LinesPlanOptions, bpy.types.Operato
         return {"FINISHED"}
 
 
+class BATTEN_OT_show_curvature(BattenOperator, bpy.types.Operator):
+    """Colour the hull surface by its Gaussian or mean curvature (blue negative, white zero, red
+    positive), shown in Solid mode with Attribute colour; the map follows rebuilds"""
+
+    bl_idname = "batten.show_curvature"
+    bl_label = "Curvature Map"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def run(self, context):
+        settings = context.scene.batten
+        scale = settings.curvature_scale if settings.curvature_scale > 0.0 else None
+        info = api.show_curvature(settings.source, kind=settings.curvature_kind, scale=scale)
+        # Show the colours where the user looks: Solid shading coloured by the attribute.
+        for area in context.screen.areas if context.screen else ():
+            if area.type == "VIEW_3D":
+                shading = area.spaces.active.shading
+                if shading.type == "WIREFRAME":
+                    shading.type = "SOLID"
+                if shading.type == "SOLID":
+                    shading.color_type = "VERTEX"
+        unit = "1/m²" if info["kind"] == "gaussian" else "1/m"
+        self.report(
+            {"INFO"},
+            f"{info['kind'].capitalize()} curvature: full colour at ±{info['scale']:.3g} {unit}; "
+            f"range {info['min']:.3g} to {info['max']:.3g} {unit}",
+        )
+        return {"FINISHED"}
+
+
+class BATTEN_OT_clear_curvature(BattenOperator, bpy.types.Operator):
+    """Remove the curvature map from the hull surface"""
+
+    bl_idname = "batten.clear_curvature"
+    bl_label = "Clear Curvature Map"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def run(self, context):
+        if not api.clear_curvature(context.scene.batten.source):
+            self.report({"INFO"}, "The surface has no curvature map")
+        for area in context.screen.areas if context.screen else ():
+            if area.type == "VIEW_3D" and area.spaces.active.shading.color_type == "VERTEX":
+                area.spaces.active.shading.color_type = "MATERIAL"
+        return {"FINISHED"}
+
+
 def _menu_import(self, _context):
     self.layout.operator(BATTEN_OT_import_network.bl_idname, text="batten Network (.json)")
     self.layout.operator(BATTEN_OT_import_sections.bl_idname, text="batten Sections / Offsets (.json, .csv)")
@@ -309,6 +362,8 @@ _CLASSES = (
     BATTEN_OT_import_network,
     BATTEN_OT_fair_curves,
     BATTEN_OT_fair_surface,
+    BATTEN_OT_show_curvature,
+    BATTEN_OT_clear_curvature,
     BATTEN_OT_import_sections,
     BATTEN_OT_lines_plan,
     BATTEN_OT_export_lines_plan,

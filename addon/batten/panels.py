@@ -50,6 +50,14 @@ class VIEW3D_PT_batten(bpy.types.Panel):
         row = box.row(align=True)
         row.prop(settings, "show_combs", toggle=True)
         row.prop(settings, "comb_scale", text="Scale")
+        box = layout.box()
+        box.label(text="Curvature", icon="COLORSET_01_VEC")
+        row = box.row(align=True)
+        row.prop(settings, "curvature_kind", expand=True)
+        box.prop(settings, "curvature_scale")
+        row = box.row(align=True)
+        row.operator("batten.show_curvature", icon="SHADING_SOLID")
+        row.operator("batten.clear_curvature", text="", icon="X")
         obj = context.active_object
         if obj is not None and obj.type == "CURVE":
             box = layout.box()

@@ -134,6 +134,32 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         precision=4,
         unit="LENGTH",
     )
+    curvature_kind: EnumProperty(
+        name="Curvature",
+        description="Which curvature the map shows",
+        items=[
+            (
+                "gaussian",
+                "Gaussian",
+                "K = κ1·κ2 (1/m²): red where the surface is curved the same way "
+                "in every direction, blue on a saddle, white where flat or developable",
+            ),
+            (
+                "mean",
+                "Mean",
+                "H = (κ1 + κ2)/2 (1/m): red where the hull bulges outwards, blue where it is hollow",
+            ),
+        ],
+        default="gaussian",
+    )
+    curvature_scale: FloatProperty(
+        name="Scale",
+        description="Curvature shown in full colour (1/m² or 1/m); 0: the 95th percentile of the "
+        "hull's own values",
+        default=0.0,
+        min=0.0,
+        precision=4,
+    )
     surface_fair_tolerance: FloatProperty(
         name="Surface tolerance",
         description="Largest distance a point of a section may move when the hull is faired through its "
