@@ -231,7 +231,7 @@ def render_zebra(scene, collection, filepath: Path) -> None:
             lights.remove(light)
 
 
-def render_curvature(api, scene, collection, filepath: Path, kind: str) -> dict:
+def render_curvature(api, scene, collection, filepath: Path, kind: str, scale: float | None = None) -> dict:
     """Render the hull's curvature map (:func:`batten.api.show_curvature`, ``kind``): Workbench
     with the mesh's colour attribute unlit (flat: the colours are the figures, not shading),
     the curve tubes hidden. The map is
@@ -239,7 +239,7 @@ def render_curvature(api, scene, collection, filepath: Path, kind: str) -> dict:
     shading = scene.display.shading
     saved = (shading.light, shading.color_type)
     saved_render = scene.render.engine
-    info = api.show_curvature(collection, kind=kind)
+    info = api.show_curvature(collection, kind=kind, scale=scale)
     tubes = [o for o in collection.objects if not o.hide_render]
     try:
         for obj in tubes:
@@ -638,6 +638,60 @@ def render_hull(api, coll, surface, out: Path, draft: float) -> None:
             bpy.data.objects.remove(dwl)
 
 
+#: The surface-fairing showcase (seed 003 §5, as tests/test_fair_surface.py): the Wigley lines
+#: plan with noise of this share of the tolerance on every station and waterline, faired.
+FAIRING_TOLERANCE = 0.01
+FAIRING_NOISE = 0.3
+FAIRING_SEED = 3
+
+
+def fairing_showcase(api, examples: Path, out: Path, engine: str, size: str) -> None:
+    """Surface fairing before and after, as images: the Wigley lines plan made noisy (30 % of
+    a 10 mm tolerance), its Gaussian-curvature map (``fairing_noisy_gaussian_curvature.png``), then
+    faired (:func:`batten.api.fair_surface`) and mapped again at the same scale
+    (``fairing_faired_gaussian_curvature.png``), beside the clean hull's
+    (``fairing_clean_gaussian_curvature.png``). An error is logged."""
+    import batten_native
+    from batten.bridge import curves_out
+
+    path = examples / "wigley_lines.json"
+    if not path.is_file():
+        return
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    try:
+        coll = api.load_network(path)
+        coll.name = "fairing"
+        scene = bpy.context.scene
+        result = api.build(coll)
+        _stage(coll, engine, size, result.object, tube=EXAMPLE_TUBE)
+        lo, hi = _bounds(list(coll.objects) + [result.object])
+        aim_camera(scene, "model", lo, hi)
+        clean = render_curvature(api, scene, coll, out / "fairing_clean_gaussian_curvature.png", "gaussian")
+        scale = clean["scale"]
+        curves = api.read_curves(coll)
+        noisy = batten_native.section_noise(curves, FAIRING_NOISE * FAIRING_TOLERANCE, FAIRING_SEED)
+        objects = {o.name: o for o in api.curve_objects(coll)}
+        curves_out.replace_splines_of([(objects[c.name], [c]) for c in noisy])
+        api.build(coll)
+        render_curvature(api, scene, coll, out / "fairing_noisy_gaussian_curvature.png", "gaussian", scale)
+        t0 = time.perf_counter()
+        report = api.fair_surface(coll, tolerance=FAIRING_TOLERANCE)
+        t_fair = time.perf_counter() - t0
+        api.build(coll)
+        render_curvature(api, scene, coll, out / "fairing_faired_gaussian_curvature.png", "gaussian", scale)
+        before, after = report["before"], report["after"]
+        _log(
+            f"fairing: Wigley lines with {FAIRING_NOISE:.0%} of {FAIRING_TOLERANCE * 1e3:.0f} mm noise "
+            f"faired in {report['rounds']} round(s), {t_fair:.2f} s: curvature variation "
+            f"{before['curvature_variation']:.4g} -> {after['curvature_variation']:.4g} /m3, "
+            f"inflections {before['inflections']} -> {after['inflections']}; Gaussian-curvature "
+            f"maps (clean, noisy, faired; full colour at {scale:.3g} /m2) in "
+            f"{out}/fairing_*_gaussian_curvature.png"
+        )
+    except api.BattenError as e:
+        _log(f"fairing: {type(e).__name__}: {e}")
+
+
 def main() -> None:
     args = _args()
     batten = _import_batten()
@@ -651,6 +705,7 @@ def main() -> None:
         sys.exit(f"demo: no example networks in {args.examples}")
     for path in examples:
         run_example(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
+    fairing_showcase(api, args.examples, args.out, args.engine, args.size)
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:
         _log(f"no real ships in {args.ships} (the shared/hulls folder beside the checkout)")
