@@ -63,6 +63,9 @@ const FOOT_STEPS: usize = 30;
 /// A foot step shorter than this (domain units) has converged: far below what moves a point
 /// by 1e-12 m on a hull-sized face.
 const FOOT_CONVERGED: f64 = 1e-13;
+/// Foot steps shorter than this (domain units) that no longer halve are the noise of the
+/// finite-difference derivatives ([`Patch::derivatives`]: 1e-6 relative), not convergence.
+const FOOT_NOISE: f64 = 1e-9;
 /// A node whose curves lie farther apart than this fraction of the tolerance is re-attached.
 const REATTACH_FRACTION: f64 = 0.25;
 
@@ -472,26 +475,89 @@ fn mean_surface(f: &FaceSurfaces, x: DVec2) -> (DVec3, DVec3, DVec3) {
     ((a + b) * 0.5, (au + bu) * 0.5, (av + bv) * 0.5)
 }
 
-/// The foot of `p` on the mean surface: Gauss–Newton in the domain (clamped) from `x`.
-fn foot(f: &FaceSurfaces, p: DVec3, mut x: DVec2) -> (DVec2, f64) {
+/// The surfaces before and after at domain point `x` (inside the domain): the points of
+/// [`mean_surface`] without its derivatives.
+fn points_at(f: &FaceSurfaces, x: DVec2) -> (DVec3, DVec3) {
+    (f.before.eval(x.to_array()), f.after.eval(x.to_array()))
+}
+
+/// Step of the central differences for the mean surface's second derivatives (domain units):
+/// they only shape the Newton steps of [`foot`], not where it converges.
+const SECOND_DERIV_STEP: f64 = 1e-3;
+
+/// The second derivatives `(S_uu, S_uv, S_vv)` of the mean surface at `x` by central
+/// differences, or None where the stencil would leave the domain.
+fn mean_second_derivatives(f: &FaceSurfaces, x: DVec2) -> Option<(DVec3, DVec3, DVec3)> {
+    let h = SECOND_DERIV_STEP;
+    let domain = f.before.domain();
+    let corners = [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)];
+    if !corners
+        .iter()
+        .all(|&(a, b)| domain.contains((x + DVec2::new(a, b) * h).to_array()))
+    {
+        return None;
+    }
+    let s = |a: f64, b: f64| {
+        let y = (x + DVec2::new(a, b) * h).to_array();
+        (f.before.eval(y) + f.after.eval(y)) * 0.5
+    };
+    let centre = s(0.0, 0.0);
+    let suu = (s(1.0, 0.0) - centre * 2.0 + s(-1.0, 0.0)) / (h * h);
+    let svv = (s(0.0, 1.0) - centre * 2.0 + s(0.0, -1.0)) / (h * h);
+    let suv = (s(1.0, 1.0) - s(1.0, -1.0) - s(-1.0, 1.0) + s(-1.0, -1.0)) / (4.0 * h * h);
+    Some((suu, suv, svv))
+}
+
+/// The foot of `p` on the mean surface: the stationary point of `½|p − S(x)|²` in the domain
+/// (clamped) from `x`, by Newton's method with the second derivatives taken once at the start
+/// (a control point off a curved face makes Gauss–Newton converge only linearly, by the
+/// distance over the radius of curvature each step: some 25 steps to 1e-13 at the bilge);
+/// Gauss–Newton where that Hessian is not positive definite or cannot be taken. Returns the
+/// foot, its distance from `p`, and the surfaces before and after there ([`points_at`]).
+fn foot(f: &FaceSurfaces, p: DVec3, mut x: DVec2) -> (DVec2, f64, (DVec3, DVec3)) {
+    let second = mean_second_derivatives(f, x);
+    let mut last = f64::INFINITY;
     for _ in 0..FOOT_STEPS {
         let (s, du, dv) = mean_surface(f, x);
         let r = p - s;
-        let (a, b, c) = (du.dot(du), du.dot(dv), dv.dot(dv));
+        let (mut a, mut b, mut c) = (du.dot(du), du.dot(dv), dv.dot(dv));
+        if let Some((suu, suv, svv)) = second {
+            let (na, nb, nc) = (a - r.dot(suu), b - r.dot(suv), c - r.dot(svv));
+            if na > 0.0 && nc > 0.0 && na * nc - nb * nb > 0.0 {
+                (a, b, c) = (na, nb, nc);
+            }
+        }
         let den = a * c - b * b;
         if den <= 0.0 || !den.is_finite() {
             break;
         }
         let (g0, g1) = (du.dot(r), dv.dot(r));
-        let step = DVec2::new(c * g0 - b * g1, a * g1 - b * g0) / den;
-        let next = f.before.domain().clamp(x + step);
+        let mut step = DVec2::new(c * g0 - b * g1, a * g1 - b * g0) / den;
+        let domain = f.before.domain();
+        if !domain.contains((x + step).to_array()) {
+            // On a side with the step leading out: the (Gauss–)Newton step along the side
+            // instead, so the foot slides to the constrained minimum (the step clamped back
+            // onto the side moves along it by the step's share only, a few per cent per step).
+            if let Some(e) = domain.side_through(x) {
+                let along = a * e.x * e.x + 2.0 * b * e.x * e.y + c * e.y * e.y;
+                if along > 0.0 {
+                    step = e * ((e.x * g0 + e.y * g1) / along);
+                }
+            }
+        }
+        let next = domain.clamp(x + step);
         let moved = (next - x).length();
         x = next;
-        if moved <= FOOT_CONVERGED {
+        // Converged, or down to the noise of the difference derivatives (the steps no longer
+        // shrink: a point a metre off the face has its steps wander by 1e-10, far below what
+        // moves it measurably).
+        if moved <= FOOT_CONVERGED || (moved < FOOT_NOISE && moved > 0.5 * last) {
             break;
         }
+        last = moved;
     }
-    (x, mean_surface(f, x).0.distance(p))
+    let (a, b) = points_at(f, x);
+    (x, ((a + b) * 0.5).distance(p), (a, b))
 }
 
 /// The move of `p` by face `f` (§7.2.3): the change `S′(x) − S(x)` of the face's surface at
@@ -500,18 +566,19 @@ fn foot(f: &FaceSurfaces, p: DVec3, mut x: DVec2) -> (DVec2, f64) {
 /// the paper's to first order, and symmetric: the reverse change moves the point back.
 fn face_move(f: &FaceSurfaces, p: DVec3, keep: &[(DVec3, f64)]) -> (DVec3, f64) {
     let (mut x, _) = grid_nearest(f, p);
-    let delta_at = |x: DVec2| {
-        let d = f.after.eval(x.to_array()) - f.before.eval(x.to_array());
+    // The surface change at the points (before, after), along `keep`'s normals as given.
+    let change = |(before, after): (DVec3, DVec3)| {
+        let d = after - before;
         keep.iter()
             .fold(d, |d, &(n, shift)| d + n * (shift - n.dot(d)))
     };
-    let mut delta = delta_at(x);
+    let mut delta = change(points_at(f, x));
     let mut dist = 0.0;
     for _ in 0..MIDPOINT_STEPS {
-        let (xm, d) = foot(f, p + delta * 0.5, x);
+        let (xm, d, at) = foot(f, p + delta * 0.5, x);
         x = xm;
         dist = d;
-        let next = delta_at(x);
+        let next = change(at);
         let change = (next - delta).length();
         delta = next;
         if change <= MIDPOINT_CONVERGED {

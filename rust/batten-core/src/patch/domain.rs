@@ -107,6 +107,17 @@ impl Domain {
         (0..self.n).all(|i| self.distance(i, x) >= 0.0)
     }
 
+    /// The unit direction of the side `x` lies on (within 1e-12 of the unit domain), from its
+    /// vertex `i` to `i + 1`; None inside the domain or at a corner (on two sides).
+    pub(crate) fn side_through(&self, x: DVec2) -> Option<DVec2> {
+        let mut on = (0..self.n).filter(|&i| self.distance(i, x).abs() <= 1e-12);
+        let i = on.next()?;
+        if on.next().is_some() {
+            return None;
+        }
+        (self.vertex(i + 1) - self.vertex(i)).try_normalize()
+    }
+
     /// `x` if inside, else the nearest point of the polygon's boundary (NaN maps to the centre).
     pub(crate) fn clamp(&self, x: DVec2) -> DVec2 {
         if !x.is_finite() {
@@ -129,5 +140,25 @@ impl Domain {
             }
         }
         best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_side_through_a_point_is_found_on_one_side_only() {
+        let d = Domain::new(4);
+        let (a, b) = (d.vertex(0), d.vertex(1));
+        let mid = (a + b) * 0.5;
+        let e = d.side_through(mid).expect("on side 0");
+        assert!((e - (b - a).normalize()).length() < 1e-15, "{e}");
+        assert!(d.side_through(d.centre_v()).is_none(), "inside");
+        assert!(d.side_through(a).is_none(), "a corner is on two sides");
+        let five = Domain::new(5);
+        let (p, q) = (five.vertex(2), five.vertex(3));
+        let e = five.side_through(p + (q - p) * 0.3).expect("on side 2");
+        assert!((e - (q - p).normalize()).length() < 1e-12, "{e}");
     }
 }
