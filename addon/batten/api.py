@@ -143,6 +143,7 @@ __all__ = [
     "form_topology",
     "keep",
     "transform",
+    "transform_stack",
 ]
 
 
@@ -1778,6 +1779,21 @@ def transform(
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, description, resolution=resolution)
     return TransformResult(coll, report)
+
+
+def transform_stack(source) -> list[dict]:
+    """The transformation stack of ``source`` (an original or one of its copies, seed 002 §9):
+    the original first, then its copies in order, each ``{"collection", "index"`` (0 for the
+    original), ``"description"}`` (what the change was; the original's is ``"original"``)."""
+    original = form_stack.original_of(source)
+    return [{"collection": original, "index": 0, "description": "original"}] + [
+        {
+            "collection": c,
+            "index": int(c.get(form_stack.TRANSFORM_INDEX, 0)),
+            "description": str(c.get(form_stack.TRANSFORM_DESCRIPTION, "")),
+        }
+        for c in form_stack.stack(original)
+    ]
 
 
 def commit(result) -> bpy.types.Collection:

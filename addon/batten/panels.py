@@ -5,8 +5,9 @@ import textwrap
 
 import bpy
 
-from . import hydro_table
+from . import api, hydro_table
 from ._registry import register_classes, unregister_classes
+from .properties import FORM_PARAMETERS
 
 #: Characters per line of a hydrostatics error in the panel (the message names where a hole
 #: is, and would otherwise run off the sidebar).
@@ -183,6 +184,103 @@ class VIEW3D_PT_batten_hydrostatics(bpy.types.Panel):
         box.operator("batten.float_to")
 
 
+class VIEW3D_PT_batten_form(bpy.types.Panel):
+    """The hull's form topology (seed 002): its measured parameters, a parametric change into a
+    copy on the transformation stack, the stack, and commit / keep / abandon."""
+
+    bl_label = "Form"
+    bl_idname = "VIEW3D_PT_batten_form"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "batten"
+    bl_parent_id = VIEW3D_PT_batten.bl_idname
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.batten
+        source = settings.source
+        layout.operator("batten.measure_form", icon="DRIVER_DISTANCE")
+        _draw_form(layout, settings.last_form, source)
+        box = layout.box()
+        box.label(text="Change", icon="MOD_SIMPLEDEFORM")
+        row = box.row(align=True)
+        row.prop(settings, "form_parameter", text="")
+        row.prop(settings, "form_value", text="")
+        box.operator("batten.transform", icon="DUPLICATE")
+        try:
+            stack = api.transform_stack(source) if source is not None else []
+        except api.BattenError:
+            stack = []
+        if len(stack) > 1:
+            box = layout.box()
+            box.label(text="Stack", icon="LINENUMBERS_ON")
+            col = box.column(align=True)
+            for entry in stack:
+                coll = entry["collection"]
+                text = f"{entry['index']}: {entry['description']}" if entry["index"] else coll.name
+                icon = "RADIOBUT_ON" if coll == source else "RADIOBUT_OFF"
+                col.operator("batten.select_transform", text=text, icon=icon).collection = coll.name
+            row = box.row(align=True)
+            row.operator("batten.commit_transform", icon="CHECKMARK")
+            row.operator("batten.keep_transform", text="Keep", icon="DUPLICATE")
+            row.operator("batten.abandon_transforms", text="", icon="X")
+        _draw_change(layout, settings.last_transform)
+
+
+#: The other measured parameters the Form panel lists, with their labels (metres).
+FORM_ROWS = (
+    ("length", "Length"),
+    ("draft", "Draft"),
+    ("waterline_breadth", "Bwl"),
+    ("rise_of_floor", "Rise of floor"),
+)
+
+
+def _form_rows():
+    return [(key, label) for key, label, _ in FORM_PARAMETERS] + list(FORM_ROWS)
+
+
+def _metres(value) -> str:
+    return "—" if value is None else f"{value:.3f} m"
+
+
+def _draw_form(layout, text: str, source) -> None:
+    """The form parameters last measured for ``source`` (nothing when they were measured for
+    another hull)."""
+    if not text or source is None:
+        return
+    form = json.loads(text)
+    if form.get("source") != source.name:
+        return
+    p = form["parameters"]
+    col = layout.box().column(align=True)
+    for key, label in _form_rows():
+        split = col.split(factor=0.55, align=True)
+        split.label(text=label)
+        split.label(text=_metres(p.get(key)))
+    if p.get("no_pmb_reason"):
+        for i, line in enumerate(textwrap.wrap(f"No PMB: {p['no_pmb_reason']}", ERROR_LINE_CHARS)):
+            col.label(text=line, icon="INFO" if i == 0 else "BLANK1")
+
+
+def _draw_change(layout, text: str) -> None:
+    """The last transformation: each parameter before and after."""
+    if not text:
+        return
+    change = json.loads(text)
+    box = layout.box()
+    box.label(text=f"{change['copy']}: {change['description']}", icon="SORTSIZE")
+    col = box.column(align=True)
+    for key, label in _form_rows():
+        before, after = change["before"].get(key), change["after"].get(key)
+        if before is None and after is None:
+            continue
+        split = col.split(factor=0.4, align=True)
+        split.label(text=label)
+        split.label(text=f"{_metres(before)} → {_metres(after)}")
+
+
 def _draw_figures(layout, text: str) -> None:
     """The last hydrostatics as a table of figures with units, by group; or its error."""
     if not text:
@@ -204,7 +302,7 @@ def _draw_figures(layout, text: str) -> None:
             split.label(text=hydro_table.value_text(row, figures))
 
 
-_CLASSES = (VIEW3D_PT_batten, VIEW3D_PT_batten_hydrostatics)
+_CLASSES = (VIEW3D_PT_batten, VIEW3D_PT_batten_hydrostatics, VIEW3D_PT_batten_form)
 
 
 def register():

@@ -17,6 +17,17 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, Po
 
 from ._registry import register_classes, unregister_classes
 
+#: The form parameters the Form panel can set (seed 002 §7.2.5): key, label, description.
+FORM_PARAMETERS = (
+    ("breadth", "Breadth", "Largest breadth of the hull"),
+    ("depth", "Depth", "Keel to deck"),
+    ("pmb_length", "PMB length", "Length of the parallel middle body"),
+    ("pmb_position", "PMB position", "x of the centre of the parallel middle body"),
+    ("bilge_radius", "Bilge radius", "Radius of the bilge arc of the midship sections"),
+    ("entrance_length", "Entrance length", "From the forward end of the PMB to the stem"),
+    ("run_length", "Run length", "From the transom to the aft end of the PMB"),
+)
+
 #: Sea water, t/m³: the default density of :func:`batten.api.hydrostatics` (ITTC, 15 °C).
 SEA_WATER_DENSITY = 1.025
 #: Stations of the sectional area curve, and drafts of the curves of form, by default.
@@ -133,6 +144,33 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         max=1.0,
         precision=4,
         unit="LENGTH",
+    )
+    form_parameter: EnumProperty(
+        name="Parameter",
+        description="The form parameter to change (seed 002 §7.2.5)",
+        items=list(FORM_PARAMETERS),
+        default="breadth",
+    )
+    form_value: FloatProperty(
+        name="Value",
+        description="The value the parameter is to take",
+        default=10.0,
+        min=-1e5,
+        max=1e5,
+        precision=3,
+        unit="LENGTH",
+    )
+    last_form: StringProperty(
+        name="Last form",
+        description="The form parameters last measured (JSON), shown in the Form panel",
+        default="",
+        options={"HIDDEN"},
+    )
+    last_transform: StringProperty(
+        name="Last transform",
+        description="The last transformation's parameters before and after (JSON), shown in the Form panel",
+        default="",
+        options={"HIDDEN"},
     )
     curvature_kind: EnumProperty(
         name="Curvature",

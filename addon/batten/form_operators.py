@@ -1,0 +1,171 @@
+"""Operators of the Form panel (seed 002): measure the hull's form topology, change one of its
+parameters into a copy on the transformation stack, pick a copy, and commit, keep or abandon
+(§7.2.5, §9). They call :mod:`batten.api` only and keep what the panel shows in the scene."""
+
+import json
+
+import bpy
+from bpy.props import StringProperty
+
+from . import api
+from ._registry import register_classes, unregister_classes
+from .operator_base import BattenOperator
+
+
+def _is_copy(source) -> bool:
+    """Whether ``source`` is a copy on a transformation stack (False when its original is gone)."""
+    try:
+        return source is not None and api.transform_stack(source)[0]["collection"] != source
+    except api.BattenError:
+        return False
+
+
+class BATTEN_OT_measure_form(BattenOperator, bpy.types.Operator):
+    """Find the hull's form topology and measure its parameters (length, breadth, depth, PMB,
+    bilge radius, entrance and run)"""
+
+    bl_idname = "batten.measure_form"
+    bl_label = "Measure Form"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def run(self, context):
+        settings = context.scene.batten
+        parameters = api.form_topology(settings.source)["parameters"]
+        settings.last_form = json.dumps({"source": settings.source.name, "parameters": parameters})
+        value = parameters.get(settings.form_parameter)
+        if value is not None:
+            settings.form_value = value
+        self.report({"INFO"}, f"Form of '{settings.source.name}' measured")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_transform(BattenOperator, bpy.types.Operator):
+    """Change the chosen form parameter to the value given, in a new copy of the hull on its
+    transformation stack (the original stays as it is until you commit)"""
+
+    bl_idname = "batten.transform"
+    bl_label = "Transform"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def run(self, context):
+        settings = context.scene.batten
+        result = api.transform(settings.source, **{settings.form_parameter: settings.form_value})
+        report = result.report
+        settings.last_transform = json.dumps(
+            {
+                "copy": result.collection.name,
+                "description": report["description"],
+                "before": report["before"],
+                "after": report["after"],
+            }
+        )
+        settings.source = result.collection
+        settings.last_form = json.dumps({"source": result.collection.name, "parameters": report["after"]})
+        self.report({"INFO"}, f"'{result.collection.name}': {report['description']}")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_select_transform(BattenOperator, bpy.types.Operator):
+    """Make this hull (the original or a copy on its stack) the one the panels work on"""
+
+    bl_idname = "batten.select_transform"
+    bl_label = "Select"
+    bl_options = {"REGISTER", "UNDO"}
+
+    collection: StringProperty(name="Collection", description="The hull collection to work on")
+
+    def run(self, context):
+        coll = bpy.data.collections.get(self.collection)
+        if coll is None:
+            self.report({"ERROR"}, f"No collection '{self.collection}'")
+            return {"CANCELLED"}
+        context.scene.batten.source = coll
+        return {"FINISHED"}
+
+
+class BATTEN_OT_commit_transform(BattenOperator, bpy.types.Operator):
+    """Apply this copy to the original hull's curves and drop the stack"""
+
+    bl_idname = "batten.commit_transform"
+    bl_label = "Commit"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return _is_copy(context.scene.batten.source)
+
+    def run(self, context):
+        settings = context.scene.batten
+        original = api.commit(settings.source)
+        settings.source = original
+        self.report({"INFO"}, f"Committed to '{original.name}'")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_keep_transform(BattenOperator, bpy.types.Operator):
+    """Keep this copy as a hull of its own, off the stack"""
+
+    bl_idname = "batten.keep_transform"
+    bl_label = "Keep as New Hull"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return _is_copy(context.scene.batten.source)
+
+    def run(self, context):
+        kept = api.keep(context.scene.batten.source)
+        self.report({"INFO"}, f"'{kept.name}' kept as a hull of its own")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_abandon_transforms(BattenOperator, bpy.types.Operator):
+    """Drop every copy on the stack; the original stays as it is"""
+
+    bl_idname = "batten.abandon_transforms"
+    bl_label = "Abandon All"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        source = context.scene.batten.source
+        try:
+            return source is not None and len(api.transform_stack(source)) > 1
+        except api.BattenError:
+            return False
+
+    def run(self, context):
+        settings = context.scene.batten
+        original = api.transform_stack(settings.source)[0]["collection"]
+        removed = api.abandon(settings.source)
+        settings.source = original
+        self.report({"INFO"}, f"{removed} cop{'y' if removed == 1 else 'ies'} dropped")
+        return {"FINISHED"}
+
+
+_CLASSES = (
+    BATTEN_OT_measure_form,
+    BATTEN_OT_transform,
+    BATTEN_OT_select_transform,
+    BATTEN_OT_commit_transform,
+    BATTEN_OT_keep_transform,
+    BATTEN_OT_abandon_transforms,
+)
+
+
+def register():
+    """Register the Form panel's operators."""
+    register_classes(_CLASSES)
+
+
+def unregister():
+    """Remove them."""
+    unregister_classes(_CLASSES)

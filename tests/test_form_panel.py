@@ -1,0 +1,117 @@
+"""The Form panel (seed 002 §7.2.5, §9) headless: its operators measure the PMB barge's form,
+change its PMB length into a copy on the stack, select the original and the copy, and commit,
+keep or abandon; a change the hull cannot take is refused with nothing created; the panel draws
+the parameters, the stack and the change before and after."""
+
+import json
+
+import batten.api as api
+import bpy
+import numpy as np
+import pytest
+from batten.form_operators import (
+    BATTEN_OT_abandon_transforms,
+    BATTEN_OT_commit_transform,
+    BATTEN_OT_keep_transform,
+    BATTEN_OT_measure_form,
+    BATTEN_OT_select_transform,
+    BATTEN_OT_transform,
+)
+from batten_native import network_to_json
+from operator_runs import execute
+from test_form import T, _barge_curves, _points
+from test_hydro_panel import _Layout
+
+
+@pytest.fixture
+def barge(tmp_path):
+    path = tmp_path / "barge.json"
+    path.write_text(network_to_json("barge", _barge_curves()))
+    coll = api.load_network(path)
+    coll[api.DESIGN_DRAFT_PROPERTY] = T
+    bpy.context.scene.batten.source = coll
+    return coll
+
+
+def _same(a: dict, b: dict) -> bool:
+    return a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+
+
+def _draw() -> dict:
+    from batten.panels import VIEW3D_PT_batten_form
+
+    panel = type("Panel", (), {"layout": _Layout()})()
+    VIEW3D_PT_batten_form.draw(panel, bpy.context)
+    return panel.layout.record
+
+
+def test_measure_then_change_the_pmb_length_into_a_copy_and_commit_it(barge):
+    settings = bpy.context.scene.batten
+    original = _points(barge)
+    settings.form_parameter = "pmb_length"
+    status, reports = execute(BATTEN_OT_measure_form, bpy.context)
+    assert status == {"FINISHED"}, reports
+    measured = json.loads(settings.last_form)
+    assert measured["source"] == barge.name
+    assert measured["parameters"]["pmb_length"] == pytest.approx(20.0, abs=1e-9)
+    assert settings.form_value == pytest.approx(20.0, abs=1e-6), "the value field starts at the hull's"
+    drawn = _draw()
+    assert "PMB length" in drawn["labels"] and "20.000 m" in drawn["labels"]
+    settings.form_value = 30.0
+    status, reports = execute(BATTEN_OT_transform, bpy.context)
+    assert status == {"FINISHED"}, reports
+    copy = settings.source
+    assert copy != barge and api.transform_stack(copy)[0]["collection"] == barge
+    assert _same(_points(barge), original), "the original is untouched"
+    after = json.loads(settings.last_form)["parameters"]
+    assert after["pmb_length"] == pytest.approx(30.0, abs=1e-6)
+    drawn = _draw()
+    assert "batten.commit_transform" in drawn["ops"] and "batten.select_transform" in drawn["ops"]
+    assert any("20.000 m → 30.000 m" in text for text in drawn["labels"]), drawn["labels"]
+    # Look at the original, then back at the copy, and commit it.
+    assert execute(BATTEN_OT_select_transform, bpy.context, collection=barge.name)[0] == {"FINISHED"}
+    assert settings.source == barge
+    assert not BATTEN_OT_commit_transform.poll(bpy.context), "the original is no copy to commit"
+    execute(BATTEN_OT_select_transform, bpy.context, collection=copy.name)
+    status, reports = execute(BATTEN_OT_commit_transform, bpy.context)
+    assert status == {"FINISHED"}, reports
+    assert settings.source == barge
+    assert not _same(_points(barge), original), "committed"
+    pmb = api.form_topology(barge)["parameters"]["pmb_length"]
+    assert pmb == pytest.approx(30.0, abs=1e-6)
+    assert len(api.transform_stack(barge)) == 1, "the stack is gone"
+
+
+def test_keep_and_abandon(barge):
+    settings = bpy.context.scene.batten
+    settings.form_parameter, settings.form_value = "breadth", 21.0
+    execute(BATTEN_OT_transform, bpy.context)
+    first = settings.source
+    status, _ = execute(BATTEN_OT_keep_transform, bpy.context)
+    assert status == {"FINISHED"}
+    assert api.transform_stack(first)[0]["collection"] == first, "a hull of its own"
+    settings.source = barge
+    settings.form_parameter, settings.form_value = "bilge_radius", 2.5
+    execute(BATTEN_OT_transform, bpy.context)
+    execute(BATTEN_OT_transform, bpy.context)
+    assert len(api.transform_stack(barge)) == 3
+    status, reports = execute(BATTEN_OT_abandon_transforms, bpy.context)
+    assert status == {"FINISHED"} and "2 copies" in reports[-1][1]
+    assert settings.source == barge and len(api.transform_stack(barge)) == 1
+    assert first.name in bpy.data.collections, "the kept hull stays"
+
+
+def test_a_change_the_hull_cannot_take_is_refused_with_nothing_created(examples_dir):
+    frigate = api.load_network(examples_dir / "frigate_network.json")
+    settings = bpy.context.scene.batten
+    settings.source = frigate
+    collections = len(bpy.data.collections)
+    settings.form_parameter, settings.form_value = "pmb_length", 30.0
+    status, reports = execute(BATTEN_OT_transform, bpy.context)
+    assert status == {"CANCELLED"}
+    assert "parallel middle body" in reports[-1][1], reports
+    assert len(bpy.data.collections) == collections and settings.source == frigate
+    status, _ = execute(BATTEN_OT_measure_form, bpy.context)
+    drawn = _draw()
+    assert any(text.startswith("No PMB") for text in drawn["labels"]), "the panel says why"
+    assert "batten.abandon_transforms" not in drawn["ops"], "no stack to show"
