@@ -115,3 +115,29 @@ def test_a_change_the_hull_cannot_take_is_refused_with_nothing_created(examples_
     drawn = _draw()
     assert any(text.startswith("No PMB") for text in drawn["labels"]), "the panel says why"
     assert "batten.abandon_transforms" not in drawn["ops"], "no stack to show"
+
+
+def test_the_overlay_draws_the_measured_form_by_kind_and_numbers_its_vertices(barge):
+    from batten import overlay
+
+    settings = bpy.context.scene.batten
+    assert not len(overlay.form_vertices(bpy.context)), "nothing before Measure Form"
+    execute(BATTEN_OT_measure_form, bpy.context)
+    form = api.form_topology(barge)
+    vertices = overlay.form_vertices(bpy.context)
+    np.testing.assert_allclose(vertices, [v["position"] for v in form["vertices"]], atol=1e-6)
+    lines = overlay.form_lines(bpy.context)
+    kinds = {e["kind"] for e in form["edges"]}
+    assert {k for k, v in lines.items() if len(v)} == kinds
+    # Every edge drawn from its start vertex to its end vertex, along its curve.
+    ends = np.concatenate([v for v in lines.values() if len(v)])
+    for e in form["edges"]:
+        for end in ("start", "end"):
+            gap = np.linalg.norm(ends - np.asarray(form["vertices"][e[end]]["position"]), axis=1).min()
+            assert gap < 1e-5, (e, end, gap)
+    settings.show_form = False
+    assert not len(overlay.form_vertices(bpy.context))
+    assert not any(len(v) for v in overlay.form_lines(bpy.context).values()), "Show Form off"
+    settings.show_form = True
+    settings.source = None
+    assert not len(overlay.form_vertices(bpy.context)), "another hull: nothing"

@@ -5,11 +5,29 @@ parameters into a copy on the transformation stack, pick a copy, and commit, kee
 import json
 
 import bpy
+import numpy as np
 from bpy.props import StringProperty
 
 from . import api
 from ._registry import register_classes, unregister_classes
 from .operator_base import BattenOperator
+
+#: Points per form edge drawn in the overlay.
+EDGE_SAMPLES = 24
+
+
+def _drawing(source, form: dict) -> dict:
+    """What the overlay draws of ``form`` (the form topology of ``source``): the vertices'
+    positions, and each edge's kind and points along its curve."""
+    curves = {c.name: c for c in api.read_curves(source)}
+    edges = []
+    for e in form["edges"]:
+        curve = curves.get(e["curve"])
+        if curve is None:
+            continue
+        ts = np.linspace(e["t0"], e["t1"], EDGE_SAMPLES)
+        edges.append({"kind": e["kind"], "points": np.asarray(curve.evaluate(ts)).round(6).tolist()})
+    return {"vertices": [v["position"] for v in form["vertices"]], "edges": edges}
 
 
 def _is_copy(source) -> bool:
@@ -34,8 +52,11 @@ class BATTEN_OT_measure_form(BattenOperator, bpy.types.Operator):
 
     def run(self, context):
         settings = context.scene.batten
-        parameters = api.form_topology(settings.source)["parameters"]
-        settings.last_form = json.dumps({"source": settings.source.name, "parameters": parameters})
+        form = api.form_topology(settings.source)
+        parameters = form["parameters"]
+        settings.last_form = json.dumps(
+            {"source": settings.source.name, "parameters": parameters, **_drawing(settings.source, form)}
+        )
         value = parameters.get(settings.form_parameter)
         if value is not None:
             settings.form_value = value
@@ -68,7 +89,9 @@ class BATTEN_OT_transform(BattenOperator, bpy.types.Operator):
             }
         )
         settings.source = result.collection
-        settings.last_form = json.dumps({"source": result.collection.name, "parameters": report["after"]})
+        copy = result.collection
+        drawing = _drawing(copy, api.form_topology(copy))
+        settings.last_form = json.dumps({"source": copy.name, "parameters": report["after"], **drawing})
         self.report({"INFO"}, f"'{result.collection.name}': {report['description']}")
         return {"FINISHED"}
 

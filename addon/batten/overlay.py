@@ -1,4 +1,5 @@
-"""Viewport overlay: curvature combs on the selected curves, and from the last build markers
+"""Viewport overlay: curvature combs on the selected curves; the form topology last measured
+(its edges by kind and its numbered vertices); and from the last build markers
 on the network's nodes, T-joints, dangling ends, near misses and other problems, and the
 knuckle edges as thick lines, the automatically found ones in their own colour, and the water
 surface at the Hydrostatics panel's draft, trim and heel (drawn only, nothing stored).
@@ -21,6 +22,7 @@ from .scene_hydro import hull_box, last_figures
 from .waterplane_outline import waterplane_outline
 
 _handle = None
+_label_handle = None
 
 
 def comb_lines(context) -> np.ndarray:
@@ -136,6 +138,71 @@ def _draw_water(context) -> None:
     gpu.state.blend_set("NONE")
 
 
+#: Form edges by kind (seed 002 §7.2: free-form edges stop a translation, straight edges pass
+#: its part across the line, blends pass it whole): colour, line width (px).
+FORM_EDGE_STYLES = {
+    "free_form": ((0.55, 0.55, 0.65, 1.0), 3.0),
+    "straight": ((0.15, 0.75, 0.35, 1.0), 3.0),
+    "blend": ((0.95, 0.55, 0.1, 1.0), 3.0),
+}
+#: Form vertices: colour, point size (px); their numbers' colour and size (px).
+FORM_VERTEX_STYLE = ((0.9, 0.1, 0.45, 1.0), 11.0)
+FORM_LABEL_STYLE = ((1.0, 1.0, 1.0, 1.0), 13)
+
+_parsed_form = ("", {})
+
+
+def _last_form(context) -> dict:
+    """The form last measured for the scene's hull (empty for another hull, or Show Form off)."""
+    global _parsed_form
+    settings = context.scene.batten
+    if not settings.show_form or settings.source is None:
+        return {}
+    text = settings.last_form
+    if text != _parsed_form[0]:
+        _parsed_form = (text, json.loads(text) if text else {})
+    form = _parsed_form[1]
+    return form if form.get("source") == settings.source.name else {}
+
+
+def form_lines(context) -> dict[str, np.ndarray]:
+    """Line segment end points (2k, 3), float32, along the form edges last measured, by kind:
+    ``free_form``, ``straight``, ``blend``."""
+    out = {kind: [] for kind in FORM_EDGE_STYLES}
+    for edge in _last_form(context).get("edges", []):
+        pts = np.asarray(edge["points"], dtype=np.float32)
+        if edge["kind"] in out and len(pts) > 1:
+            out[edge["kind"]].append(np.stack([pts[:-1], pts[1:]], axis=1).reshape(-1, 3))
+    return {k: np.concatenate(v) if v else np.zeros((0, 3), dtype=np.float32) for k, v in out.items()}
+
+
+def form_vertices(context) -> np.ndarray:
+    """The form vertices last measured (n, 3), float32, in their numbering."""
+    vertices = _last_form(context).get("vertices", [])
+    return np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
+
+
+def _draw_form_labels():
+    """Each form vertex's number beside it (pixel space)."""
+    context = bpy.context
+    if getattr(context.scene, "batten", None) is None or context.region_data is None:
+        return
+    vertices = form_vertices(context)
+    if not len(vertices):
+        return
+    import blf
+    from bpy_extras.view3d_utils import location_3d_to_region_2d
+
+    color, size = FORM_LABEL_STYLE
+    blf.size(0, size)
+    blf.color(0, *color)
+    for i, v in enumerate(vertices):
+        at = location_3d_to_region_2d(context.region, context.region_data, tuple(map(float, v)))
+        if at is not None:
+            blf.position(0, at.x + 8, at.y + 6, 0)
+            blf.draw(0, str(i))
+
+
 def _draw():
     context = bpy.context
     settings = getattr(context.scene, "batten", None)
@@ -145,6 +212,13 @@ def _draw():
     from gpu_extras.batch import batch_for_shader
 
     _draw_water(context)
+    form_edges = form_lines(context)
+    if any(len(v) for v in form_edges.values()):
+        wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
+        wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
+        _draw_styled(wide, "LINES", "lineWidth", form_edges, FORM_EDGE_STYLES)
+        dots = gpu.shader.from_builtin("POINT_UNIFORM_COLOR")
+        _draw_styled(dots, "POINTS", "size", {"v": form_vertices(context)}, {"v": FORM_VERTEX_STYLE})
     shader = gpu.shader.from_builtin("UNIFORM_COLOR")
     if settings.show_combs:
         lines = comb_lines(context)
@@ -176,15 +250,20 @@ def _draw_styled(shader, primitive: str, size_uniform: str, groups: dict, styles
 
 
 def register():
-    """Add the draw handler (once)."""
-    global _handle
+    """Add the draw handlers (once): the 3D one, and the form vertices' numbers in pixels."""
+    global _handle, _label_handle
     if _handle is None:
         _handle = bpy.types.SpaceView3D.draw_handler_add(_draw, (), "WINDOW", "POST_VIEW")
+    if _label_handle is None:
+        _label_handle = bpy.types.SpaceView3D.draw_handler_add(_draw_form_labels, (), "WINDOW", "POST_PIXEL")
 
 
 def unregister():
-    """Remove the draw handler."""
-    global _handle
+    """Remove the draw handlers."""
+    global _handle, _label_handle
     if _handle is not None:
         bpy.types.SpaceView3D.draw_handler_remove(_handle, "WINDOW")
         _handle = None
+    if _label_handle is not None:
+        bpy.types.SpaceView3D.draw_handler_remove(_label_handle, "WINDOW")
+        _label_handle = None

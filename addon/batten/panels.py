@@ -200,7 +200,9 @@ class VIEW3D_PT_batten_form(bpy.types.Panel):
         layout = self.layout
         settings = context.scene.batten
         source = settings.source
-        layout.operator("batten.measure_form", icon="DRIVER_DISTANCE")
+        row = layout.row(align=True)
+        row.operator("batten.measure_form", icon="DRIVER_DISTANCE")
+        row.prop(settings, "show_form", text="", icon="HIDE_OFF" if settings.show_form else "HIDE_ON")
         _draw_form(layout, settings.last_form, source)
         box = layout.box()
         box.label(text="Change", icon="MOD_SIMPLEDEFORM")

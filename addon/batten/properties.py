@@ -166,6 +166,12 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         default="",
         options={"HIDDEN"},
     )
+    show_form: BoolProperty(
+        name="Show Form",
+        description="Draw the form topology last measured in the viewport: its vertices, numbered as "
+        "batten.api.transform's moves take them, and its edges by kind (free-form, straight, blend)",
+        default=True,
+    )
     last_transform: StringProperty(
         name="Last transform",
         description="The last transformation's parameters before and after (JSON), shown in the Form panel",
