@@ -14,6 +14,7 @@ from batten.form_operators import (
     BATTEN_OT_commit_transform,
     BATTEN_OT_keep_transform,
     BATTEN_OT_measure_form,
+    BATTEN_OT_move_form_vertex,
     BATTEN_OT_select_transform,
     BATTEN_OT_transform,
 )
@@ -141,3 +142,28 @@ def test_the_overlay_draws_the_measured_form_by_kind_and_numbers_its_vertices(ba
     settings.show_form = True
     settings.source = None
     assert not len(overlay.form_vertices(bpy.context)), "another hull: nothing"
+
+
+def test_moving_a_numbered_form_vertex_makes_a_copy_with_the_vertex_moved(examples_dir):
+    frigate = api.load_network(examples_dir / "frigate_network.json")
+    settings = bpy.context.scene.batten
+    settings.source = frigate
+    execute(BATTEN_OT_measure_form, bpy.context)
+    form = api.form_topology(frigate)
+    corner = next(i for i, v in enumerate(form["vertices"]) if {"deck", "transom"} <= set(v["curves"]))
+    original = _points(frigate)
+    settings.form_vertex, settings.form_move = corner, (0.0, 0.3, 0.0)
+    status, reports = execute(BATTEN_OT_move_form_vertex, bpy.context)
+    assert status == {"FINISHED"}, reports
+    copy = settings.source
+    assert copy != frigate and _same(_points(frigate), original), "the original is untouched"
+    moved = api.form_topology(copy)["vertices"][corner]["position"]
+    want = np.asarray(form["vertices"][corner]["position"]) + [0.0, 0.3, 0.0]
+    np.testing.assert_allclose(moved, want, atol=1e-9)
+    from batten import overlay
+
+    np.testing.assert_allclose(overlay.form_vertices(bpy.context)[corner], want, atol=1e-5)
+    settings.form_vertex = 999
+    status, reports = execute(BATTEN_OT_move_form_vertex, bpy.context)
+    assert status == {"CANCELLED"} and "999" in reports[-1][1], reports
+    assert settings.source == copy, "a refused move changes nothing"

@@ -30,6 +30,17 @@ def _drawing(source, form: dict) -> dict:
     return {"vertices": [v["position"] for v in form["vertices"]], "edges": edges}
 
 
+def _switch_to(settings, result) -> None:
+    """Work on the copy of ``result`` (an :class:`api.TransformResult`): the panel's source, its
+    change before and after, and its form for the panel and the overlay."""
+    report, copy = result.report, result.collection
+    change = {key: report[key] for key in ("description", "before", "after")}
+    settings.last_transform = json.dumps({"copy": copy.name, **change})
+    settings.source = copy
+    drawing = _drawing(copy, api.form_topology(copy))
+    settings.last_form = json.dumps({"source": copy.name, "parameters": report["after"], **drawing})
+
+
 def _is_copy(source) -> bool:
     """Whether ``source`` is a copy on a transformation stack (False when its original is gone)."""
     try:
@@ -79,20 +90,29 @@ class BATTEN_OT_transform(BattenOperator, bpy.types.Operator):
     def run(self, context):
         settings = context.scene.batten
         result = api.transform(settings.source, **{settings.form_parameter: settings.form_value})
-        report = result.report
-        settings.last_transform = json.dumps(
-            {
-                "copy": result.collection.name,
-                "description": report["description"],
-                "before": report["before"],
-                "after": report["after"],
-            }
-        )
-        settings.source = result.collection
-        copy = result.collection
-        drawing = _drawing(copy, api.form_topology(copy))
-        settings.last_form = json.dumps({"source": copy.name, "parameters": report["after"], **drawing})
-        self.report({"INFO"}, f"'{result.collection.name}': {report['description']}")
+        _switch_to(settings, result)
+        self.report({"INFO"}, f"'{result.collection.name}': {result.report['description']}")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_move_form_vertex(BattenOperator, bpy.types.Operator):
+    """Move one form vertex by the translation given, in a new copy of the hull on its stack:
+    the move passes along the form edges by their kind and the curves inside the faces follow"""
+
+    bl_idname = "batten.move_form_vertex"
+    bl_label = "Move Vertex"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None
+
+    def run(self, context):
+        settings = context.scene.batten
+        move = tuple(settings.form_move)
+        result = api.transform(settings.source, moves=[(settings.form_vertex, move)])
+        _switch_to(settings, result)
+        self.report({"INFO"}, f"'{result.collection.name}': {result.report['description']}")
         return {"FINISHED"}
 
 
@@ -177,6 +197,7 @@ class BATTEN_OT_abandon_transforms(BattenOperator, bpy.types.Operator):
 _CLASSES = (
     BATTEN_OT_measure_form,
     BATTEN_OT_transform,
+    BATTEN_OT_move_form_vertex,
     BATTEN_OT_select_transform,
     BATTEN_OT_commit_transform,
     BATTEN_OT_keep_transform,

@@ -210,6 +210,10 @@ class VIEW3D_PT_batten_form(bpy.types.Panel):
         row.prop(settings, "form_parameter", text="")
         row.prop(settings, "form_value", text="")
         box.operator("batten.transform", icon="DUPLICATE")
+        col = box.column(align=True)
+        col.prop(settings, "form_vertex")
+        col.prop(settings, "form_move", text="")
+        col.operator("batten.move_form_vertex", icon="EMPTY_ARROWS")
         try:
             stack = api.transform_stack(source) if source is not None else []
         except api.BattenError:

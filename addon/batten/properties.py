@@ -13,7 +13,15 @@ from batten_native import (
     DEFAULT_TOLERANCE,
     MAX_RESOLUTION,
 )
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty, StringProperty
+from bpy.props import (
+    BoolProperty,
+    EnumProperty,
+    FloatProperty,
+    FloatVectorProperty,
+    IntProperty,
+    PointerProperty,
+    StringProperty,
+)
 
 from ._registry import register_classes, unregister_classes
 
@@ -158,6 +166,21 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         min=-1e5,
         max=1e5,
         precision=3,
+        unit="LENGTH",
+    )
+    form_vertex: IntProperty(
+        name="Vertex",
+        description="The form vertex to move: its number in the overlay (Measure Form)",
+        default=0,
+        min=0,
+    )
+    form_move: FloatVectorProperty(
+        name="Move",
+        description="The translation of the form vertex (m); the network follows by the form "
+        "topology's rules (seed 002 §7.2)",
+        size=3,
+        default=(0.0, 0.0, 0.0),
+        subtype="TRANSLATION",
         unit="LENGTH",
     )
     last_form: StringProperty(
