@@ -105,6 +105,9 @@ pub(crate) fn orient_normals<T: Copy>(
             _ => f64::NAN,
         }
     });
+    if let Some(out) = consistent_orientation(raw, steps, &step, &signed) {
+        return out;
+    }
     let mut out = vec![DVec3::ZERO; n];
     let mut seen = vec![false; n];
     // Parts start at their most confident node: the nodes in order of confidence, highest
@@ -174,6 +177,93 @@ pub(crate) fn orient_normals<T: Copy>(
     out
 }
 
+/// The orientation of [`orient_normals`] where no edge disagrees: every node has a raw normal
+/// and, over each connected part, the signs of all the steps' agreements fit one choice of
+/// flips. Then every spanning tree gives the same flips, the maximum one of Prim's algorithm
+/// among them, so a breadth-first search from each part's most confident node (the one Prim
+/// starts from) gives its result exactly, without sorting the nodes or keeping a heap. None
+/// where some node has no raw normal, an agreement is zero or not a number, or two steps
+/// disagree (the maximum spanning tree then decides which one wins).
+fn consistent_orientation<T: Copy>(
+    raw: &[Option<RawNormal>],
+    steps: &Adjacency<T>,
+    step: &impl Fn(T) -> Step,
+    signed: &Adjacency<f64>,
+) -> Option<Vec<DVec3>> {
+    let n = raw.len();
+    let mut flip = vec![false; n];
+    let mut part = vec![usize::MAX; n];
+    let mut oriented = vec![false; n];
+    let mut queue: Vec<usize> = Vec::new();
+    let mut members: Vec<usize> = Vec::new();
+    for seed in 0..n {
+        if part[seed] != usize::MAX || steps.row(seed).is_empty() {
+            continue;
+        }
+        // The part of `seed`, then its most confident node (lowest index among equals).
+        members.clear();
+        part[seed] = seed;
+        queue.clear();
+        queue.push(seed);
+        while let Some(u) = queue.pop() {
+            members.push(u);
+            for &x in steps.row(u) {
+                let v = step(x).to;
+                if part[v] == usize::MAX {
+                    part[v] = seed;
+                    queue.push(v);
+                }
+            }
+        }
+        let mut start = members[0];
+        let mut best = raw[start]?.confidence;
+        for &v in &members[1..] {
+            let c = raw[v]?.confidence;
+            if c > best || (c == best && v < start) {
+                (start, best) = (v, c);
+            }
+        }
+        // Flips by breadth-first search from the start, then every step checked.
+        queue.clear();
+        queue.push(start);
+        oriented[start] = true;
+        let mut k = 0;
+        while k < queue.len() {
+            let u = queue[k];
+            k += 1;
+            for (&x, &sign) in steps.row(u).iter().zip(signed.row(u)) {
+                let v = step(x).to;
+                if !oriented[v] {
+                    oriented[v] = true;
+                    flip[v] = (sign < 0.0) != flip[u];
+                    queue.push(v);
+                }
+            }
+        }
+        for &u in &members {
+            for (&x, &sign) in steps.row(u).iter().zip(signed.row(u)) {
+                if sign.is_nan() || sign == 0.0 || ((sign < 0.0) != flip[u]) != flip[step(x).to] {
+                    return None;
+                }
+            }
+        }
+    }
+    Some(
+        (0..n)
+            .map(|v| match raw[v] {
+                Some(r) if part[v] != usize::MAX => {
+                    if flip[v] {
+                        -r.normal
+                    } else {
+                        r.normal
+                    }
+                }
+                _ => DVec3::ZERO,
+            })
+            .collect(),
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,6 +273,55 @@ mod tests {
             normal: normal.normalize(),
             confidence: 1.0,
         })
+    }
+
+    #[test]
+    fn a_cycle_whose_signs_disagree_is_decided_by_the_most_reliable_edges() {
+        // Three nodes in a cycle, edges straight (nothing carried: the agreements are the raw
+        // normals' dot products): a·b > 0 and b·c > 0 but c·a < 0, so no choice of flips fits
+        // all three edges. The weakest edge (c–a, |c·a| 0.2) gives way: c is reached from b
+        // and kept as it is. A search that took the edges in any order would flip c from a.
+        let (a, b, c) = (
+            DVec3::Z,
+            DVec3::new(1.0, 0.0, 1.0).normalize(),
+            DVec3::new(1.0, 0.0, -0.2).normalize(),
+        );
+        let straight = |to: usize| Step {
+            to,
+            leaving: DVec3::X,
+            arriving: DVec3::X,
+        };
+        let steps = Adjacency::from_pairs(
+            3,
+            [
+                (0, straight(2)),
+                (0, straight(1)),
+                (1, straight(0)),
+                (1, straight(2)),
+                (2, straight(1)),
+                (2, straight(0)),
+            ]
+            .into_iter(),
+        );
+        let mut normals = vec![raw(a), raw(b), raw(c)];
+        normals[1].as_mut().expect("a normal").confidence = 0.5;
+        normals[2].as_mut().expect("a normal").confidence = 0.25;
+        let near = |out: &[DVec3]| {
+            out.iter()
+                .zip([a, b, c])
+                .all(|(got, want)| (*got - want).length() < 1e-12)
+        };
+        let out = orient_normals(&normals, &steps, |s| s);
+        assert!(near(&out), "{out:?}");
+        // With b's normal turned round, the cycle still disagrees: b is flipped back.
+        normals[1].as_mut().expect("a normal").normal *= -1.0;
+        let out = orient_normals(&normals, &steps, |s| s);
+        assert!(near(&out), "{out:?}");
+        // Where the signs agree (c's plane tilted the other way) every path gives the same.
+        let c2 = DVec3::new(1.0, 0.0, 0.2).normalize();
+        normals[2].as_mut().expect("a normal").normal = -c2;
+        let out = orient_normals(&normals, &steps, |s| s);
+        assert!((out[2] - c2).length() < 1e-12, "{out:?}");
     }
 
     #[test]
