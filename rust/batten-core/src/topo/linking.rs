@@ -9,7 +9,7 @@ use glam::DVec3;
 use super::adjacency::Adjacency;
 use super::brep::{Brep, HalfEdgeId};
 use super::orientation::{orient_normals, Step};
-use super::rotation::{ccw_order, confidence, off_plane, raw_normal, RawNormal};
+use super::rotation::{ccw_order, confidence, off_plane, raw_normal, tip_plane, RawNormal};
 use crate::curve::BezierDecomposition;
 
 /// A node whose unit edge tangents have a tip farther than this from the best plane through
@@ -63,10 +63,11 @@ pub(crate) fn link(
             let hs = outgoing.row(v);
             ts.clear();
             ts.extend(hs.iter().map(|h| dirs[h.index()]));
-            if off_plane(&ts) > BRANCHING_TIP_DISTANCE {
+            let plane = tip_plane(&ts);
+            if off_plane(&ts, plane) > BRANCHING_TIP_DISTANCE {
                 branching.push(hs[0]);
             }
-            raw_normal(&ts).map(|normal| RawNormal {
+            raw_normal(&ts, plane).map(|normal| RawNormal {
                 normal,
                 confidence: confidence(&ts),
             })

@@ -88,12 +88,11 @@ pub(crate) struct RawNormal {
 /// of a box, the plane through the tips is perpendicular to the cone's axis). The normal is the
 /// row of the tips' covariance cofactors with the largest determinant (exact for coplanar
 /// tips). With two tangents, or when the tips are collinear: their cross products, each signed
-/// to agree with the largest one, summed.
-pub(crate) fn raw_normal(tangents: &[DVec3]) -> Option<DVec3> {
-    if tangents.len() >= 3 {
-        if let Some(n) = plane_normal(tangents) {
-            return Some(n);
-        }
+/// to agree with the largest one, summed. `plane` is the tips' plane ([`tip_plane`]), worked
+/// out once for this and [`off_plane`].
+pub(crate) fn raw_normal(tangents: &[DVec3], plane: Option<DVec3>) -> Option<DVec3> {
+    if let Some(n) = plane {
+        return Some(n);
     }
     let mut best = DVec3::ZERO;
     for (i, a) in tangents.iter().enumerate() {
@@ -133,12 +132,12 @@ pub(crate) fn confidence(tangents: &[DVec3]) -> f64 {
 /// Largest distance of a tangent tip from the least-squares plane through the tips (the plane
 /// of [`raw_normal`]); 0 for fewer than four tangents, whose tips always fit a plane. Tips of
 /// tangents in one smooth surface lie near that plane; a large value means several surface
-/// sheets meet at the node.
-pub(crate) fn off_plane(tangents: &[DVec3]) -> f64 {
+/// sheets meet at the node. `plane` is the tips' plane ([`tip_plane`]).
+pub(crate) fn off_plane(tangents: &[DVec3], plane: Option<DVec3>) -> f64 {
     if tangents.len() < 4 {
         return 0.0;
     }
-    let Some(n) = plane_normal(tangents) else {
+    let Some(n) = plane else {
         return 0.0;
     };
     let c = tangents.iter().copied().sum::<DVec3>() / tangents.len() as f64;
@@ -146,6 +145,16 @@ pub(crate) fn off_plane(tangents: &[DVec3]) -> f64 {
         .iter()
         .map(|t| (*t - c).dot(n).abs())
         .fold(0.0, f64::max)
+}
+
+/// The normal of the least-squares plane through the tangents' tips when there are three or
+/// more and they are not collinear (what [`raw_normal`] and [`off_plane`] start from).
+pub(crate) fn tip_plane(tangents: &[DVec3]) -> Option<DVec3> {
+    if tangents.len() >= 3 {
+        plane_normal(tangents)
+    } else {
+        None
+    }
 }
 
 /// Normal of the least-squares plane through points (here: tangent tips), `None` when they are
@@ -278,7 +287,8 @@ mod tests {
 
     #[test]
     fn raw_normal_of_a_box_corner_is_its_diagonal() {
-        let n = raw_normal(&[DVec3::X, DVec3::Y, DVec3::Z]).expect("a plane");
+        let ts = [DVec3::X, DVec3::Y, DVec3::Z];
+        let n = raw_normal(&ts, tip_plane(&ts)).expect("a plane");
         assert!(
             n.cross(DVec3::ONE).length() < 1e-12,
             "normal along (1,1,1), got {n}"
@@ -287,13 +297,14 @@ mod tests {
 
     #[test]
     fn raw_normal_of_a_t_joint_is_the_plane_normal() {
-        let n = raw_normal(&[DVec3::X, DVec3::NEG_X, DVec3::Y]).expect("a plane");
+        let ts = [DVec3::X, DVec3::NEG_X, DVec3::Y];
+        let n = raw_normal(&ts, tip_plane(&ts)).expect("a plane");
         assert!(
             n.cross(DVec3::Z).length() < 1e-12,
             "normal along z, got {n}"
         );
         assert!(
-            raw_normal(&[DVec3::X, DVec3::NEG_X]).is_none(),
+            raw_normal(&[DVec3::X, DVec3::NEG_X], None).is_none(),
             "collinear: no plane"
         );
     }
