@@ -37,7 +37,10 @@ def _switch_to(settings, result) -> None:
     change = {key: report[key] for key in ("description", "before", "after")}
     settings.last_transform = json.dumps({"copy": copy.name, **change})
     settings.source = copy
-    drawing = _drawing(copy, api.form_topology(copy))
+    try:
+        drawing = _drawing(copy, api.form_topology(copy))
+    except api.BattenError:
+        drawing = {}  # the copy is made and kept; only its overlay is missing
     settings.last_form = json.dumps({"source": copy.name, "parameters": report["after"], **drawing})
 
 
