@@ -1,18 +1,13 @@
 //! The hull's curvature at its mesh vertices ([`HullSurface::vertex_curvature`]) against the
 //! analytic Wigley hull, and its errors.
 
-use batten_core::{build_hull, Error, HullOptions, Network};
+use batten_core::{build_hull, Error, HullOptions};
+mod common;
+use common::example;
 
 const L: f64 = 100.0;
 const B: f64 = 10.0;
 const T: f64 = 6.25;
-
-fn example(name: &str) -> Network {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name);
-    Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network")
-}
 
 /// Gaussian and mean curvature (mean positive where convex seen from outside) of the Wigley
 /// hull `y = f(x, z) = B/2 (1 − ξ²)(1 − w²)`, `ξ = 2x/L`, `w = (T − z)/T`, as a graph over

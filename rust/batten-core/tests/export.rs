@@ -4,13 +4,10 @@
 
 use batten_core::{
     build_hull, cad_surface, cad_surface_with, iges_text, step_text, CadHeader, ExportError,
-    ExportOptions, HullOptions, Network, BOUNDARY_SHARE,
+    ExportOptions, HullOptions, BOUNDARY_SHARE,
 };
-
-fn example(file: &str) -> Network {
-    let path = format!("{}/../../examples/{file}", env!("CARGO_MANIFEST_DIR"));
-    Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network")
-}
+mod common;
+use common::example;
 
 /// Wigley and the frigate: one face per quad, every face within half the tolerance at its
 /// check samples (the read-back tests measure the whole tolerance densely), files well formed.

@@ -8,18 +8,11 @@ use batten_core::{
     Flotation, HullGeometry, HullOptions, HydroError, Hydrostatics, Network, PatchHydroModel,
 };
 mod common;
-use common::{box_barge, BB, BD, BL};
+use common::{box_barge, example, BB, BD, BL};
 
 const L: f64 = 100.0;
 const B: f64 = 10.0;
 const T: f64 = 6.25;
-
-fn example(name: &str) -> Network {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name);
-    Network::from_json(&std::fs::read_to_string(path).expect("example")).expect("network")
-}
 
 fn model_of(net: &Network, density: CellDensity) -> PatchHydroModel {
     let hull = build_hull(net, &HullOptions::default()).expect("builds");

@@ -8,6 +8,8 @@ use batten_core::{
     WarningKind, FOLD_ANGLE_DEGREES,
 };
 use glam::DVec3;
+mod common;
+use common::example;
 
 fn line(name: &str, role: Role, a: [f64; 3], b: [f64; 3]) -> NetworkCurve {
     NetworkCurve {
@@ -80,12 +82,6 @@ fn the_profile_deck_transom_and_stem_are_the_hulls_own_rim() {
     let holes = of_kind(&r, WarningKind::Hole);
     assert_eq!(holes.len(), 1);
     assert_eq!(holes[0].curves, ["keel"]);
-}
-
-fn example(file: &str) -> Network {
-    let path = format!("{}/../../examples/{file}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    Network::from_json(&text).expect("example reads")
 }
 
 #[test]

@@ -4,6 +4,13 @@
 
 pub(crate) mod fuzz;
 
+/// The network of the example file `name` in the repository's `examples/`.
+pub(crate) fn example(name: &str) -> Network {
+    let path = format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    Network::from_json(&text).expect("example reads")
+}
+
 use batten_core::{KnotLayout, Network, NetworkCurve, NurbsCurve, Role};
 use glam::DVec3;
 
