@@ -30,7 +30,9 @@ use super::planes::{constrain, curve_planes};
 use crate::curve::NurbsCurve;
 use crate::hull::edge_curve;
 use crate::network::{Network, NetworkCurve};
-use crate::patch::{Domain, FaceBoundary, Patch, PatchOptions, Side, SideSegment};
+use crate::patch::{
+    central_differences, stencil_fits, Domain, FaceBoundary, Patch, PatchOptions, Side, SideSegment,
+};
 use crate::tolerance::Tolerance;
 
 /// A translation of one form vertex.
@@ -489,22 +491,11 @@ const SECOND_DERIV_STEP: f64 = 1e-3;
 /// differences, or None where the stencil would leave the domain.
 fn mean_second_derivatives(f: &FaceSurfaces, x: DVec2) -> Option<(DVec3, DVec3, DVec3)> {
     let h = SECOND_DERIV_STEP;
-    let domain = f.before.domain();
-    let corners = [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)];
-    if !corners
-        .iter()
-        .all(|&(a, b)| domain.contains((x + DVec2::new(a, b) * h).to_array()))
-    {
+    if !stencil_fits(f.before.domain(), x, h) {
         return None;
     }
-    let s = |a: f64, b: f64| {
-        let y = (x + DVec2::new(a, b) * h).to_array();
-        (f.before.eval(y) + f.after.eval(y)) * 0.5
-    };
-    let centre = s(0.0, 0.0);
-    let suu = (s(1.0, 0.0) - centre * 2.0 + s(-1.0, 0.0)) / (h * h);
-    let svv = (s(0.0, 1.0) - centre * 2.0 + s(0.0, -1.0)) / (h * h);
-    let suv = (s(1.0, 1.0) - s(1.0, -1.0) - s(-1.0, 1.0) + s(-1.0, -1.0)) / (4.0 * h * h);
+    let mean = |y: DVec2| (f.before.eval(y.to_array()) + f.after.eval(y.to_array())) * 0.5;
+    let [_, _, _, suu, suv, svv] = central_differences(mean, x, h);
     Some((suu, suv, svv))
 }
 

@@ -5,6 +5,7 @@
 
 use glam::{DVec2, DVec3};
 
+use super::domain::Domain;
 use super::face_patch::Patch;
 
 /// Step of the central differences in the unit-size domain. The patches' points are exact to
@@ -35,18 +36,11 @@ impl Patch {
     /// collapsed corner) or not finite.
     pub fn curvature(&self, x: [f64; 2]) -> Option<SurfaceCurvature> {
         let h = CURVATURE_STEP;
-        let centre = self.domain().centre_v();
-        let fits = |x: DVec2| {
-            [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)]
-                .iter()
-                .all(|&(a, b)| {
-                    self.domain()
-                        .contains((x + DVec2::new(a, b) * h).to_array())
-                })
-        };
-        let mut at = self.domain().clamp(DVec2::from(x));
+        let domain = self.domain();
+        let centre = domain.centre_v();
+        let mut at = domain.clamp(DVec2::from(x));
         let mut inward = 2.0 * h;
-        while !fits(at) {
+        while !stencil_fits(domain, at, h) {
             let to_centre = centre - at;
             if to_centre.length() <= inward {
                 at = centre;
@@ -55,16 +49,33 @@ impl Patch {
             at += to_centre.normalize() * inward;
             inward *= 2.0;
         }
-        let p = |du: f64, dv: f64| self.eval_v(at + DVec2::new(du, dv) * h);
-        let p0 = p(0.0, 0.0);
-        let (pe, pw, pn, ps) = (p(1.0, 0.0), p(-1.0, 0.0), p(0.0, 1.0), p(0.0, -1.0));
-        let pu = (pe - pw) / (2.0 * h);
-        let pv = (pn - ps) / (2.0 * h);
-        let puu = (pe - p0 * 2.0 + pw) / (h * h);
-        let pvv = (pn - p0 * 2.0 + ps) / (h * h);
-        let puv = (p(1.0, 1.0) - p(1.0, -1.0) - p(-1.0, 1.0) + p(-1.0, -1.0)) / (4.0 * h * h);
+        let [_, pu, pv, puu, puv, pvv] = central_differences(|y| self.eval_v(y), at, h);
         fundamental_forms(pu, pv, puu, puv, pvv)
     }
+}
+
+/// Whether the nine-point stencil of [`central_differences`] at `x` with step `h` lies in the
+/// (convex) domain: its four corners do.
+pub(crate) fn stencil_fits(domain: &Domain, x: DVec2, h: f64) -> bool {
+    [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)]
+        .iter()
+        .all(|&(a, b)| domain.contains((x + DVec2::new(a, b) * h).to_array()))
+}
+
+/// `[S, S_u, S_v, S_uu, S_uv, S_vv]` of the surface `s` at `x` by central differences with
+/// step `h` on the nine points `x + (i, j)·h`, `i, j ∈ {−1, 0, 1}`.
+pub(crate) fn central_differences(s: impl Fn(DVec2) -> DVec3, x: DVec2, h: f64) -> [DVec3; 6] {
+    let p = |du: f64, dv: f64| s(x + DVec2::new(du, dv) * h);
+    let p0 = p(0.0, 0.0);
+    let (pe, pw, pn, ps) = (p(1.0, 0.0), p(-1.0, 0.0), p(0.0, 1.0), p(0.0, -1.0));
+    [
+        p0,
+        (pe - pw) / (2.0 * h),
+        (pn - ps) / (2.0 * h),
+        (pe - p0 * 2.0 + pw) / (h * h),
+        (p(1.0, 1.0) - p(1.0, -1.0) - p(-1.0, 1.0) + p(-1.0, -1.0)) / (4.0 * h * h),
+        (pn - p0 * 2.0 + ps) / (h * h),
+    ]
 }
 
 /// Gaussian and mean curvature from the first derivatives and the second derivatives of a

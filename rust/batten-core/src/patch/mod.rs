@@ -32,6 +32,7 @@ mod tessellate;
 
 pub use boundary::{FaceBoundary, Side, SideParam, SideSegment};
 pub use curvature::SurfaceCurvature;
+pub(crate) use curvature::{central_differences, stencil_fits};
 pub use domain::{Domain, MAX_SIDES};
 pub use error::{PatchError, PatchWarning};
 pub use face_patch::{Patch, PatchKind, PatchOptions};
