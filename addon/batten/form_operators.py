@@ -10,7 +10,7 @@ from bpy.props import StringProperty
 
 from . import api
 from ._registry import register_classes, unregister_classes
-from .operator_base import BattenOperator
+from .operator_base import BattenOperator, HullOperator
 
 #: Points per form edge drawn in the overlay.
 EDGE_SAMPLES = 24
@@ -52,17 +52,13 @@ def _is_copy(source) -> bool:
         return False
 
 
-class BATTEN_OT_measure_form(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_measure_form(HullOperator, bpy.types.Operator):
     """Find the hull's form topology and measure its parameters (length, breadth, depth, PMB,
     bilge radius, entrance and run)"""
 
     bl_idname = "batten.measure_form"
     bl_label = "Measure Form"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
     def run(self, context):
         settings = context.scene.batten
@@ -78,17 +74,13 @@ class BATTEN_OT_measure_form(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_transform(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_transform(HullOperator, bpy.types.Operator):
     """Change the chosen form parameter to the value given, in a new copy of the hull on its
     transformation stack (the original stays as it is until you commit)"""
 
     bl_idname = "batten.transform"
     bl_label = "Transform"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
     def run(self, context):
         settings = context.scene.batten
@@ -98,17 +90,13 @@ class BATTEN_OT_transform(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_move_form_vertex(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_move_form_vertex(HullOperator, bpy.types.Operator):
     """Move one form vertex by the translation given, in a new copy of the hull on its stack:
     the move passes along the form edges by their kind and the curves inside the faces follow"""
 
     bl_idname = "batten.move_form_vertex"
     bl_label = "Move Vertex"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
     def run(self, context):
         settings = context.scene.batten
@@ -137,16 +125,20 @@ class BATTEN_OT_select_transform(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_commit_transform(BattenOperator, bpy.types.Operator):
+class _CopyOperator(BattenOperator):
+    """An operator on a copy on a transformation stack (available only when the hull is one)."""
+
+    @classmethod
+    def poll(cls, context):
+        return _is_copy(context.scene.batten.source)
+
+
+class BATTEN_OT_commit_transform(_CopyOperator, bpy.types.Operator):
     """Apply this copy to the original hull's curves and drop the stack"""
 
     bl_idname = "batten.commit_transform"
     bl_label = "Commit"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return _is_copy(context.scene.batten.source)
 
     def run(self, context):
         settings = context.scene.batten
@@ -156,16 +148,12 @@ class BATTEN_OT_commit_transform(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_keep_transform(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_keep_transform(_CopyOperator, bpy.types.Operator):
     """Keep this copy as a hull of its own, off the stack"""
 
     bl_idname = "batten.keep_transform"
     bl_label = "Keep as New Hull"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return _is_copy(context.scene.batten.source)
 
     def run(self, context):
         kept = api.keep(context.scene.batten.source)

@@ -10,16 +10,8 @@ from bpy_extras.io_utils import ExportHelper
 
 from . import api, hydro_plot, hydro_table
 from ._registry import register_classes, unregister_classes
-from .operators import BattenOperator
+from .operator_base import HullOperator
 from .scene_hydro import draft_of, figures_kept_in, flotation, hydrostatics_into_scene, keep_figures, typed
-
-
-class _HullOperator(BattenOperator):
-    """An operator on the scene's hull collection (it needs one)."""
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
 
 def _show_in_image_editors(context, image) -> None:
@@ -30,7 +22,7 @@ def _show_in_image_editors(context, image) -> None:
             area.spaces.active.image = image
 
 
-class BATTEN_OT_hydrostatics(_HullOperator, bpy.types.Operator):
+class BATTEN_OT_hydrostatics(HullOperator, bpy.types.Operator):
     """Compute the hull's hydrostatics at the draft, trim, heel and density"""
 
     bl_idname = "batten.hydrostatics"
@@ -46,7 +38,7 @@ class BATTEN_OT_hydrostatics(_HullOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_sectional_areas(_HullOperator, bpy.types.Operator):
+class BATTEN_OT_sectional_areas(HullOperator, bpy.types.Operator):
     """Plot the sectional area curve at the draft, trim and heel into the image '<hull> SAC'"""
 
     bl_idname = "batten.sectional_areas"
@@ -84,7 +76,7 @@ def _curves_of_form(settings) -> list[dict]:
     return api.curves_of_form(settings.source, drafts, lpp=at["lpp"], density=at["density"])
 
 
-class BATTEN_OT_curves_of_form(_HullOperator, bpy.types.Operator):
+class BATTEN_OT_curves_of_form(HullOperator, bpy.types.Operator):
     """Plot the curves of form over the draft range into the image '<hull> curves of form'"""
 
     bl_idname = "batten.curves_of_form"
@@ -105,7 +97,7 @@ class BATTEN_OT_curves_of_form(_HullOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_export_hydrostatics(_HullOperator, bpy.types.Operator, ExportHelper):
+class BATTEN_OT_export_hydrostatics(HullOperator, bpy.types.Operator, ExportHelper):
     """Write the hydrostatics at the draft, or the curves of form over the draft range, as CSV
     (computed afresh; the file is the only thing written)"""
 
@@ -143,7 +135,7 @@ class BATTEN_OT_export_hydrostatics(_HullOperator, bpy.types.Operator, ExportHel
         return {"FINISHED"}
 
 
-class BATTEN_OT_float_to(_HullOperator, bpy.types.Operator):
+class BATTEN_OT_float_to(HullOperator, bpy.types.Operator):
     """Find the draft and trim at which the hull floats at the displacement with its centre of
     buoyancy under the LCG, and set them"""
 

@@ -19,3 +19,11 @@ class BattenOperator:
         except api.BattenError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
+
+
+class HullOperator(BattenOperator):
+    """An operator on the scene's hull collection (available only when there is one)."""
+
+    @classmethod
+    def poll(cls, context):
+        return context.scene.batten.source is not None

@@ -8,7 +8,7 @@ from . import api
 from ._registry import register_classes, unregister_classes
 from .api import example_files
 from .modal_jobs import ModalJob
-from .operator_base import BattenOperator
+from .operator_base import BattenOperator, HullOperator
 from .scene_build import build_into_scene
 from .scene_hydro import draft_of
 
@@ -21,16 +21,12 @@ def _hull_source(context):
     return [o for o in context.selected_objects if o.type == "CURVE"]
 
 
-class BATTEN_OT_build(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_build(HullOperator, bpy.types.Operator):
     """Build the smooth hull surface from the hull's curve network"""
 
     bl_idname = "batten.build"
     bl_label = "Build Surface"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
     def run(self, context):
         report = build_into_scene(context.scene)
@@ -290,17 +286,13 @@ class BATTEN_OT_export_lines_plan(ModalJob, _LinesPlanOptions, bpy.types.Operato
         return {"FINISHED"}
 
 
-class BATTEN_OT_show_curvature(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_show_curvature(HullOperator, bpy.types.Operator):
     """Colour the hull surface by its Gaussian or mean curvature (blue negative, white zero, red
     positive), shown in Solid mode with Attribute colour; the map follows rebuilds"""
 
     bl_idname = "batten.show_curvature"
     bl_label = "Curvature Map"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
     def run(self, context):
         settings = context.scene.batten
@@ -323,16 +315,12 @@ class BATTEN_OT_show_curvature(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class BATTEN_OT_clear_curvature(BattenOperator, bpy.types.Operator):
+class BATTEN_OT_clear_curvature(HullOperator, bpy.types.Operator):
     """Remove the curvature map from the hull surface"""
 
     bl_idname = "batten.clear_curvature"
     bl_label = "Clear Curvature Map"
     bl_options = {"REGISTER", "UNDO"}
-
-    @classmethod
-    def poll(cls, context):
-        return context.scene.batten.source is not None
 
     def run(self, context):
         if not api.clear_curvature(context.scene.batten.source):

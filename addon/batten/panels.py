@@ -135,16 +135,21 @@ def found_knuckle_objects(report: dict) -> list[str]:
     return sorted({o for k in report.get("knuckle_edges", []) if k["source"] == "auto" for o in k["objects"]})
 
 
-class VIEW3D_PT_batten_hydrostatics(bpy.types.Panel):
-    """The hull's hydrostatics: flotation, the table of figures, plots, CSV and floating."""
+class _SubPanel:
+    """Where batten's sub-panels sit: in the batten tab, under the main panel, closed at first."""
 
-    bl_label = "Hydrostatics"
-    bl_idname = "VIEW3D_PT_batten_hydrostatics"
     bl_space_type = "VIEW_3D"
     bl_region_type = "UI"
     bl_category = "batten"
     bl_parent_id = VIEW3D_PT_batten.bl_idname
     bl_options = {"DEFAULT_CLOSED"}
+
+
+class VIEW3D_PT_batten_hydrostatics(_SubPanel, bpy.types.Panel):
+    """The hull's hydrostatics: flotation, the table of figures, plots, CSV and floating."""
+
+    bl_label = "Hydrostatics"
+    bl_idname = "VIEW3D_PT_batten_hydrostatics"
 
     def draw(self, context):
         layout = self.layout
@@ -184,17 +189,12 @@ class VIEW3D_PT_batten_hydrostatics(bpy.types.Panel):
         box.operator("batten.float_to")
 
 
-class VIEW3D_PT_batten_form(bpy.types.Panel):
+class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
     """The hull's form topology (seed 002): its measured parameters, a parametric change into a
     copy on the transformation stack, the stack, and commit / keep / abandon."""
 
     bl_label = "Form"
     bl_idname = "VIEW3D_PT_batten_form"
-    bl_space_type = "VIEW_3D"
-    bl_region_type = "UI"
-    bl_category = "batten"
-    bl_parent_id = VIEW3D_PT_batten.bl_idname
-    bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context):
         layout = self.layout
