@@ -692,6 +692,46 @@ def fairing_showcase(api, examples: Path, out: Path, engine: str, size: str) -> 
         _log(f"fairing: {type(e).__name__}: {e}")
 
 
+#: The form showcase: the frigate's design draft (m) and its breadth change.
+FORM_DRAFT = 4.8
+FORM_BREADTH_FACTOR = 1.05
+
+
+def form_showcase(api, examples: Path, out: Path) -> None:
+    """A change by form topology (seed 002) compared with the original (§9): the frigate made
+    5 % wider into a copy on its stack, then both hulls measured side by side
+    (``frigate_breadth_comparison.json``: dimensions and hydrostatics, original, copy and
+    change) and their sectional area curves drawn together
+    (``frigate_breadth_comparison_sac.png``). An error is logged."""
+    hydro_plot = _batten_module(api, "hydro_plot")
+    path = examples / "frigate_network.json"
+    if not path.is_file():
+        return
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    try:
+        coll = api.load_network(path)
+        breadth = api.form_topology(coll, draft=FORM_DRAFT)["parameters"]["breadth"]
+        t0 = time.perf_counter()
+        result = api.transform(coll, breadth=FORM_BREADTH_FACTOR * breadth, draft=FORM_DRAFT)
+        t_transform = time.perf_counter() - t0
+        comparison = api.compare(result, draft=FORM_DRAFT)
+        png, _ = hydro_plot.sac_comparison_png(comparison, out / "frigate_breadth_comparison_sac.png")
+        table = {k: v for k, v in comparison.items() if k != "sac"}
+        (out / "frigate_breadth_comparison.json").write_text(json.dumps(table, indent=2) + "\n")
+        rows = {r["key"]: r for r in comparison["dimensions"] + comparison["hydrostatics"]}
+        changes = ", ".join(
+            f"{rows[k]['label']} {rows[k]['change_pct']:+.2f} %"
+            for k in ("breadth", "bwl", "volume", "cb", "kmt")
+        )
+        _log(
+            f"form: frigate breadth x{FORM_BREADTH_FACTOR} into '{result.collection.name}' in "
+            f"{t_transform * 1e3:.0f} ms; beside the original at T = {FORM_DRAFT} m: {changes}; "
+            f"sectional areas in {png}"
+        )
+    except api.BattenError as e:
+        _log(f"form: {type(e).__name__}: {e}")
+
+
 def main() -> None:
     args = _args()
     batten = _import_batten()
@@ -706,6 +746,7 @@ def main() -> None:
     for path in examples:
         run_example(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
     fairing_showcase(api, args.examples, args.out, args.engine, args.size)
+    form_showcase(api, args.examples, args.out)
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:
         _log(f"no real ships in {args.ships} (the shared/hulls folder beside the checkout)")

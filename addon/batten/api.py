@@ -23,6 +23,7 @@ run step by step, as the modal operators do.
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Iterable
 from pathlib import Path
 from typing import NamedTuple
@@ -70,7 +71,7 @@ from batten_native import (
 from batten_native import form_topology as _form_topology
 from batten_native import topology as _topology
 
-from . import cad_export, closed_mesh, curvature_map, form_stack, hull_models, sections_draw
+from . import cad_export, closed_mesh, curvature_map, form_compare, form_stack, hull_models, sections_draw
 from .atomic_write import write_atomically
 from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors
 from .bridge import curves_in, curves_out, mesh_out, sections_in
@@ -1794,6 +1795,97 @@ def transform_stack(source) -> list[dict]:
         }
         for c in form_stack.stack(original)
     ]
+
+
+def _copy_collection(result, what: str) -> bpy.types.Collection:
+    """The copy collection of ``result`` (a :class:`TransformResult` or a collection);
+    InvalidArgumentError when it is no copy on a transformation stack."""
+    copy = result.collection if isinstance(result, TransformResult) else result
+    if isinstance(copy, str):
+        if copy not in bpy.data.collections:
+            raise InvalidArgumentError(f"{what}: no collection '{copy}'")
+        copy = bpy.data.collections[copy]
+    if not isinstance(copy, bpy.types.Collection):
+        raise InvalidArgumentError(f"{what} needs a transformation copy, got {type(copy).__name__}")
+    if form_stack.original_of(copy) is copy:
+        raise InvalidArgumentError(f"collection '{copy.name}' is not a transformation copy")
+    return copy
+
+
+def compare(
+    result,
+    *,
+    draft: float | None = None,
+    stations: int = 21,
+    density: float = SEA_WATER_DENSITY,
+    tolerance: float = DEFAULT_TOLERANCE,
+) -> dict:
+    """A copy on the transformation stack beside its original (seed 002 §9): ``result`` is a
+    :class:`TransformResult`, a copy collection or its name. Both hulls are measured afresh at ``draft``
+    (default: the original's design draft), upright and level, in water of ``density``.
+
+    Perpendiculars: the original's (its ``batten_lpp`` / ``batten_fp``, else its level
+    waterline's ends); the copy's are those moved as far as each end of its waterline moved
+    (:mod:`batten.form_compare`), so both hulls' coefficients and centres are on comparable bases.
+
+    Returns a dict: ``original`` and ``copy`` (collection names), ``description`` (the change),
+    ``draft``, ``density``, ``perpendiculars`` (``{"original": (x_ap, x_fp), "copy": …}``),
+    ``dimensions`` and ``hydrostatics`` (rows of ``key``, ``label``, ``unit``, ``fmt``,
+    ``original``, ``copy``, ``change``, ``change_pct``; a dimension the hull does not have is
+    None), ``form_errors`` (per hull, why its form could not be measured, if so) and ``sac``
+    (``{"original": (xs, areas), "copy": (xs, areas)}``: ``stations`` equally spaced stations
+    from each hull's AP to its FP). Nothing is changed in the scene.
+
+    Raises InvalidArgumentError when ``result`` is no copy, no draft is given and the original
+    has none, or ``stations`` < 2; HydrostaticsError (naming where) when a hull cannot float at
+    the draft.
+    """
+    copy = _copy_collection(result, "compare")
+    original = form_stack.original_of(copy)
+    if draft is None:
+        draft = design_draft(original)
+        if draft is None:
+            raise InvalidArgumentError(
+                f"compare: the original '{original.name}' has no design draft; "
+                "give draft= (m above the baseline)"
+            )
+    draft = float(draft)
+    if not math.isfinite(draft):
+        raise InvalidArgumentError(f"compare: draft {draft} is not a number")
+    if int(stations) < 2:
+        raise InvalidArgumentError(f"stations {stations} must be at least 2 (AP and FP)")
+    hulls = {"original": original, "copy": copy}
+    models = {key: _hull_model(coll, measured=False) for key, coll in hulls.items()}
+    lpp, fp = _datums(original, None, None)
+    ends = {key: tuple(model.datums(draft, None, None)) for key, model in models.items()}
+    if fp is None:
+        ours = tuple(models["original"].datums(draft, lpp, None))
+    else:
+        ours = (fp - lpp, fp)
+    moved = form_compare.moved_perpendiculars(ours, ends["original"], ends["copy"])
+    perpendiculars = {"original": ours, "copy": moved}
+    figures, sac, forms, form_errors = {}, {}, {}, {}
+    for key, model in models.items():
+        x_ap, x_fp = perpendiculars[key]
+        figures[key] = model.hydrostatics(draft, 0.0, 0.0, density, x_fp - x_ap, x_fp, False)
+        xs = np.linspace(x_ap, x_fp, int(stations))
+        sac[key] = (xs, np.asarray(model.sectional_areas(draft, xs.tolist(), 0.0, 0.0, x_fp - x_ap, x_fp)))
+        try:
+            forms[key] = form_topology(hulls[key], tolerance=tolerance, draft=draft)["parameters"]
+        except BattenError as e:
+            forms[key], form_errors[key] = {}, str(e)
+    return {
+        "original": original.name,
+        "copy": copy.name,
+        "description": str(copy.get(form_stack.TRANSFORM_DESCRIPTION, "")),
+        "draft": draft,
+        "density": float(density),
+        "perpendiculars": perpendiculars,
+        "dimensions": form_compare.rows(form_compare.DIMENSIONS, forms["original"], forms["copy"]),
+        "hydrostatics": form_compare.rows(form_compare.HYDROSTATICS, figures["original"], figures["copy"]),
+        "form_errors": form_errors,
+        "sac": sac,
+    }
 
 
 def commit(result) -> bpy.types.Collection:

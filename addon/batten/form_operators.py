@@ -8,12 +8,15 @@ import bpy
 import numpy as np
 from bpy.props import StringProperty
 
-from . import api
+from . import api, hydro_plot
 from ._registry import register_classes, unregister_classes
 from .operator_base import BattenOperator, HullOperator
+from .scene_hydro import draft_of
 
 #: Points per form edge drawn in the overlay.
 EDGE_SAMPLES = 24
+#: Points per curve of the original drawn beside a compared copy.
+GHOST_SAMPLES = 48
 
 
 def _drawing(source, form: dict) -> dict:
@@ -133,6 +136,49 @@ class _CopyOperator(BattenOperator):
         return _is_copy(context.scene.batten.source)
 
 
+def _ghost(source) -> list[list[list[float]]]:
+    """The curves of the hull ``source`` as polylines (mm-rounded points), for the overlay."""
+    out = []
+    for curve in api.read_curves(source):
+        ts = np.linspace(*curve.domain, GHOST_SAMPLES)
+        out.append(np.asarray(curve.evaluate(ts)).round(3).tolist())
+    return out
+
+
+class BATTEN_OT_compare_transform(_CopyOperator, bpy.types.Operator):
+    """Set this copy beside its original: main dimensions and hydrostatics at the original's design
+    draft (else the Hydrostatics panel's draft) side by side, both sectional area curves in the image
+    '<copy> vs original SAC', and the original's curves drawn in the viewport"""
+
+    bl_idname = "batten.compare_transform"
+    bl_label = "Compare with Original"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def run(self, context):
+        settings = context.scene.batten
+        copy = settings.source
+        original = api.transform_stack(copy)[0]["collection"]
+        draft = api.design_draft(original)
+        comparison = api.compare(copy, draft=draft if draft is not None else draft_of(settings))
+        image = hydro_plot.plot_image(
+            hydro_plot.comparison_image_name(copy.name),
+            lambda path: hydro_plot.sac_comparison_png(comparison, path),
+        )
+        hydro_plot.show_in_image_editors(context, image)
+        shown = {
+            k: comparison[k]
+            for k in ("original", "copy", "description", "draft", "dimensions", "hydrostatics")
+        }
+        settings.last_comparison = json.dumps({**shown, "ghost": _ghost(original)})
+        volume = next(r for r in comparison["hydrostatics"] if r["key"] == "volume")
+        self.report(
+            {"INFO"},
+            f"'{copy.name}' beside '{original.name}': ∇ {volume['change_pct']:+.2f} %; "
+            f"sectional areas in image '{image.name}'",
+        )
+        return {"FINISHED"}
+
+
 class BATTEN_OT_commit_transform(_CopyOperator, bpy.types.Operator):
     """Apply this copy to the original hull's curves and drop the stack"""
 
@@ -190,6 +236,7 @@ _CLASSES = (
     BATTEN_OT_transform,
     BATTEN_OT_move_form_vertex,
     BATTEN_OT_select_transform,
+    BATTEN_OT_compare_transform,
     BATTEN_OT_commit_transform,
     BATTEN_OT_keep_transform,
     BATTEN_OT_abandon_transforms,

@@ -14,14 +14,6 @@ from .operator_base import HullOperator
 from .scene_hydro import draft_of, figures_kept_in, flotation, hydrostatics_into_scene, keep_figures, typed
 
 
-def _show_in_image_editors(context, image) -> None:
-    """Show ``image`` in every Image Editor of the window's screen (none headless)."""
-    screen = getattr(context, "screen", None)
-    for area in screen.areas if screen is not None else ():
-        if area.type == "IMAGE_EDITOR":
-            area.spaces.active.image = image
-
-
 class BATTEN_OT_hydrostatics(HullOperator, bpy.types.Operator):
     """Compute the hull's hydrostatics at the draft, trim, heel and density"""
 
@@ -62,7 +54,7 @@ class BATTEN_OT_sectional_areas(HullOperator, bpy.types.Operator):
         image = hydro_plot.plot_image(
             hydro_plot.sac_image_name(hull), lambda path: hydro_plot.sac_png(hull, xs, areas, figures, path)
         )
-        _show_in_image_editors(context, image)
+        hydro_plot.show_in_image_editors(context, image)
         self.report({"INFO"}, f"Sectional area curve in image '{image.name}'")
         return {"FINISHED"}
 
@@ -92,7 +84,7 @@ class BATTEN_OT_curves_of_form(HullOperator, bpy.types.Operator):
             hydro_plot.curves_of_form_image_name(hull),
             lambda path: hydro_plot.curves_of_form_png(hull, rows, path),
         )
-        _show_in_image_editors(context, image)
+        hydro_plot.show_in_image_editors(context, image)
         self.report({"INFO"}, f"Curves of form ({len(rows)} drafts) in image '{image.name}'")
         return {"FINISHED"}
 

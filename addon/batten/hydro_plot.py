@@ -107,6 +107,64 @@ def sac_png(hull: str, xs, areas, figures: dict, path, *, note: str = "") -> tup
     return canvas.save_png(path), axes
 
 
+def comparison_image_name(copy: str) -> str:
+    """The Blender image of a copy's sectional areas beside its original's."""
+    return f"{copy} vs original SAC"
+
+
+def sac_comparison_png(comparison: dict, path) -> tuple[Path, Axes]:
+    """Draw the sectional area curves of a copy and its original on one chart (``comparison``
+    from :func:`batten.api.compare`), each hull's AP and FP marked (the copy's dashed in its
+    colour where they moved), the change of ∇ in the title, to the PNG ``path``. Returns the
+    path and the axes."""
+    sac = comparison["sac"]
+    (xo, ao), (xc, ac) = (
+        (np.asarray(v, float) for v in sac["original"]),
+        (np.asarray(v, float) for v in sac["copy"]),
+    )
+    canvas = Canvas(*SAC_SIZE)
+    s = TEXT_SIZE
+    w, h = SAC_SIZE
+    axes = Axes.fit(
+        canvas,
+        (6 * s, 5 * s, w - 2 * s, h - 6.5 * s),
+        np.concatenate([xo, xc]),
+        np.concatenate([ao, ac, [0.0]]),
+        xcount=10,
+        ycount=6,
+    )
+    axes.frame(xlabel="x (m, forward)", ylabel="A (m²)", size=s)
+    volume = next((r for r in comparison["hydrostatics"] if r["key"] == "volume"), None)
+    change = ""
+    if volume is not None and volume["change"] is not None:
+        change = f"; ∇ {volume['original']:,.1f} → {volume['copy']:,.1f} m³ ({volume['change_pct']:+.2f} %)"
+    title = f"{comparison['copy']} ({comparison['description']}) beside {comparison['original']}"
+    canvas.text(w / 2, h - 2 * s, title, size=round(1.2 * s), align="center")
+    canvas.text(
+        w / 2,
+        h - 3.8 * s,
+        f"sectional areas at T = {comparison['draft']:.3f} m{change}",
+        size=s,
+        align="center",
+    )
+    canvas.fill_below(axes.to_px(xo, ao), axes.to_px([xo[0]], [0.0])[0, 1], SAC_FILL)
+    axes.plot(xo, ao, PALETTE[0], width=3.0)
+    axes.plot(xc, ac, PALETTE[1], width=3.0, dash=(14.0, 6.0))
+    (ap_o, fp_o), (ap_c, fp_c) = (
+        comparison["perpendiculars"]["original"],
+        comparison["perpendiculars"]["copy"],
+    )
+    axes.vline(ap_o, "AP", size=s)
+    axes.vline(fp_o, "FP", size=s)
+    moved = max(abs(fp_o - ap_o), 1.0) * 1e-9
+    if abs(ap_c - ap_o) > moved:
+        axes.vline(ap_c, "AP'", PALETTE[1], size=s)
+    if abs(fp_c - fp_o) > moved:
+        axes.vline(fp_c, "FP'", PALETTE[1], size=s)
+    axes.legend([(comparison["original"], PALETTE[0]), (comparison["copy"], PALETTE[1])], size=s)
+    return canvas.save_png(path), axes
+
+
 def _lines(note: str) -> list[str]:
     """A note's lines as drawn (wrapped at :data:`NOTE_LINE_CHARS`)."""
     return textwrap.wrap(note, NOTE_LINE_CHARS)
@@ -192,6 +250,14 @@ def show_image(name: str, path):
     image.update()
     image.pack()
     return image
+
+
+def show_in_image_editors(context, image) -> None:
+    """Show ``image`` in every Image Editor of the window's screen (none headless)."""
+    screen = getattr(context, "screen", None)
+    for area in screen.areas if screen is not None else ():
+        if area.type == "IMAGE_EDITOR":
+            area.spaces.active.image = image
 
 
 def plot_image(name: str, draw) -> object:

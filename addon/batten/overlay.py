@@ -148,6 +148,8 @@ FORM_EDGE_STYLES = {
 #: Form vertices: colour, point size (px); their numbers' colour and size (px).
 FORM_VERTEX_STYLE = ((0.9, 0.1, 0.45, 1.0), 11.0)
 FORM_LABEL_STYLE = ((1.0, 1.0, 1.0, 1.0), 13)
+#: The original's curves beside a compared copy: colour (RGBA) and line width (pixels).
+COMPARISON_STYLE = ((0.2, 0.8, 0.95, 1.0), 1.5)
 
 _parsed_form = ("", {})
 
@@ -182,6 +184,30 @@ def form_vertices(context) -> np.ndarray:
     return np.asarray(vertices, dtype=np.float32).reshape(-1, 3)
 
 
+_parsed_comparison = ("", {})
+
+
+def comparison_lines(context) -> np.ndarray:
+    """Line segment end points (2k, 3), float32, along the original's curves of the last
+    comparison, while its copy is the scene's hull and Show Original is on (else none)."""
+    global _parsed_comparison
+    settings = context.scene.batten
+    if not settings.show_comparison or settings.source is None:
+        return np.zeros((0, 3), dtype=np.float32)
+    text = settings.last_comparison
+    if text != _parsed_comparison[0]:
+        _parsed_comparison = (text, json.loads(text) if text else {})
+    comparison = _parsed_comparison[1]
+    if comparison.get("copy") != settings.source.name:
+        return np.zeros((0, 3), dtype=np.float32)
+    segments = [
+        np.stack([pts[:-1], pts[1:]], axis=1).reshape(-1, 3)
+        for pts in (np.asarray(line, dtype=np.float32) for line in comparison.get("ghost", []))
+        if len(pts) > 1
+    ]
+    return np.concatenate(segments) if segments else np.zeros((0, 3), dtype=np.float32)
+
+
 def _draw_form_labels():
     """Each form vertex's number beside it (pixel space)."""
     context = bpy.context
@@ -212,6 +238,11 @@ def _draw():
     from gpu_extras.batch import batch_for_shader
 
     _draw_water(context)
+    ghost = comparison_lines(context)
+    if len(ghost):
+        wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
+        wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
+        _draw_styled(wide, "LINES", "lineWidth", {"original": ghost}, {"original": COMPARISON_STYLE})
     form_edges = form_lines(context)
     if any(len(v) for v in form_edges.values()):
         wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")

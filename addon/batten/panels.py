@@ -5,7 +5,7 @@ import textwrap
 
 import bpy
 
-from . import api, hydro_table
+from . import api, form_compare, hydro_table
 from ._registry import register_classes, unregister_classes
 from .properties import FORM_PARAMETERS
 
@@ -231,7 +231,16 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
             row.operator("batten.commit_transform", icon="CHECKMARK")
             row.operator("batten.keep_transform", text="Keep", icon="DUPLICATE")
             row.operator("batten.abandon_transforms", text="", icon="X")
+            row = box.row(align=True)
+            row.operator("batten.compare_transform", icon="ARROW_LEFTRIGHT")
+            row.prop(
+                settings,
+                "show_comparison",
+                text="",
+                icon="HIDE_OFF" if settings.show_comparison else "HIDE_ON",
+            )
         _draw_change(layout, settings.last_transform)
+        _draw_comparison(layout, settings.last_comparison, source)
 
 
 #: The other measured parameters the Form panel lists, with their labels (metres).
@@ -285,6 +294,34 @@ def _draw_change(layout, text: str) -> None:
         split = col.split(factor=0.4, align=True)
         split.label(text=label)
         split.label(text=f"{_metres(before)} → {_metres(after)}")
+
+
+def _draw_comparison(layout, text: str, source) -> None:
+    """The last comparison of ``source`` (a copy) with its original: each dimension and
+    hydrostatic figure of both, and the change (nothing when it was made for another hull)."""
+    if not text or source is None:
+        return
+    comparison = json.loads(text)
+    if comparison.get("copy") != source.name:
+        return
+    box = layout.box()
+    box.label(
+        text=f"Beside '{comparison['original']}' at T = {comparison['draft']:.3f} m", icon="ARROW_LEFTRIGHT"
+    )
+    col = box.column(align=True)
+    for group, rows in (
+        ("Dimensions", comparison["dimensions"]),
+        ("Hydrostatics", comparison["hydrostatics"]),
+    ):
+        col.label(text=group)
+        for row in rows:
+            split = col.split(factor=0.3, align=True)
+            split.label(text=row["label"])
+            split = split.split(factor=0.55, align=True)
+            split.label(
+                text=f"{form_compare.value_text(row, 'original')} → {form_compare.value_text(row, 'copy')}"
+            )
+            split.label(text=form_compare.change_text(row) if row["change"] is not None else "—")
 
 
 def _draw_figures(layout, text: str) -> None:

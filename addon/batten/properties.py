@@ -201,6 +201,19 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         default="",
         options={"HIDDEN"},
     )
+    last_comparison: StringProperty(
+        name="Last comparison",
+        description="The last comparison of a copy with its original (JSON): dimensions and hydrostatics "
+        "side by side, shown in the Form panel, and the original's curves the viewport draws beside the copy",
+        default="",
+        options={"HIDDEN"},
+    )
+    show_comparison: BoolProperty(
+        name="Show Original",
+        description="Draw the original hull's curves in the viewport while its compared copy is the hull "
+        "the panels work on",
+        default=True,
+    )
     curvature_kind: EnumProperty(
         name="Curvature",
         description="Which curvature the map shows",

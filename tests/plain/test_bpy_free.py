@@ -11,6 +11,7 @@ BPY_FREE = (
     "batten.atomic_write",
     "batten.chart",
     "batten.hydro_table",
+    "batten.form_compare",
     "batten.waterplane_outline",
     "batten.file_text",
     "batten.fit_data",
