@@ -12,9 +12,29 @@ and its writers) can be used and tested without it.
 
 def _modules():
     """The Blender modules, in registration order."""
-    from . import cad_operators, form_operators, hydro_operators, live, operators, overlay, panels, properties
+    from . import (
+        cad_operators,
+        form_drag,
+        form_operators,
+        hydro_operators,
+        live,
+        operators,
+        overlay,
+        panels,
+        properties,
+    )
 
-    return (properties, operators, cad_operators, hydro_operators, form_operators, panels, overlay, live)
+    return (
+        properties,
+        operators,
+        cad_operators,
+        hydro_operators,
+        form_operators,
+        form_drag,
+        panels,
+        overlay,
+        live,
+    )
 
 
 def register():

@@ -150,6 +150,8 @@ FORM_VERTEX_STYLE = ((0.9, 0.1, 0.45, 1.0), 11.0)
 FORM_LABEL_STYLE = ((1.0, 1.0, 1.0, 1.0), 13)
 #: The original's curves beside a compared copy: colour (RGBA) and line width (pixels).
 COMPARISON_STYLE = ((0.2, 0.8, 0.95, 1.0), 1.5)
+#: The drag of a form vertex: colour and line width (pixels).
+DRAG_STYLE = ((1.0, 0.85, 0.1, 1.0), 2.5)
 
 _parsed_form = ("", {})
 
@@ -208,6 +210,16 @@ def comparison_lines(context) -> np.ndarray:
     return np.concatenate(segments) if segments else np.zeros((0, 3), dtype=np.float32)
 
 
+def drag_lines() -> np.ndarray:
+    """The form vertex being dragged (:mod:`batten.form_drag`): a segment from where it was to
+    where it goes, (2, 3) float32; none while nothing is dragged."""
+    from . import form_drag
+
+    if form_drag.preview is None:
+        return np.zeros((0, 3), dtype=np.float32)
+    return np.asarray(form_drag.preview, dtype=np.float32).reshape(2, 3)
+
+
 def _draw_form_labels():
     """Each form vertex's number beside it (pixel space)."""
     context = bpy.context
@@ -243,6 +255,13 @@ def _draw():
         wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
         wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
         _draw_styled(wide, "LINES", "lineWidth", {"original": ghost}, {"original": COMPARISON_STYLE})
+    drag = drag_lines()
+    if len(drag):
+        wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
+        wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
+        _draw_styled(wide, "LINES", "lineWidth", {"drag": drag}, {"drag": DRAG_STYLE})
+        dots = gpu.shader.from_builtin("POINT_UNIFORM_COLOR")
+        _draw_styled(dots, "POINTS", "size", {"v": drag[1:]}, {"v": FORM_VERTEX_STYLE})
     form_edges = form_lines(context)
     if any(len(v) for v in form_edges.values()):
         wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")

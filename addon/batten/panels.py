@@ -213,7 +213,9 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
         col = box.column(align=True)
         col.prop(settings, "form_vertex")
         col.prop(settings, "form_move", text="")
-        col.operator("batten.move_form_vertex", icon="EMPTY_ARROWS")
+        row = col.row(align=True)
+        row.operator("batten.move_form_vertex", icon="EMPTY_ARROWS")
+        row.operator("batten.drag_form_vertex", icon="RESTRICT_SELECT_OFF")
         try:
             stack = api.transform_stack(source) if source is not None else []
         except api.BattenError:
