@@ -71,7 +71,16 @@ from batten_native import (
 from batten_native import form_topology as _form_topology
 from batten_native import topology as _topology
 
-from . import cad_export, closed_mesh, curvature_map, form_compare, form_stack, hull_models, sections_draw
+from . import (
+    cad_export,
+    closed_mesh,
+    curvature_map,
+    form_compare,
+    form_stack,
+    hierarchy,
+    hull_models,
+    sections_draw,
+)
 from .atomic_write import write_atomically
 from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors
 from .bridge import curves_in, curves_out, mesh_out, sections_in
@@ -145,6 +154,11 @@ __all__ = [
     "keep",
     "transform",
     "transform_stack",
+    "compare",
+    "attach",
+    "detach",
+    "attachments",
+    "update_hierarchy",
 ]
 
 
@@ -326,6 +340,103 @@ def set_role(objects, role: str) -> None:
         raise InvalidArgumentError(f"unknown role '{role}' (one of {', '.join(ROLES)})")
     for obj in curve_objects(objects):
         obj.batten.role = role
+
+
+def _curve_object(obj, what: str):
+    """The curve object ``obj`` (an object or its name); InvalidArgumentError otherwise."""
+    if isinstance(obj, str):
+        found = bpy.data.objects.get(obj)
+        if found is None:
+            raise InvalidArgumentError(f"{what}: no object '{obj}'")
+        obj = found
+    if not isinstance(obj, bpy.types.Object):
+        raise InvalidArgumentError(f"{what} needs a curve object, got {type(obj).__name__}")
+    if obj.type != "CURVE":
+        raise CurveError(f"object '{obj.name}' is a {obj.type.lower()}, not a curve object", obj.name)
+    return obj
+
+
+def attach(
+    children, parent, *, end: str = "nearest", tolerance: float = hierarchy.ATTACH_DISTANCE
+) -> list[dict]:
+    """Attach an end of each curve object of ``children`` (one object or name, or several) to
+    the curve object ``parent`` (seed 002 §5: the curve network hierarchy): the end (``start``,
+    ``end``, or ``nearest``: the one nearer the parent) references the parent's point nearest
+    to it, which must be within ``tolerance`` m. From then on the end follows that point of the
+    parent, and the child's free control points follow by the elastic rule
+    (:func:`update_hierarchy`; Build and Live do it on every change). The children are updated
+    at once, so their ends lie on the parent.
+
+    Returns the attachments, one ``{"child", "end", "parent", "t"}`` per child (``t``: the
+    parameter on the parent). All children are attached or none: CurveError naming the child
+    when it is not one spline, is the parent or one of the parent's ancestors, or its end is
+    too far; InvalidArgumentError for an unknown end."""
+    if isinstance(children, str | bpy.types.Object):
+        children = [children]
+    children = [_curve_object(c, "attach") for c in children]
+    parent = _curve_object(parent, "attach")
+    if not children:
+        raise InvalidArgumentError("attach: no curve to attach")
+    if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
+        raise InvalidArgumentError(f"attach: tolerance {tolerance!r} must be a positive distance (m)")
+    before = {c.name: hierarchy.attachments_of(c) for c in children}
+    made = []
+    try:
+        for child in children:
+            made.append({"child": child.name, **hierarchy.attach(child, parent, end, float(tolerance))})
+        hierarchy.update(_with_descendants(children))
+    except BaseException:
+        for child in children:
+            hierarchy.store(child, before[child.name])
+        raise
+    return made
+
+
+def _with_descendants(objects) -> list:
+    """The curve objects ``objects`` and every curve object that references one of them,
+    directly or not."""
+    curves = [o for o in bpy.data.objects if o.type == "CURVE"]
+    parents = hierarchy.graph(curves)
+    found = {o.name for o in objects}
+    frontier = set(found)
+    while frontier:
+        frontier = {child for child, ps in parents.items() if ps & frontier} - found
+        found |= frontier
+    return [bpy.data.objects[name] for name in sorted(found)]
+
+
+def detach(child, *, end: str | None = None) -> int:
+    """Detach the ends of the curve object ``child`` (only ``end``, ``start`` or ``end``, when
+    given) from their parents; the curve stays where it is. Returns how many were detached."""
+    child = _curve_object(child, "detach")
+    if end is not None and end not in hierarchy.ENDS:
+        raise InvalidArgumentError(f"end '{end}' is none of start, end")
+    before = hierarchy.attachments_of(child)
+    kept = [a for a in before if end is not None and a["end"] != end]
+    hierarchy.store(child, kept)
+    return len(before) - len(kept)
+
+
+def attachments(source) -> list[dict]:
+    """The attachments of the curve objects of ``source`` (as :func:`curve_objects` takes it),
+    in hierarchy order (every parent's before its children's): each ``{"child", "end",
+    "parent", "t"}``. CurveError naming the curves when they reference each other in a cycle."""
+    objects = curve_objects(source)
+    by_name = {o.name: o for o in objects}
+    return [
+        {"child": name, **a}
+        for name in hierarchy.order(objects)
+        for a in hierarchy.attachments_of(by_name[name])
+    ]
+
+
+def update_hierarchy(source) -> list[str]:
+    """Bring every attached curve of ``source`` (as :func:`curve_objects` takes it) to its
+    parents, in hierarchy order (seed 002 §7.1): each attached end onto its parent's point, the
+    free control points by the elastic rule. All curves or none are changed. Returns the names
+    of the curves that moved. CurveError naming the curve when a parent is gone or curves
+    reference each other in a cycle."""
+    return hierarchy.update(curve_objects(source))
 
 
 def example_files() -> list[Path]:

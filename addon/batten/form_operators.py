@@ -231,6 +231,52 @@ class BATTEN_OT_abandon_transforms(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
+def _selected_curves(context) -> list:
+    """The selected curve objects other than the active object."""
+    active = context.view_layer.objects.active
+    return [o for o in context.selected_objects if o.type == "CURVE" and o != active]
+
+
+class BATTEN_OT_attach_curves(BattenOperator, bpy.types.Operator):
+    """Attach the nearer end of each selected curve to the active curve (the curve network
+    hierarchy): the ends then follow it when it changes, and the curves' free points follow them"""
+
+    bl_idname = "batten.attach_curves"
+    bl_label = "Attach to Active"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        active = context.view_layer.objects.active
+        return active is not None and active.type == "CURVE" and bool(_selected_curves(context))
+
+    def run(self, context):
+        parent = context.view_layer.objects.active
+        made = api.attach(_selected_curves(context), parent)
+        ends = ", ".join(f"{a['child']} ({a['end']})" for a in made)
+        self.report({"INFO"}, f"Attached to '{parent.name}': {ends}")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_detach_curves(BattenOperator, bpy.types.Operator):
+    """Detach both ends of each selected curve from the curves they are attached to (the curves
+    stay where they are)"""
+
+    bl_idname = "batten.detach_curves"
+    bl_label = "Detach"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return any(o.type == "CURVE" and o.get("batten_attachments") for o in context.selected_objects)
+
+    def run(self, context):
+        curves = [o for o in context.selected_objects if o.type == "CURVE"]
+        count = sum(api.detach(o) for o in curves)
+        self.report({"INFO"}, f"{count} end(s) detached")
+        return {"FINISHED"}
+
+
 _CLASSES = (
     BATTEN_OT_measure_form,
     BATTEN_OT_transform,
@@ -240,6 +286,8 @@ _CLASSES = (
     BATTEN_OT_commit_transform,
     BATTEN_OT_keep_transform,
     BATTEN_OT_abandon_transforms,
+    BATTEN_OT_attach_curves,
+    BATTEN_OT_detach_curves,
 )
 
 

@@ -30,6 +30,8 @@ class BATTEN_OT_build(HullOperator, bpy.types.Operator):
 
     def run(self, context):
         report = build_into_scene(context.scene)
+        if report.get("hierarchy_error"):
+            self.report({"WARNING"}, report["hierarchy_error"])
         for warning in report["warnings"]:
             self.report({"WARNING"}, warning["message"])
         sides = ", ".join(f"{n}-sided: {c}" for n, c in sorted(report["faces_by_sides"].items()))

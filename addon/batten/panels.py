@@ -5,7 +5,7 @@ import textwrap
 
 import bpy
 
-from . import api, form_compare, hydro_table
+from . import api, form_compare, hierarchy, hydro_table
 from ._registry import register_classes, unregister_classes
 from .properties import FORM_PARAMETERS
 
@@ -106,6 +106,12 @@ def _draw_report(layout, text: str) -> None:
         )
         col.label(text=f"  at corners of {_names(corners)}")
     col.label(text=f"Enclosed volume (to the top): {report['enclosed_volume']:.2f} m³")
+    if report.get("hierarchy_moved"):
+        col.label(text=f"Followed their parents: {_names(report['hierarchy_moved'])}", icon="LINKED")
+    if report.get("hierarchy_error"):
+        row = box.row()
+        row.alert = True
+        row.label(text=report["hierarchy_error"], icon="ERROR")
     for warning in report["warnings"]:
         row = box.row()
         row.label(text=warning["message"], icon="ERROR")
@@ -243,6 +249,7 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
             )
         _draw_change(layout, settings.last_transform)
         _draw_comparison(layout, settings.last_comparison, source)
+        _draw_hierarchy(layout, context)
 
 
 #: The other measured parameters the Form panel lists, with their labels (metres).
@@ -296,6 +303,29 @@ def _draw_change(layout, text: str) -> None:
         split = col.split(factor=0.4, align=True)
         split.label(text=label)
         split.label(text=f"{_metres(before)} → {_metres(after)}")
+
+
+def _draw_hierarchy(layout, context) -> None:
+    """The curve network hierarchy (seed 002 §5, §7.1): attach the selected curves' ends to the
+    active curve or detach them, and what the active curve is attached to and carries."""
+    box = layout.box()
+    box.label(text="Hierarchy", icon="LINKED")
+    row = box.row(align=True)
+    row.operator("batten.attach_curves", icon="LINKED")
+    row.operator("batten.detach_curves", icon="UNLINKED")
+    active = context.view_layer.objects.active
+    if active is None or active.type != "CURVE":
+        return
+    col = box.column(align=True)
+    for a in hierarchy.attachments_of(active):
+        col.label(text=f"{active.name} {a['end']} → {a['parent']} (t {a['t']:.4g})")
+    children = sorted(
+        o.name
+        for o in bpy.data.objects
+        if any(a["parent"] == active.name for a in hierarchy.attachments_of(o))
+    )
+    if children:
+        col.label(text=f"Carries: {_names(children)}")
 
 
 def _draw_comparison(layout, text: str, source) -> None:

@@ -24,12 +24,24 @@ _deferred: dict[str, object] = {}
 _settling: dict[str, object] = {}
 
 
+#: What a live rebuild's report says beyond the surface, kept when the settled report replaces it.
+KEPT_ON_SETTLE = ("sections_error", "hierarchy_moved", "hierarchy_error")
+
+
 def build_into_scene(scene, *, live: bool = False) -> dict:
     """Build the scene's hull with its settings, keep the report in the scene (JSON) with the
     overlay's markers (from the report's nodes and warnings), cut its drawn sections again (see
     :func:`refresh_sections`), and return the report; a failure is kept as the report's error
-    and raised again."""
+    and raised again. Attached curves are first brought to their parents
+    (:func:`batten.api.update_hierarchy`; the report's ``hierarchy_moved`` names them, and
+    ``hierarchy_error`` says why they could not be, the build going on with the curves as
+    they are)."""
     settings = scene.batten
+    try:
+        # The curve hierarchy first (seed 002 §7.1): attached curves follow their parents.
+        moved, hierarchy_error = api.update_hierarchy(settings.source), None
+    except api.BattenError as e:
+        moved, hierarchy_error = [], str(e)
     try:
         result = api.build(
             settings.source,
@@ -42,6 +54,9 @@ def build_into_scene(scene, *, live: bool = False) -> dict:
         settings.last_report = json.dumps({"error": str(e)})
         raise
     report = result.report
+    report["hierarchy_moved"] = moved
+    if hierarchy_error is not None:
+        report["hierarchy_error"] = hierarchy_error
     try:
         refresh_sections(settings.source, live=live)
     except api.BattenError as e:
@@ -78,9 +93,9 @@ def _settle_later(scene_name: str) -> None:
             settings.last_report = json.dumps({"error": str(e)})
             return None
         if report is not None:
-            sections_error = json.loads(settings.last_report or "{}").get("sections_error")
-            if sections_error:
-                report["sections_error"] = sections_error
+            # What the live rebuild said of the sections and the hierarchy stays.
+            before = json.loads(settings.last_report or "{}")
+            report.update({k: before[k] for k in KEPT_ON_SETTLE if k in before})
             _keep_report(settings, report)
         return None
 
