@@ -192,3 +192,16 @@ def test_live_rebuilds_carry_the_hierarchy(frame):
         assert _co(st)[-1][2] == pytest.approx(2.4, abs=1e-6)
     finally:
         settings.live = False
+
+
+def test_a_committed_transformation_keeps_the_attachments_on_their_points(barge):  # noqa: F811
+    st, deck = barge.objects["st10"], barge.objects["deck"]
+    api.attach(st, deck, end="end")
+    result = api.transform(barge, breadth=21.0)
+    api.commit(result)
+    top = _co(st)[-1].copy()
+    api.update_hierarchy(barge)
+    assert _co(st)[-1] == pytest.approx(top, abs=1e-6), "the end stays where the transformation put it"
+    assert api.update_hierarchy(barge) == [], "and stays"
+    t = hierarchy.attachments_of(st)[0]["t"]
+    assert api.read_curves(deck)[0].nearest(top)[0] == pytest.approx(t, abs=1e-9)

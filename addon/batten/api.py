@@ -2009,6 +2009,8 @@ def commit(result) -> bpy.types.Collection:
         raise InvalidArgumentError(f"collection '{copy.name}' is not a transformation copy")
     curves, object_of = _read_source(copy)
     curves_out.replace_splines_of(form_stack.replacements(copy, curves, object_of))
+    # The refitted curves have new parameters: attached ends reference their points again.
+    hierarchy.refresh([o for o in bpy.data.objects if o.type == "CURVE"])
     form_stack.drop_stack(original)
     return original
 

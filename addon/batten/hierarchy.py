@@ -31,8 +31,10 @@ from .bridge import curves_in
 ATTACHMENTS = "batten_attachments"
 #: The ends a curve can attach.
 ENDS = ("start", "end")
-#: Translations (m) below this are no change: nothing is written for them.
-STILL = 1e-12
+#: Blender keeps curve points in single precision: an end within this many of its units in
+#: the last place of its target is on it (a smaller move cannot be held, and writing it would
+#: only shift the free points by the rounding, again at every update).
+STILL_ULPS = 4.0
 #: How far (m) an end may be from the curve it is attached to, by default.
 ATTACH_DISTANCE = 0.01
 
@@ -68,6 +70,12 @@ def end_point(obj, end: str) -> np.ndarray:
     curve = curves_in.read_object(obj)[0]
     a, b = curve.domain
     return np.asarray(curve.evaluate([a if end == "start" else b]), dtype=float).reshape(3)
+
+
+def still(point) -> float:
+    """The largest move (m) of ``point`` that is no move: the rounding of Blender's single
+    precision there (:data:`STILL_ULPS` units in the last place of its largest coordinate)."""
+    return STILL_ULPS * float(np.finfo(np.float32).eps) * max(float(np.abs(point).max()), 1.0)
 
 
 def elastic(anchors: np.ndarray, delta0: np.ndarray, delta1: np.ndarray) -> np.ndarray:
@@ -144,7 +152,8 @@ def new_points(obj) -> dict[str, np.ndarray] | None:
         lo, hi = curve.domain
         target = np.asarray(curve.evaluate([min(max(a["t"], lo), hi)]), dtype=float).reshape(3)
         deltas[a["end"]] = target - end_point(obj, a["end"])
-    if all(np.abs(d).max() <= STILL for d in deltas.values()):
+    ends = {e: end_point(obj, e) for e in deltas}
+    if all(np.abs(d).max() <= still(ends[e]) for e, d in deltas.items()):
         return None
     matrix = np.array(obj.matrix_world, dtype=float)
     to_local = np.linalg.inv(matrix[:3, :3])
@@ -155,10 +164,6 @@ def new_points(obj) -> dict[str, np.ndarray] | None:
     out = {attr: values.copy() for attr, values in arrays.items()}
     for values in out.values():
         values[:, :3] += moves
-    # Blender keeps single precision: a move it cannot hold is no change (else every update
-    # would write the rounding again).
-    if all(np.array_equal(out[k].astype(np.float32), arrays[k].astype(np.float32)) for k in out):
-        return None
     return out
 
 
@@ -216,3 +221,23 @@ def attach(child, parent, end: str, tolerance: float) -> dict:
         store(child, others)
         raise
     return attachment
+
+
+def refresh(objects) -> int:
+    """Take again, for each attachment of ``objects`` whose end lies on its parent (within
+    :data:`ATTACH_DISTANCE`), the parent's parameter nearest to that end: after the parent's
+    curve was replaced (a committed transformation refits curves, and its parameters change),
+    the attachment references the same point again. Returns how many were refreshed."""
+    count = 0
+    for obj in objects:
+        kept = attachments_of(obj)
+        for a in kept:
+            parent = bpy.data.objects.get(a["parent"])
+            if parent is None or parent.type != "CURVE":
+                continue
+            t, distance, _ = curves_in.read_object(parent)[0].nearest(end_point(obj, a["end"]))
+            if distance <= ATTACH_DISTANCE:
+                a["t"] = float(t)
+                count += 1
+        store(obj, kept)
+    return count
