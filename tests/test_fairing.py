@@ -123,8 +123,10 @@ def test_real_ship_sections_import_within_5_mm(ship):
     # within 5 mm of the curve drawn in Blender (float32 control points), by closest point.
     data = json.loads(path.read_text())["curves"]
     chines = [r["curve"] for r in reports if r.get("kind") == "chine"]
-    assert len(data) + len(chines) == len(curves)
+    flats = [r["curve"] for r in reports if r.get("kind") == "flat_of_bottom"]
+    assert len(data) + len(chines) + len(flats) == len(curves)
     assert all(curves[name].role == "knuckle" for name in chines)
+    assert flats == ["flat of bottom"] and curves["flat of bottom"].role == "fob", "a flat-bottomed ship"
     for c in data:
         drawn = curves[c["name"]]
         far = max(drawn.nearest(p, 1e-9)[1] for p in c["points"])

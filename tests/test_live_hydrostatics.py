@@ -70,11 +70,15 @@ def test_a_full_rebuild_makes_every_cell_again(kcs):
     api.build(coll, live=True)
     api.hydrostatics(coll, draft, lpp=lpp, fp=lpp)
     station = coll.objects["st10"]
-    middle = len(station.data.splines[0].points) // 2
-    # A move off the crossings changes the connectivity, and so does the move back: both are
-    # full rebuilds, and nothing is kept.
+    # The control point nearest the station's crossing with the design waterline: moving it
+    # takes the station off the crossing, which changes the connectivity, and so does the move
+    # back: both are full rebuilds, and nothing is kept.
+    curve = api.read_curves(coll.objects["wl_z10.80"])[0]
+    spline = station.data.splines[0]
+    points = [tuple(p.co)[:3] for p in spline.points]
+    crossing = min((curve.nearest(p)[1], i) for i, p in enumerate(points))[1]
     for dy in (0.05, -0.05):
-        move_point(station, middle, dy)
+        move_point(station, crossing, dy)
         rebuild = api.build(coll, live=True).report["rebuild"]
         assert rebuild["kind"] == "full", rebuild
     after = api.hydrostatics(coll, draft, lpp=lpp, fp=lpp)

@@ -75,6 +75,7 @@ from . import (
     cad_export,
     closed_mesh,
     curvature_map,
+    flat_of_bottom,
     form_compare,
     form_stack,
     hierarchy,
@@ -751,8 +752,13 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         model_tolerance,
     )
     data = [sections_in.PointCurve(sec.name, sec.role, pts) for sec, pts in zip(sections, noded, strict=True)]
+    # The flat of bottom: stations run straight in the base plane and leave it tangentially.
+    base = flat_of_bottom.base_plane(np.concatenate([sec.points for sec in data]), model_tolerance)
+    stations = [flat_of_bottom.is_station(sec.points, model_tolerance) for sec in data]
 
-    def fit(sec, within: float):
+    def fit(i: int, within: float):
+        sec = data[i]
+        flat = ((0.0, 0.0, 1.0), base, model_tolerance) if base is not None and stations[i] else None
         curve, report = fair_points(
             sec.name,
             sec.points,
@@ -761,23 +767,28 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
             corner_angle_deg=corner_angle_deg,
             model_tolerance=model_tolerance,
             role=sec.role,
+            flat_plane=flat,
         )
         report["curve"] = sec.name
         return curve, report
 
     fits = []
-    for k, sec in enumerate(data):
-        fits.append(fit(sec, tolerance))
+    for k in range(len(data)):
+        fits.append(fit(k, tolerance))
         yield Step("fitting sections", k + 1, len(data))
     within = [tolerance] * len(sections)
     for round_ in range(SNAP_ROUNDS + 1):
         curves = [c for c, _ in fits]
         knuckles = _off_given_chines([_corner_points(c, r) for c, r in fits], curves, tolerance)
         chines = chines_from_knuckles(curves, knuckles, tolerance)
-        # A chine's own data are the knuckles it joins.
+        # A chine's own data are the knuckles it joins; the flat of bottom's, the flats' ends.
         points = [sec.points for sec in data] + [
             _chain_points(ch, knuckles, model_tolerance) for ch in chines
         ]
+        fob = _flat_of_bottom_curve([r for _, r in fits], stations, curves, model_tolerance)
+        if fob is not None:
+            chines.append(fob[0])
+            points.append(fob[1])
         snapped, snaps = snap_to_nodes(
             curves + chines, SECTION_CAPTURE_FACTOR * tolerance, points, SNAP_KEEP_WITHIN * tolerance
         )
@@ -787,10 +798,16 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         # These curves would leave their data to meet some nodes: fit them closer and try again.
         for i in short:
             within[i] *= SNAP_TIGHTEN
-            fits[i] = fit(data[i], within[i])
+            fits[i] = fit(i, within[i])
     reports = [report for _, report in fits]
     reports += [
-        {"curve": ch.name, "kind": "chine", "points": len(p), "corners": [], "fit_tolerance": None}
+        {
+            "curve": ch.name,
+            "kind": "flat_of_bottom" if ch.role == "fob" else "chine",
+            "points": len(p),
+            "corners": [],
+            "fit_tolerance": None,
+        }
         for ch, p in zip(chines, points[len(sections) :], strict=True)
     ]
     for report, snap, w in zip(reports, snaps, within + [None] * len(chines), strict=True):
@@ -814,6 +831,27 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
     if "draft" in datums:
         coll[DESIGN_DRAFT_PROPERTY] = datums["draft"]
     return coll, reports
+
+
+def _flat_of_bottom_curve(
+    reports: list[dict], stations: list[bool], curves: list[Curve], model_tolerance: float
+):
+    """``(curve, points)``: the flat of bottom curve (role ``fob``) through the points where the
+    stations leave the base plane, and those points; None with fewer than
+    :data:`flat_of_bottom.MIN_STATIONS` such stations, or when a curve of that name is given."""
+    ends = flat_of_bottom.flat_ends(reports, stations)
+    if len(ends) < flat_of_bottom.MIN_STATIONS or any(c.name == flat_of_bottom.NAME for c in curves):
+        return None
+    curve, _ = fair_points(
+        flat_of_bottom.NAME,
+        ends,
+        degree=min(3, len(ends) - 1),
+        tolerance=0.5 * model_tolerance,
+        corner_angle_deg=None,
+        model_tolerance=0.1 * model_tolerance,
+        role="fob",
+    )
+    return curve, ends
 
 
 def _file_index(k: int, source: list[int | None]) -> int:

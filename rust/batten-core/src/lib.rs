@@ -43,8 +43,8 @@ pub use export::{
 };
 pub use fair::{
     corner_indices, curvature_variation, fair_points, fairness_metrics, FairError, FairOptions,
-    FairReport, FairedCurve, FairnessMetrics, PieceReport, Smoothing, EXTREMUM_THRESHOLD,
-    INFLECTION_THRESHOLD, MAX_FAIR_DEGREE,
+    FairReport, FairedCurve, FairnessMetrics, FlatEnd, FlatPlane, PieceReport, Smoothing,
+    EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD, MAX_FAIR_DEGREE, MIN_FLAT_RUN,
 };
 pub use form::{
     form_topology, Bilge, EdgeKind, FormEdge, FormError, FormFace, FormOptions, FormParameters,

@@ -2,7 +2,7 @@
 
 use batten_core::{
     fair_points as core_fair, fairness_metrics, CurveError, FairOptions, FairnessMetrics,
-    Smoothing, Tolerance, DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE,
+    FlatPlane, Smoothing, Tolerance, DEFAULT_CORNER_ANGLE_DEGREES, DEFAULT_FAIR_DEGREE,
     DEFAULT_FAIR_TOLERANCE, DEFAULT_PARAMETER_ITERATIONS, DEFAULT_TOLERANCE,
 };
 use glam::DVec3;
@@ -25,13 +25,16 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 
 /// Fair the points (n, 3) into a smooth B-spline named `name` (H-rep paper §4, Dierckx's
 /// smoothing spline). Give at most one of `tolerance` (max deviation, m; default 1 mm),
-/// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). Returns `(Curve, report dict)`.
+/// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). `flat_plane`: `(normal, offset,
+/// tolerance)` of a plane a run of points at one end may lie in (a section's flat of bottom):
+/// that run becomes a straight piece in the plane and the curve leaves it tangentially (the
+/// report's `flat` says where). Returns `(Curve, report dict)`.
 #[pyfunction]
 #[pyo3(signature = (name, points, *, degree=None, tolerance=None, noise=None,
     smoothing_factor=None, corners=None, corner_angle_deg=Some(DEFAULT_CORNER_ANGLE_DEGREES),
     start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
-    max_parameter_iterations=None, role=None),
-    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\")")]
+    max_parameter_iterations=None, role=None, flat_plane=None),
+    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\", flat_plane=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_points<'py>(
     py: Python<'py>,
@@ -48,6 +51,7 @@ pub(crate) fn fair_points<'py>(
     model_tolerance: f64,
     max_parameter_iterations: Option<&Bound<'py, PyAny>>,
     role: Option<&Bound<'py, PyAny>>,
+    flat_plane: Option<([f64; 3], f64, f64)>,
 ) -> PyResult<(Curve, Bound<'py, PyDict>)> {
     let name = &text(name, || "the curve name".to_owned())?;
     let role = &role_or_free(name, role)?;
@@ -97,6 +101,9 @@ pub(crate) fn fair_points<'py>(
             ))
         })?,
         max_parameter_iterations,
+        flat: flat_plane
+            .map(|(normal, offset, tolerance)| flat(name, normal, offset, tolerance))
+            .transpose()?,
     };
     let faired = py.detach(|| {
         guard(name, || {
@@ -136,7 +143,35 @@ pub(crate) fn fair_points<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("pieces", pieces)?;
+    match &r.flat {
+        Some(f) => {
+            let fd = PyDict::new(py);
+            fd.set_item("index", f.index)?;
+            fd.set_item("parameter", f.parameter)?;
+            fd.set_item("point", f.point.to_array())?;
+            d.set_item("flat", fd)?;
+        }
+        None => d.set_item("flat", py.None())?,
+    }
     Ok((curve, d))
+}
+
+/// The flat plane of `fair_points`, checked: a finite non-zero normal (made unit), a finite
+/// offset and a positive finite tolerance.
+fn flat(name: &str, normal: [f64; 3], offset: f64, tolerance: f64) -> PyResult<FlatPlane> {
+    let n = DVec3::from_array(normal);
+    let normal_ok = n.is_finite() && n.length_squared() > 0.0;
+    if !(normal_ok && offset.is_finite() && tolerance.is_finite() && tolerance > 0.0) {
+        return Err(arg_err(format!(
+            "curve '{name}': flat_plane needs a finite non-zero normal, a finite offset and a positive tolerance, got {normal:?}, {offset}, {tolerance}"
+        )));
+    }
+    let length = n.length();
+    Ok(FlatPlane {
+        normal: n / length,
+        offset: offset / length,
+        tolerance,
+    })
 }
 
 /// Fairness figures of a curve: inflections, curvature extrema, ∫κ² ds, max curvature.

@@ -12,6 +12,20 @@ use crate::curve::CurveError;
 /// [`fair_points`]: crate::fair_points
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum FairError {
+    /// The flat plane has a zero or non-finite normal, a non-finite offset or a tolerance
+    /// that is not a positive finite distance.
+    #[error(
+        "flat plane: normal {normal:?}, offset {offset}, tolerance {tolerance}: needs a finite \
+         non-zero normal, a finite offset and a positive finite tolerance"
+    )]
+    FlatPlane {
+        /// The normal given.
+        normal: [f64; 3],
+        /// The offset given.
+        offset: f64,
+        /// The tolerance given.
+        tolerance: f64,
+    },
     /// The degree is outside the range the fitting supports (Dierckx's curfit allows 1..=5).
     #[error("fairing degree {degree} is outside 1..=5")]
     Degree {

@@ -24,6 +24,7 @@ mod clean;
 mod convex;
 mod error;
 mod fit;
+mod flat;
 mod frame;
 mod gaps;
 mod knots;
@@ -40,6 +41,7 @@ use glam::DVec3;
 
 pub use clean::corner_indices;
 pub use error::FairError;
+pub use flat::{FlatPlane, MIN_FLAT_RUN};
 pub use metrics::{
     curvature_variation, fairness_metrics, FairnessMetrics, EXTREMUM_THRESHOLD,
     INFLECTION_THRESHOLD,
@@ -162,6 +164,10 @@ pub struct FairOptions {
     pub model_tolerance: Tolerance,
     /// Most foot-point parameter corrections per fit (default 20; 0 keeps chord lengths).
     pub max_parameter_iterations: usize,
+    /// A plane the points at one end of the curve may run in (a section's flat of bottom):
+    /// such a run becomes a straight piece in the plane and the rest of the curve leaves it
+    /// tangentially (see [`FlatPlane`]; default none).
+    pub flat: Option<FlatPlane>,
 }
 
 impl Default for FairOptions {
@@ -175,6 +181,7 @@ impl Default for FairOptions {
             end_tangent: None,
             model_tolerance: Tolerance::DEFAULT,
             max_parameter_iterations: DEFAULT_PARAMETER_ITERATIONS,
+            flat: None,
         }
     }
 }
@@ -224,6 +231,19 @@ pub struct FairReport {
     pub corner_parameters: Vec<f64>,
     /// One report per smooth piece.
     pub pieces: Vec<PieceReport>,
+    /// Where the curve leaves its straight flat run ([`FairOptions::flat`]), if it has one.
+    pub flat: Option<FlatEnd>,
+}
+
+/// Where a faired curve leaves its flat run: the inner end of the straight piece.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FlatEnd {
+    /// Input index of the run's inner end.
+    pub index: usize,
+    /// Its curve parameter (a knot of multiplicity `degree`; the curve is G1 there).
+    pub parameter: f64,
+    /// Its position (on the plane).
+    pub point: DVec3,
 }
 
 /// A faired curve and its report.
@@ -264,6 +284,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
             return Err(FairError::CornerAngle(a));
         }
     }
+    let flat_plane = options.flat.map(|p| p.checked()).transpose()?;
     let start_dir = direction(options.start_tangent, "start")?;
     let end_dir = direction(options.end_tangent, "end")?;
     let tangents = usize::from(start_dir.is_some()) + usize::from(end_dir.is_some());
@@ -309,23 +330,56 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
         corners.extend(corner_indices(pts, angle, options.smoothing.reach(m)));
     }
     corners.retain(|&c| c > 0 && c + 1 < m);
+    // A flat run is one straight piece: no corner inside it, its inner end a joint.
+    let flat = flat_plane.and_then(|plane| plane.run(pts, k).map(|run| (plane, run)));
+    if let Some((_, run)) = flat {
+        corners.retain(|&c| {
+            if run.at_start {
+                c > run.inner
+            } else {
+                c < run.inner
+            }
+        });
+        corners.push(run.inner);
+    }
     corners.sort_unstable();
     corners.dedup();
+    let straight;
+    let fit_pts: &[DVec3] = match flat {
+        Some((plane, run)) => {
+            straight = run.straightened(pts, &plane);
+            &straight
+        }
+        None => pts,
+    };
 
     // The fit works in the data's own frame (see `frame`); its results are moved back.
     let frame = Frame::of(pts);
     let local: Vec<DVec3> = pts.iter().map(|&p| frame.to_local(p)).collect();
+    let fit_local: Vec<DVec3> = fit_pts.iter().map(|&p| frame.to_local(p)).collect();
     let smoothing = frame.smoothing(options.smoothing);
     let mut bounds = vec![0];
     bounds.extend_from_slice(&corners);
     bounds.push(m - 1);
     let count = bounds.len() - 1;
+    // The flat's direction in the frame, fixed at both sides of the flat's joint.
+    let flat_dir = flat.map(|(_, run)| {
+        (
+            run.inner,
+            (frame.to_local(run.direction) - frame.to_local(DVec3::ZERO)).normalize(),
+        )
+    });
     let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
     for (i, w) in bounds.windows(2).enumerate() {
-        let piece = &local[w[0]..=w[1]];
+        let piece = &fit_local[w[0]..=w[1]];
+        let at_flat = |index: usize| flat_dir.filter(|&(j, _)| j == index).map(|(_, d)| d);
         let dirs = Directions {
-            start: if i == 0 { start_dir } else { None },
-            end: if i + 1 == count { end_dir } else { None },
+            start: if i == 0 { start_dir } else { at_flat(w[0]) },
+            end: if i + 1 == count {
+                end_dir
+            } else {
+                at_flat(w[1])
+            },
         };
         let iters = options.max_parameter_iterations;
         let fit = match smoothing {
@@ -365,10 +419,27 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                 fit_smooth(piece, k, Target::exact(s * share), dirs, iters, None, None)?
             }
         };
-        pieces.push(frame.piece_to_world(fit, (pts[w[0]], pts[w[1]]))?);
+        pieces.push(frame.piece_to_world(fit, (fit_pts[w[0]], fit_pts[w[1]]))?);
     }
 
-    let (knots, coefs, corner_parameters) = join(&pieces, k);
+    let (knots, coefs, mut corner_parameters) = join(&pieces, k);
+    // The flat's joint is smooth: no corner; said apart.
+    let flat_end = match flat {
+        Some((_, run)) => {
+            let at = corners
+                .iter()
+                .position(|&c| c == run.inner)
+                .expect("the flat's joint is a bound");
+            corners.remove(at);
+            let parameter = corner_parameters.remove(at);
+            Some(FlatEnd {
+                index: cleaned.index[run.inner],
+                parameter,
+                point: fit_pts[run.inner],
+            })
+        }
+        None => None,
+    };
     let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
     // A single piece is the curve itself (its parameters start at 0, so joining leaves knots
     // and control points as they were): what its fit measured holds for the curve.
@@ -411,6 +482,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                 parameters_settled: p.settled,
             })
             .collect(),
+        flat: flat_end,
     };
     Ok(FairedCurve { curve, report })
 }

@@ -2,7 +2,7 @@
 //! extreme magnitudes and offsets, with random options. `fair_points` gives a valid curve with
 //! a finite report, or a `FairError`; never a panic, never a hang.
 
-use batten_core::{fair_points, FairOptions, Smoothing, Tolerance, MAX_FAIR_DEGREE};
+use batten_core::{fair_points, FairOptions, FlatPlane, Smoothing, Tolerance, MAX_FAIR_DEGREE};
 use glam::DVec3;
 use proptest::prelude::*;
 
@@ -99,6 +99,8 @@ struct Knobs {
     end_tangent: Option<DVec3>,
     model_tolerance: f64,
     iterations: usize,
+    /// A flat plane: its normal, offset and tolerance (the last two times the points' size).
+    flat: Option<(DVec3, f64, f64)>,
 }
 
 fn knobs() -> impl Strategy<Value = Knobs> {
@@ -121,6 +123,11 @@ fn knobs() -> impl Strategy<Value = Knobs> {
         tangent,
         prop_oneof![Just(1e-4), Just(1e-12), Just(1e-300), Just(1.0)],
         0usize..25,
+        prop_oneof![
+            3 => Just(None),
+            1 => (unit_point(), -1.0f64..1.0, prop_oneof![Just(1e-3), Just(0.1), Just(1.0), Just(0.0)])
+                .prop_map(Some)
+        ],
     )
         .prop_map(
             |(
@@ -132,6 +139,7 @@ fn knobs() -> impl Strategy<Value = Knobs> {
                 end_tangent,
                 model_tolerance,
                 iterations,
+                flat,
             )| Knobs {
                 degree,
                 smoothing,
@@ -141,6 +149,7 @@ fn knobs() -> impl Strategy<Value = Knobs> {
                 end_tangent,
                 model_tolerance,
                 iterations,
+                flat,
             },
         )
 }
@@ -162,6 +171,11 @@ fn options(k: &Knobs, size: f64) -> Option<FairOptions> {
         end_tangent: k.end_tangent,
         model_tolerance: Tolerance::try_new(k.model_tolerance * size.max(1.0)).ok()?,
         max_parameter_iterations: k.iterations,
+        flat: k.flat.map(|(normal, offset, tolerance)| FlatPlane {
+            normal,
+            offset: offset * size,
+            tolerance: tolerance * size,
+        }),
     })
 }
 

@@ -1,0 +1,144 @@
+//! A section's flat of bottom (`FairOptions::flat`): the run of points in the base plane at an
+//! end of the section becomes a straight piece exactly in the plane, and the rest of the
+//! section leaves it with the flat's tangent; without the option the one smooth spline sags on
+//! the flat and tilts where it ends.
+
+use batten_core::{fair_points, FairOptions, FlatPlane, Smoothing, MIN_FLAT_RUN};
+use glam::DVec3;
+
+/// A midship-like section at x = 10: flat bottom from the keel to y = `w`, a bilge arc of
+/// radius `r`, then a vertical side up to z = 8; about 5 cm between points.
+fn section(w: f64, r: f64) -> Vec<DVec3> {
+    let mut pts = Vec::new();
+    let n = (w / 0.05).round() as usize;
+    for i in 0..n {
+        pts.push(DVec3::new(10.0, w * i as f64 / n as f64, 0.0));
+    }
+    let arc = ((r * std::f64::consts::FRAC_PI_2) / 0.05).round() as usize;
+    for i in 0..arc {
+        let a = std::f64::consts::FRAC_PI_2 * i as f64 / arc as f64;
+        pts.push(DVec3::new(10.0, w + r * a.sin(), r * (1.0 - a.cos())));
+    }
+    let side = ((8.0 - r) / 0.05).round() as usize;
+    for i in 0..=side {
+        pts.push(DVec3::new(
+            10.0,
+            w + r,
+            r + (8.0 - r) * i as f64 / side as f64,
+        ));
+    }
+    pts
+}
+
+fn options(flat: Option<FlatPlane>) -> FairOptions {
+    FairOptions {
+        smoothing: Smoothing::MaxDeviation(0.005),
+        flat,
+        ..FairOptions::default()
+    }
+}
+
+const BASE: FlatPlane = FlatPlane {
+    normal: DVec3::Z,
+    offset: 0.0,
+    tolerance: 1e-3,
+};
+
+/// Largest |z| of the curve over its first `share` of the parameter domain, sampled finely.
+fn sag(curve: &batten_core::NurbsCurve, upto: f64) -> f64 {
+    let (a, _) = curve.domain();
+    (0..=400)
+        .map(|i| curve.point(a + (upto - a) * i as f64 / 400.0).z.abs())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_flat_is_straight_in_the_plane_and_the_bilge_leaves_it_tangentially() {
+    let pts = section(4.0, 2.0);
+    let fit = fair_points(&pts, &options(Some(BASE))).unwrap();
+    let flat = fit.report.flat.expect("a flat run");
+    // The run ends at the last point within the plane's tolerance (the arc's first, 0.6 mm up).
+    let inner = pts.iter().position(|p| p.z > BASE.tolerance).unwrap() - 1;
+    assert_eq!(flat.index, inner);
+    assert!(pts[inner].z > 0.0, "it starts the arc");
+    assert!((flat.point - DVec3::new(10.0, pts[inner].y, 0.0)).length() < 1e-9);
+    assert!(
+        fit.report.corners.is_empty() && fit.report.corner_parameters.is_empty(),
+        "no knuckle"
+    );
+    let t = flat.parameter;
+    let c = &fit.curve;
+    assert!(sag(c, t) < 1e-12, "flat to rounding: {}", sag(c, t));
+    // Both sides of the joint point along +y (the knot has multiplicity 3: one-sided
+    // derivatives from the neighbouring spans).
+    let before = (c.point(t) - c.point(t - 1e-6)).normalize();
+    let after = (c.point(t + 1e-6) - c.point(t)).normalize();
+    for d in [before, after] {
+        assert!(d.angle_between(DVec3::Y) < 1e-4, "tangent {d}");
+    }
+    assert!(fit.report.max_deviation <= 0.005);
+
+    // The one smooth spline, for comparison: it sags on the flat and tilts where it ends.
+    let plain = fair_points(&pts, &options(None)).unwrap();
+    assert!(plain.report.flat.is_none());
+    let tp = plain
+        .curve
+        .nearest(DVec3::new(10.0, 4.0, 0.0), 1e-12)
+        .unwrap()
+        .t;
+    assert!(
+        sag(&plain.curve, tp) > 1e-4,
+        "without the flat option: {}",
+        sag(&plain.curve, tp)
+    );
+}
+
+#[test]
+fn a_run_at_the_end_of_the_points_is_a_flat_too() {
+    let mut pts = section(3.0, 1.5);
+    pts.reverse();
+    let fit = fair_points(&pts, &options(Some(BASE))).unwrap();
+    let flat = fit.report.flat.expect("a flat run at the end");
+    let inner = pts.iter().rposition(|p| p.z > BASE.tolerance).unwrap() + 1;
+    assert_eq!(flat.index, inner);
+    let (_, b) = fit.curve.domain();
+    let (a, _) = fit.curve.domain();
+    let worst = (0..=200)
+        .map(|i| {
+            fit.curve
+                .point(flat.parameter + (b - flat.parameter) * i as f64 / 200.0)
+                .z
+                .abs()
+        })
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-12, "{worst}");
+    assert!(a < flat.parameter && flat.parameter < b);
+}
+
+#[test]
+fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
+    // Shorter than MIN_FLAT_RUN.
+    let short = section(0.5 * MIN_FLAT_RUN, 2.0);
+    assert!(fair_points(&short, &options(Some(BASE)))
+        .unwrap()
+        .report
+        .flat
+        .is_none());
+    // In the plane but curved: a quarter circle in z = 0, then up.
+    let mut curved: Vec<DVec3> = (0..40)
+        .map(|i| {
+            let a = std::f64::consts::FRAC_PI_2 * i as f64 / 40.0;
+            DVec3::new(3.0 * a.sin(), 3.0 * (1.0 - a.cos()), 0.0)
+        })
+        .collect();
+    curved.extend((1..40).map(|i| DVec3::new(3.0, 3.0, 0.1 * i as f64)));
+    assert!(fair_points(&curved, &options(Some(BASE)))
+        .unwrap()
+        .report
+        .flat
+        .is_none());
+    // Wholly in the plane: a straight waterline at the base.
+    let line: Vec<DVec3> = (0..50).map(|i| DVec3::new(i as f64, 2.0, 0.0)).collect();
+    let fit = fair_points(&line, &options(Some(BASE))).unwrap();
+    assert!(fit.report.flat.is_none());
+}
