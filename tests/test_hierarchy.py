@@ -11,7 +11,12 @@ import bpy
 import numpy as np
 import pytest
 from batten import hierarchy
-from batten.form_operators import BATTEN_OT_attach_curves, BATTEN_OT_detach_curves
+from batten.form_operators import (
+    BATTEN_OT_attach_curves,
+    BATTEN_OT_detach_curves,
+    BATTEN_OT_hold_in_plane,
+    BATTEN_OT_release_plane,
+)
 from batten.scene_build import build_into_scene
 from helpers import new_curve
 from operator_runs import execute, new_collection
@@ -176,6 +181,14 @@ def test_attach_and_detach_operators(frame):
     status, reports = execute(BATTEN_OT_detach_curves, bpy.context)
     assert status == {"FINISHED"} and "1 end(s)" in reports[-1][1]
     assert not hierarchy.attachments_of(st)
+    # Held in its station plane, and released.
+    deck.select_set(False)
+    status, reports = execute(BATTEN_OT_hold_in_plane, bpy.context, plane="x")
+    assert status == {"FINISHED"}, reports
+    assert hierarchy.plane_of(st)[0].tolist() == [1.0, 0.0, 0.0]
+    assert BATTEN_OT_release_plane.poll(bpy.context)
+    assert execute(BATTEN_OT_release_plane, bpy.context)[0] == {"FINISHED"}
+    assert hierarchy.plane_of(st) is None
 
 
 def test_live_rebuilds_carry_the_hierarchy(frame):
@@ -205,3 +218,43 @@ def test_a_committed_transformation_keeps_the_attachments_on_their_points(barge)
     assert api.update_hierarchy(barge) == [], "and stays"
     t = hierarchy.attachments_of(st)[0]["t"]
     assert api.read_curves(deck)[0].nearest(top)[0] == pytest.approx(t, abs=1e-9)
+
+
+def test_a_curve_held_in_its_plane_stays_there(frame):
+    coll, deck, keel, st, wl = frame
+    held = api.set_plane(st, "x")
+    assert held == [{"curve": "st4", "normal": [1.0, 0.0, 0.0], "offset": pytest.approx(4.0, abs=1e-6)}]
+    assert api.held_planes(coll) == held
+    # A drag out of the plane is taken back into it; the other coordinates stay.
+    pts = _co(st)
+    pts[2] += (0.3, 0.05, 0.0)
+    _set_co(st, pts)
+    assert api.update_hierarchy(coll) == ["st4"]
+    after = _co(st)
+    assert after[:, 0] == pytest.approx(4.0, abs=1e-6)
+    assert after[2, 1:] == pytest.approx(pts[2, 1:], abs=1e-6)
+    assert api.update_hierarchy(coll) == [], "nothing moves twice"
+    # Attached and held: the end follows the deck, then the curve is taken into its plane.
+    api.attach(st, deck, end="end")
+    _set_co(deck, _co(deck) + [0.2, 0.0, 0.3])
+    api.update_hierarchy(coll)
+    assert _co(st)[:, 0] == pytest.approx(4.0, abs=1e-6), "still in its station plane"
+    assert _co(st)[-1][2] == pytest.approx(2.3, abs=1e-6), "and its top went up with the deck"
+    # Its own plane, of a curve in one: the waterline's, z = const.
+    fitted = api.set_plane(wl, "fit")[0]
+    assert np.abs(np.abs(fitted["normal"]) - [0, 0, 1]).max() < 1e-9
+    assert api.clear_plane([st, wl]) == 2 and api.held_planes(coll) == []
+
+
+def test_bad_planes_are_refused_with_nothing_changed(frame):
+    coll, deck, keel, st, wl = frame
+    before = _co(st)
+    with pytest.raises(api.CurveError, match=r"'st4' is 0\.876 m off the plane \(more than 0\.01 m\)"):
+        api.set_plane(st, "y")
+    with pytest.raises(api.CurveError, match="'st4' is .* m off the plane") as err:
+        api.set_plane([wl, st], ((0, 0, 1), float(_co(wl)[0][2])))  # the waterline's own plane
+    assert err.value.curve == "st4" and not wl.get(hierarchy.PLANE), "all or none"
+    for plane in ("w", ((0, 0, 0), 1.0), ((0, 0, 1), float("nan")), 3):
+        with pytest.raises(api.InvalidArgumentError):
+            api.set_plane(st, plane)
+    assert _co(st) == pytest.approx(before) and not st.get(hierarchy.PLANE)

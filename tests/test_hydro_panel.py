@@ -273,6 +273,9 @@ class _Layout:
         self.record["ops"].append(idname)
         return type("Op", (), {})()
 
+    def operator_menu_enum(self, idname, _property, **_kwargs):
+        self.record["ops"].append(idname)
+
     def _child(self, **_kwargs):
         child = _Layout(self.record)
         child.alert = self.alert

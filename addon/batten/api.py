@@ -160,6 +160,9 @@ __all__ = [
     "detach",
     "attachments",
     "update_hierarchy",
+    "set_plane",
+    "clear_plane",
+    "held_planes",
 ]
 
 
@@ -431,10 +434,100 @@ def attachments(source) -> list[dict]:
     ]
 
 
+#: The planes :func:`set_plane` names: the axis each is square to.
+PLANE_AXES = {"x": 0, "y": 1, "z": 2}
+
+
+def set_plane(objects, plane="fit", *, tolerance: float = hierarchy.ATTACH_DISTANCE) -> list[dict]:
+    """Hold each curve object of ``objects`` (one object or name, or several) in a plane: its
+    surface attribute (seed 002 §5). ``plane``: ``"x"``, ``"y"`` or ``"z"`` (the plane square to
+    that axis through the curve's control points: a station or midship section, the
+    centreplane or a flat of side, a waterplane or the flat of bottom), ``"fit"`` (the plane the
+    control points lie closest to, by least squares) or ``(normal, offset)`` (the plane
+    ``normal · p = offset``). From then on the curve is kept in it: Build and Live move its
+    control points into the plane after its ends followed their parents
+    (:func:`update_hierarchy`). Each curve is moved into its plane at once.
+
+    Returns one ``{"curve", "normal", "offset"}`` per curve. All curves or none: CurveError
+    naming the curve when it is not one spline or lies farther than ``tolerance`` m from the
+    plane; InvalidArgumentError for an unknown plane."""
+    if isinstance(objects, str | bpy.types.Object):
+        objects = [objects]
+    curves = [_curve_object(o, "set_plane") for o in objects]
+    if not curves:
+        raise InvalidArgumentError("set_plane: no curve")
+    if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
+        raise InvalidArgumentError(f"set_plane: tolerance {tolerance!r} must be a positive distance (m)")
+    planes = []
+    for obj in curves:
+        points = hierarchy.control_points_world(obj)
+        if isinstance(plane, str) and plane in PLANE_AXES:
+            normal = np.eye(3)[PLANE_AXES[plane]]
+            offset = float(points[:, PLANE_AXES[plane]].mean())
+        elif plane == "fit":
+            centre = points.mean(axis=0)
+            normal = np.linalg.svd(points - centre)[2][-1]
+            offset = float(normal @ centre)
+        elif isinstance(plane, tuple | list) and len(plane) == 2:
+            normal = np.asarray(plane[0], dtype=float).reshape(-1)
+            length = float(np.linalg.norm(normal)) if normal.shape == (3,) else 0.0
+            if not (math.isfinite(length) and length > 0 and math.isfinite(float(plane[1]))):
+                raise InvalidArgumentError(
+                    f"set_plane: plane {plane!r} needs a finite non-zero normal and offset"
+                )
+            normal, offset = normal / length, float(plane[1]) / length
+        else:
+            raise InvalidArgumentError(
+                f"set_plane: plane {plane!r} is none of 'x', 'y', 'z', 'fit', (normal, offset)"
+            )
+        off = float(np.abs(points @ normal - offset).max())
+        if off > tolerance:
+            raise CurveError(
+                f"curve '{obj.name}' is {off:.4g} m off the plane (more than {tolerance:g} m); "
+                "move it nearer first",
+                obj.name,
+            )
+        planes.append((obj, (normal, offset)))
+    before = {obj.name: hierarchy.plane_of(obj) for obj in curves}
+    try:
+        for obj, p in planes:
+            hierarchy.store_plane(obj, p)
+        hierarchy.update(_with_descendants(curves))
+    except BaseException:
+        for obj in curves:
+            hierarchy.store_plane(obj, before[obj.name])
+        raise
+    return [{"curve": obj.name, "normal": p[0].tolist(), "offset": p[1]} for obj, p in planes]
+
+
+def clear_plane(objects) -> int:
+    """Release each curve object of ``objects`` from its plane (it stays where it is). Returns
+    how many were held."""
+    if isinstance(objects, str | bpy.types.Object):
+        objects = [objects]
+    count = 0
+    for obj in (_curve_object(o, "clear_plane") for o in objects):
+        count += hierarchy.plane_of(obj) is not None
+        hierarchy.store_plane(obj, None)
+    return count
+
+
+def held_planes(source) -> list[dict]:
+    """The curves of ``source`` (as :func:`curve_objects` takes it) held in a plane: each
+    ``{"curve", "normal", "offset"}``."""
+    out = []
+    for obj in curve_objects(source):
+        p = hierarchy.plane_of(obj)
+        if p is not None:
+            out.append({"curve": obj.name, "normal": p[0].tolist(), "offset": p[1]})
+    return out
+
+
 def update_hierarchy(source) -> list[str]:
     """Bring every attached curve of ``source`` (as :func:`curve_objects` takes it) to its
     parents, in hierarchy order (seed 002 §7.1): each attached end onto its parent's point, the
-    free control points by the elastic rule. All curves or none are changed. Returns the names
+    free control points by the elastic rule; and every curve held in a plane into it
+    (:func:`set_plane`). All curves or none are changed. Returns the names
     of the curves that moved. CurveError naming the curve when a parent is gone or curves
     reference each other in a cycle."""
     return hierarchy.update(curve_objects(source))

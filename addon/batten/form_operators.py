@@ -6,7 +6,7 @@ import json
 
 import bpy
 import numpy as np
-from bpy.props import StringProperty
+from bpy.props import EnumProperty, StringProperty
 
 from . import api, hydro_plot
 from ._registry import register_classes, unregister_classes
@@ -277,6 +277,52 @@ class BATTEN_OT_detach_curves(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
+class BATTEN_OT_hold_in_plane(BattenOperator, bpy.types.Operator):
+    """Hold each selected curve in a plane (its surface attribute): Build and Live keep it there
+    whatever drags it"""
+
+    bl_idname = "batten.hold_in_plane"
+    bl_label = "Hold in Plane"
+    bl_options = {"REGISTER", "UNDO"}
+
+    plane: EnumProperty(
+        name="Plane",
+        items=[
+            ("fit", "Its Own", "The plane the curve's control points lie closest to"),
+            ("x", "Station (x)", "The plane square to x through the curve"),
+            ("y", "Buttock (y)", "The plane square to y through the curve (centreplane, flat of side)"),
+            ("z", "Waterplane (z)", "The plane square to z through the curve (flat of bottom)"),
+        ],
+        default="fit",
+    )
+
+    @classmethod
+    def poll(cls, context):
+        return any(o.type == "CURVE" for o in context.selected_objects)
+
+    def run(self, context):
+        held = api.set_plane([o for o in context.selected_objects if o.type == "CURVE"], self.plane)
+        self.report({"INFO"}, f"Held in their planes: {', '.join(h['curve'] for h in held)}")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_release_plane(BattenOperator, bpy.types.Operator):
+    """Release each selected curve from its plane (it stays where it is)"""
+
+    bl_idname = "batten.release_plane"
+    bl_label = "Release Plane"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return any(o.type == "CURVE" and o.get("batten_plane") for o in context.selected_objects)
+
+    def run(self, context):
+        count = api.clear_plane([o for o in context.selected_objects if o.type == "CURVE"])
+        self.report({"INFO"}, f"{count} curve(s) released")
+        return {"FINISHED"}
+
+
 _CLASSES = (
     BATTEN_OT_measure_form,
     BATTEN_OT_transform,
@@ -288,6 +334,8 @@ _CLASSES = (
     BATTEN_OT_abandon_transforms,
     BATTEN_OT_attach_curves,
     BATTEN_OT_detach_curves,
+    BATTEN_OT_hold_in_plane,
+    BATTEN_OT_release_plane,
 )
 
 

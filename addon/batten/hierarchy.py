@@ -1,4 +1,6 @@
-"""The curve network hierarchy (seed 002 §5, §7.1): a curve's end may reference a point of
+"""The curve network hierarchy (seed 002 §5, §7.1) and the curves' surface attributes: a
+curve may be held in a plane (a midship section in its station plane, a flat of side curve in
+the side's plane); and a curve's end may reference a point of
 another curve (its parent); when the parent changes, the end follows it, and the child's free
 control points follow by the elastic rule of Fig. 6; descendants update in hierarchy order
 (parents before children), so a change at the top of the hierarchy runs down through it.
@@ -13,7 +15,9 @@ The elastic rule (Fig. 6): the control points of the child's spline between its 
 anchors) move by the anchors' translations blended by their normalised chord distance along the
 control polygon, ``Δ(t) = (1 − t)·Δ0 + t·Δn``; an end that is not attached is an anchor that
 stays. A Bézier spline's handles move with their control point. The new control points are
-computed for every child first and written all or none.
+computed for every child first and written all or none. A curve held in a plane has its
+control points moved into it last (after its ends followed their parents), so it stays planar
+whatever drags it.
 """
 
 from __future__ import annotations
@@ -29,6 +33,9 @@ from .bridge import curves_in
 
 #: Object property: the attachments of a curve object's ends (JSON list).
 ATTACHMENTS = "batten_attachments"
+#: Object property: the plane a curve object is held in (its surface attribute, JSON
+#: ``{"normal": [x, y, z], "offset": d}``, the plane ``normal · p = d`` in world coordinates).
+PLANE = "batten_plane"
 #: The ends a curve can attach.
 ENDS = ("start", "end")
 #: Blender keeps curve points in single precision: an end within this many of its units in
@@ -116,13 +123,15 @@ def _write(spline, arrays: dict[str, np.ndarray]) -> None:
 
 
 def graph(objects) -> dict[str, set[str]]:
-    """Each curve object of ``objects`` with attachments: the parents it references."""
-    return {o.name: {a["parent"] for a in attachments_of(o)} for o in objects if attachments_of(o)}
+    """Each curve object of ``objects`` with attachments or a plane: the parents it references."""
+    return {
+        o.name: {a["parent"] for a in attachments_of(o)} for o in objects if attachments_of(o) or o.get(PLANE)
+    }
 
 
 def order(objects) -> list[str]:
-    """The attached curve objects of ``objects`` in hierarchy order (every parent before its
-    children); CurveError naming the curves of a cycle."""
+    """The attached curve objects of ``objects`` (and those held in a plane) in hierarchy order
+    (every parent before its children); CurveError naming the curves of a cycle."""
     try:
         ordered = list(TopologicalSorter(graph(objects)).static_order())
     except CycleError as e:
@@ -134,6 +143,34 @@ def order(objects) -> list[str]:
         ) from e
     children = set(graph(objects))
     return [name for name in ordered if name in children]
+
+
+def plane_of(obj) -> tuple[np.ndarray, float] | None:
+    """The plane ``(unit normal, offset)`` the curve object ``obj`` is held in (its surface
+    attribute), or None."""
+    text = obj.get(PLANE)
+    if not text:
+        return None
+    plane = json.loads(text)
+    return np.asarray(plane["normal"], dtype=float), float(plane["offset"])
+
+
+def store_plane(obj, plane: tuple[np.ndarray, float] | None) -> None:
+    """Hold ``obj`` in ``plane`` (unit normal, offset), or release it (None)."""
+    if plane is None:
+        if PLANE in obj:
+            del obj[PLANE]
+        return
+    normal, offset = plane
+    obj[PLANE] = json.dumps({"normal": [float(c) for c in normal], "offset": float(offset)})
+
+
+def control_points_world(obj) -> np.ndarray:
+    """Every control point of ``obj``'s spline (with a Bézier spline's handles), world (n, 3)."""
+    matrix = np.array(obj.matrix_world, dtype=float)
+    arrays = _spline_points(single_spline(obj))
+    pts = np.concatenate([a[:, :3] for a in arrays.values()])
+    return pts @ matrix[:3, :3].T + matrix[:3, 3]
 
 
 def new_points(obj) -> dict[str, np.ndarray] | None:
@@ -152,18 +189,31 @@ def new_points(obj) -> dict[str, np.ndarray] | None:
         lo, hi = curve.domain
         target = np.asarray(curve.evaluate([min(max(a["t"], lo), hi)]), dtype=float).reshape(3)
         deltas[a["end"]] = target - end_point(obj, a["end"])
-    ends = {e: end_point(obj, e) for e in deltas}
-    if all(np.abs(d).max() <= still(ends[e]) for e, d in deltas.items()):
-        return None
+    plane = plane_of(obj)
     matrix = np.array(obj.matrix_world, dtype=float)
     to_local = np.linalg.inv(matrix[:3, :3])
     arrays = _spline_points(spline)
-    co = arrays["co"]
-    world = co[:, :3] @ matrix[:3, :3].T + matrix[:3, 3]
-    moves = elastic(world, deltas.get("start", np.zeros(3)), deltas.get("end", np.zeros(3))) @ to_local.T
+    world = {attr: a[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for attr, a in arrays.items()}
+    moved = {attr: w.copy() for attr, w in world.items()}
+    if deltas:
+        # The elastic rule over the control polygon; a Bézier point's handles move with it.
+        moves = elastic(world["co"], deltas.get("start", np.zeros(3)), deltas.get("end", np.zeros(3)))
+        for w in moved.values():
+            w += moves
+    if plane is not None:
+        # The surface attribute: every control point into the plane (the curve, an affine
+        # combination of them, lies in it then).
+        normal, offset = plane
+        for w in moved.values():
+            w -= np.outer(w @ normal - offset, normal)
+    if all(
+        np.abs(moved[k] - world[k]).max(initial=0.0) <= still(np.abs(world[k]).max(initial=0.0))
+        for k in world
+    ):
+        return None
     out = {attr: values.copy() for attr, values in arrays.items()}
-    for values in out.values():
-        values[:, :3] += moves
+    for attr, values in out.items():
+        values[:, :3] = (moved[attr] - matrix[:3, 3]) @ to_local.T
     return out
 
 

@@ -306,17 +306,25 @@ def _draw_change(layout, text: str) -> None:
 
 
 def _draw_hierarchy(layout, context) -> None:
-    """The curve network hierarchy (seed 002 §5, §7.1): attach the selected curves' ends to the
-    active curve or detach them, and what the active curve is attached to and carries."""
+    """The curve network hierarchy and surface attributes (seed 002 §5, §7.1): attach the
+    selected curves' ends to the active curve or detach them, hold them in a plane or release
+    them, and what the active curve is attached to, carries and is held in."""
     box = layout.box()
     box.label(text="Hierarchy", icon="LINKED")
     row = box.row(align=True)
     row.operator("batten.attach_curves", icon="LINKED")
     row.operator("batten.detach_curves", icon="UNLINKED")
+    row = box.row(align=True)
+    row.operator_menu_enum("batten.hold_in_plane", "plane", icon="MESH_PLANE")
+    row.operator("batten.release_plane", text="", icon="X")
     active = context.view_layer.objects.active
     if active is None or active.type != "CURVE":
         return
     col = box.column(align=True)
+    plane = hierarchy.plane_of(active)
+    if plane is not None:
+        n, d = plane
+        col.label(text=f"{active.name} in the plane ({n[0]:.3f}, {n[1]:.3f}, {n[2]:.3f})·p = {d:.4g}")
     for a in hierarchy.attachments_of(active):
         col.label(text=f"{active.name} {a['end']} → {a['parent']} (t {a['t']:.4g})")
     children = sorted(
