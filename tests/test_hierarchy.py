@@ -155,6 +155,10 @@ def test_bad_attachments_are_refused_with_nothing_changed(frame):
         api.attach(st, deck, tolerance=float("nan"))
     with pytest.raises(api.InvalidArgumentError, match="no object 'nothing'"):
         api.attach("nothing", deck)
+    with pytest.raises(api.InvalidArgumentError, match="needs curve objects, got int"):
+        api.attach(3, deck)
+    with pytest.raises(api.InvalidArgumentError, match="no curve"):
+        api.set_plane([], "x")
     # A parent that is gone is named, and the hierarchy changes nothing.
     api.attach(st, deck)
     bpy.data.objects.remove(deck)

@@ -360,6 +360,19 @@ def _curve_object(obj, what: str):
     return obj
 
 
+def _curve_objects_of(objects, what: str) -> list:
+    """The curve objects ``objects`` names: one object or name, or an iterable of them."""
+    if isinstance(objects, str | bpy.types.Object):
+        objects = [objects]
+    try:
+        objects = list(objects)
+    except TypeError:
+        raise InvalidArgumentError(f"{what} needs curve objects, got {type(objects).__name__}") from None
+    if not objects:
+        raise InvalidArgumentError(f"{what}: no curve")
+    return [_curve_object(o, what) for o in objects]
+
+
 def attach(
     children, parent, *, end: str = "nearest", tolerance: float = hierarchy.ATTACH_DISTANCE
 ) -> list[dict]:
@@ -375,12 +388,8 @@ def attach(
     parameter on the parent). All children are attached or none: CurveError naming the child
     when it is not one spline, is the parent or one of the parent's ancestors, or its end is
     too far; InvalidArgumentError for an unknown end."""
-    if isinstance(children, str | bpy.types.Object):
-        children = [children]
-    children = [_curve_object(c, "attach") for c in children]
+    children = _curve_objects_of(children, "attach")
     parent = _curve_object(parent, "attach")
-    if not children:
-        raise InvalidArgumentError("attach: no curve to attach")
     if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
         raise InvalidArgumentError(f"attach: tolerance {tolerance!r} must be a positive distance (m)")
     before = {c.name: hierarchy.attachments_of(c) for c in children}
@@ -451,11 +460,7 @@ def set_plane(objects, plane="fit", *, tolerance: float = hierarchy.ATTACH_DISTA
     Returns one ``{"curve", "normal", "offset"}`` per curve. All curves or none: CurveError
     naming the curve when it is not one spline or lies farther than ``tolerance`` m from the
     plane; InvalidArgumentError for an unknown plane."""
-    if isinstance(objects, str | bpy.types.Object):
-        objects = [objects]
-    curves = [_curve_object(o, "set_plane") for o in objects]
-    if not curves:
-        raise InvalidArgumentError("set_plane: no curve")
+    curves = _curve_objects_of(objects, "set_plane")
     if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
         raise InvalidArgumentError(f"set_plane: tolerance {tolerance!r} must be a positive distance (m)")
     planes = []
@@ -503,10 +508,8 @@ def set_plane(objects, plane="fit", *, tolerance: float = hierarchy.ATTACH_DISTA
 def clear_plane(objects) -> int:
     """Release each curve object of ``objects`` from its plane (it stays where it is). Returns
     how many were held."""
-    if isinstance(objects, str | bpy.types.Object):
-        objects = [objects]
     count = 0
-    for obj in (_curve_object(o, "clear_plane") for o in objects):
+    for obj in _curve_objects_of(objects, "clear_plane"):
         count += hierarchy.plane_of(obj) is not None
         hierarchy.store_plane(obj, None)
     return count

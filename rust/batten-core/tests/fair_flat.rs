@@ -141,4 +141,48 @@ fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
     let line: Vec<DVec3> = (0..50).map(|i| DVec3::new(i as f64, 2.0, 0.0)).collect();
     let fit = fair_points(&line, &options(Some(BASE))).unwrap();
     assert!(fit.report.flat.is_none());
+    // A polyline fit (degree 1) has no tangent to carry off a flat.
+    let linear = FairOptions {
+        degree: 1,
+        ..options(Some(BASE))
+    };
+    assert!(fair_points(&section(4.0, 2.0), &linear)
+        .unwrap()
+        .report
+        .flat
+        .is_none());
+}
+
+#[test]
+fn a_bad_flat_plane_is_an_error() {
+    let pts = section(4.0, 2.0);
+    for (normal, offset, tolerance) in [
+        (DVec3::ZERO, 0.0, 1e-3),
+        (DVec3::new(f64::NAN, 0.0, 1.0), 0.0, 1e-3),
+        (DVec3::Z, f64::INFINITY, 1e-3),
+        (DVec3::Z, 0.0, 0.0),
+        (DVec3::Z, 0.0, f64::NAN),
+    ] {
+        let plane = FlatPlane {
+            normal,
+            offset,
+            tolerance,
+        };
+        let err = fair_points(&pts, &options(Some(plane))).unwrap_err();
+        assert!(
+            matches!(err, batten_core::FairError::FlatPlane { .. }),
+            "{err}"
+        );
+    }
+    // A normal of any length is the same plane.
+    let scaled = FlatPlane {
+        normal: DVec3::Z * 4.0,
+        offset: 0.0,
+        tolerance: 1e-3,
+    };
+    assert!(fair_points(&pts, &options(Some(scaled)))
+        .unwrap()
+        .report
+        .flat
+        .is_some());
 }

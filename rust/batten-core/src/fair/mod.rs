@@ -331,7 +331,10 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     }
     corners.retain(|&c| c > 0 && c + 1 < m);
     // A flat run is one straight piece: no corner inside it, its inner end a joint.
-    let flat = flat_plane.and_then(|plane| plane.run(pts, k).map(|run| (plane, run)));
+    // (A degree-1 fit is a polyline through its points: no tangent to carry off the flat.)
+    let flat = flat_plane
+        .filter(|_| k >= 2)
+        .and_then(|plane| plane.run(pts, k).map(|run| (plane, run)));
     if let Some((_, run)) = flat {
         corners.retain(|&c| {
             if run.at_start {
