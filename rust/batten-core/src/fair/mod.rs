@@ -427,22 +427,17 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
 
     let (knots, coefs, mut corner_parameters) = join(&pieces, k);
     // The flat's joint is smooth: no corner; said apart.
-    let flat_end = match flat {
-        Some((_, run)) => {
-            let at = corners
-                .iter()
-                .position(|&c| c == run.inner)
-                .expect("the flat's joint is a bound");
-            corners.remove(at);
-            let parameter = corner_parameters.remove(at);
-            Some(FlatEnd {
-                index: cleaned.index[run.inner],
-                parameter,
-                point: fit_pts[run.inner],
-            })
-        }
-        None => None,
-    };
+    // (`corners` holds the run's inner end, pushed above, at the same place as its joint.)
+    let flat_end = flat.and_then(|(_, run)| {
+        let at = corners.iter().position(|&c| c == run.inner)?;
+        corners.remove(at);
+        let parameter = corner_parameters.remove(at);
+        Some(FlatEnd {
+            index: cleaned.index[run.inner],
+            parameter,
+            point: fit_pts[run.inner],
+        })
+    });
     let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
     // A single piece is the curve itself (its parameters start at 0, so joining leaves knots
     // and control points as they were): what its fit measured holds for the curve.
