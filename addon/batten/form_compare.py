@@ -10,55 +10,37 @@ hulls are then on comparable bases, as a naval architect expects from a lengthen
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from .hydro_table import ROWS, Row
 
-
-class Quantity(NamedTuple):
-    """One compared figure: its key (of the form parameters or the hydrostatics), label and
-    unit ("" for a ratio) and the Python format spec it is shown with."""
-
-    key: str
-    label: str
-    unit: str
-    fmt: str
-
+#: One compared figure: its label, key (of the form parameters or the hydrostatics), unit
+#: ("" for a ratio) and the Python format spec it is shown with (the hydrostatics table's row).
+Quantity = Row
 
 #: The main dimensions compared, from the form topology's parameters (§7.2.5).
-DIMENSIONS: tuple[Quantity, ...] = (
-    Quantity("length", "Length", "m", ".3f"),
-    Quantity("breadth", "Breadth", "m", ".3f"),
-    Quantity("depth", "Depth", "m", ".3f"),
-    Quantity("waterline_breadth", "Bwl", "m", ".3f"),
-    Quantity("pmb_length", "PMB length", "m", ".3f"),
-    Quantity("pmb_position", "PMB position", "m", ".3f"),
-    Quantity("bilge_radius", "Bilge radius", "m", ".3f"),
-    Quantity("rise_of_floor", "Rise of floor", "m", ".3f"),
-    Quantity("entrance_length", "Entrance length", "m", ".3f"),
-    Quantity("run_length", "Run length", "m", ".3f"),
+DIMENSIONS: tuple[Quantity, ...] = tuple(
+    Quantity(label, key, "m", ".3f")
+    for key, label in (
+        ("length", "Length"),
+        ("breadth", "Breadth"),
+        ("depth", "Depth"),
+        ("waterline_breadth", "Bwl"),
+        ("pmb_length", "PMB length"),
+        ("pmb_position", "PMB position"),
+        ("bilge_radius", "Bilge radius"),
+        ("rise_of_floor", "Rise of floor"),
+        ("entrance_length", "Entrance length"),
+        ("run_length", "Run length"),
+    )
 )
 
-#: The hydrostatics compared, at the original's design draft (keys of
-#: :func:`batten.api.hydrostatics`).
-HYDROSTATICS: tuple[Quantity, ...] = (
-    Quantity("volume", "Volume ∇", "m³", ",.2f"),
-    Quantity("displacement", "Displacement Δ", "t", ",.2f"),
-    Quantity("lpp", "Lpp", "m", ".3f"),
-    Quantity("lwl", "Lwl", "m", ".3f"),
-    Quantity("bwl", "Bwl", "m", ".3f"),
-    Quantity("wetted_area", "Wetted surface S", "m²", ",.2f"),
-    Quantity("waterplane_area", "Waterplane area Awp", "m²", ",.2f"),
-    Quantity("midship_area", "Midship area Am", "m²", ",.3f"),
-    Quantity("lcb", "LCB (x)", "m", ".3f"),
-    Quantity("vcb", "VCB = KB", "m", ".3f"),
-    Quantity("lcf", "LCF (x)", "m", ".3f"),
-    Quantity("kmt", "KMt", "m", ".3f"),
-    Quantity("kml", "KMl", "m", ".2f"),
-    Quantity("tpc", "TPC", "t/cm", ".3f"),
-    Quantity("mtc", "MTC", "t·m/cm", ".3f"),
-    Quantity("cb", "Block Cb", "", ".4f"),
-    Quantity("cp", "Prismatic Cp", "", ".4f"),
-    Quantity("cm", "Midship Cm", "", ".4f"),
-    Quantity("cwp", "Waterplane Cwp", "", ".4f"),
+#: The hydrostatics compared, at the original's design draft: these rows of the
+#: hydrostatics table (:data:`batten.hydro_table.ROWS`), labels, units and formats as there.
+HYDROSTATICS: tuple[Quantity, ...] = tuple(
+    next(row for row in ROWS if row.key == key)
+    for key in (
+        "volume displacement lpp lwl bwl wetted_area waterplane_area midship_area lcb vcb lcf "
+        "kmt kml tpc mtc cb cp cm cwp"
+    ).split()
 )
 
 

@@ -19,7 +19,7 @@ import numpy as np
 
 from . import api
 from ._registry import register_classes, unregister_classes
-from .form_operators import _switch_to
+from .form_operators import move_vertex_into_copy
 
 #: How near (pixels) the click must be to a form vertex to pick it.
 PICK_RADIUS = 24.0
@@ -189,11 +189,10 @@ class BATTEN_OT_drag_form_vertex(bpy.types.Operator):
             return {"CANCELLED"}
         move = tuple(float(c) for c in self._delta)
         try:
-            result = api.transform(settings.source, moves=[(self._index, move)])
+            result = move_vertex_into_copy(settings, self._index, move)
         except api.BattenError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        _switch_to(settings, result)
         self.report({"INFO"}, f"'{result.collection.name}': form vertex {self._index} moved {move}")
         return {"FINISHED"}
 

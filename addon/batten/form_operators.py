@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
-from . import api, hydro_plot
+from . import api, hierarchy, hydro_plot
 from ._registry import register_classes, unregister_classes
 from .operator_base import BattenOperator, HullOperator
 from .scene_hydro import draft_of
@@ -45,6 +45,14 @@ def _switch_to(settings, result) -> None:
     except api.BattenError:
         drawing = {}  # the copy is made and kept; only its overlay is missing
     settings.last_form = json.dumps({"source": copy.name, "parameters": report["after"], **drawing})
+
+
+def move_vertex_into_copy(settings, vertex: int, move: tuple[float, float, float]):
+    """Move form vertex ``vertex`` of the panels' hull by ``move`` into a new copy on its stack
+    (:func:`batten.api.transform`) and work on the copy; returns the TransformResult."""
+    result = api.transform(settings.source, moves=[(vertex, move)])
+    _switch_to(settings, result)
+    return result
 
 
 def _is_copy(source) -> bool:
@@ -103,9 +111,7 @@ class BATTEN_OT_move_form_vertex(HullOperator, bpy.types.Operator):
 
     def run(self, context):
         settings = context.scene.batten
-        move = tuple(settings.form_move)
-        result = api.transform(settings.source, moves=[(settings.form_vertex, move)])
-        _switch_to(settings, result)
+        result = move_vertex_into_copy(settings, settings.form_vertex, tuple(settings.form_move))
         self.report({"INFO"}, f"'{result.collection.name}': {result.report['description']}")
         return {"FINISHED"}
 
@@ -231,9 +237,9 @@ class BATTEN_OT_abandon_transforms(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-def _selected_curves(context) -> list:
-    """The selected curve objects other than the active object."""
-    active = context.view_layer.objects.active
+def _selected_curves(context, *, but_active: bool = False) -> list:
+    """The selected curve objects (other than the active object with ``but_active``)."""
+    active = context.view_layer.objects.active if but_active else None
     return [o for o in context.selected_objects if o.type == "CURVE" and o != active]
 
 
@@ -248,11 +254,13 @@ class BATTEN_OT_attach_curves(BattenOperator, bpy.types.Operator):
     @classmethod
     def poll(cls, context):
         active = context.view_layer.objects.active
-        return active is not None and active.type == "CURVE" and bool(_selected_curves(context))
+        return (
+            active is not None and active.type == "CURVE" and bool(_selected_curves(context, but_active=True))
+        )
 
     def run(self, context):
         parent = context.view_layer.objects.active
-        made = api.attach(_selected_curves(context), parent)
+        made = api.attach(_selected_curves(context, but_active=True), parent)
         ends = ", ".join(f"{a['child']} ({a['end']})" for a in made)
         self.report({"INFO"}, f"Attached to '{parent.name}': {ends}")
         return {"FINISHED"}
@@ -268,11 +276,10 @@ class BATTEN_OT_detach_curves(BattenOperator, bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return any(o.type == "CURVE" and o.get("batten_attachments") for o in context.selected_objects)
+        return any(hierarchy.attachments_of(o) for o in _selected_curves(context))
 
     def run(self, context):
-        curves = [o for o in context.selected_objects if o.type == "CURVE"]
-        count = sum(api.detach(o) for o in curves)
+        count = sum(api.detach(o) for o in _selected_curves(context))
         self.report({"INFO"}, f"{count} end(s) detached")
         return {"FINISHED"}
 
@@ -298,10 +305,10 @@ class BATTEN_OT_hold_in_plane(BattenOperator, bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return any(o.type == "CURVE" for o in context.selected_objects)
+        return bool(_selected_curves(context))
 
     def run(self, context):
-        held = api.set_plane([o for o in context.selected_objects if o.type == "CURVE"], self.plane)
+        held = api.set_plane(_selected_curves(context), self.plane)
         self.report({"INFO"}, f"Held in their planes: {', '.join(h['curve'] for h in held)}")
         return {"FINISHED"}
 
@@ -315,10 +322,10 @@ class BATTEN_OT_release_plane(BattenOperator, bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return any(o.type == "CURVE" and o.get("batten_plane") for o in context.selected_objects)
+        return any(hierarchy.plane_of(o) is not None for o in _selected_curves(context))
 
     def run(self, context):
-        count = api.clear_plane([o for o in context.selected_objects if o.type == "CURVE"])
+        count = api.clear_plane(_selected_curves(context))
         self.report({"INFO"}, f"{count} curve(s) released")
         return {"FINISHED"}
 

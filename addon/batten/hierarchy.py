@@ -124,9 +124,8 @@ def _write(spline, arrays: dict[str, np.ndarray]) -> None:
 
 def graph(objects) -> dict[str, set[str]]:
     """Each curve object of ``objects`` with attachments or a plane: the parents it references."""
-    return {
-        o.name: {a["parent"] for a in attachments_of(o)} for o in objects if attachments_of(o) or o.get(PLANE)
-    }
+    found = ((o, attachments_of(o)) for o in objects)
+    return {o.name: {a["parent"] for a in made} for o, made in found if made or o.get(PLANE)}
 
 
 def order(objects) -> list[str]:

@@ -5,11 +5,11 @@ import pytest
 from batten import form_compare
 
 QUANTITIES = (
-    form_compare.Quantity("volume", "Volume", "m³", ",.2f"),
-    form_compare.Quantity("pmb_length", "PMB length", "m", ".3f"),
-    form_compare.Quantity("lcb", "LCB", "m", ".3f"),
-    form_compare.Quantity("cb", "Cb", "", ".4f"),
-    form_compare.Quantity("bilge_radius", "Bilge radius", "m", ".3f"),
+    form_compare.Quantity("Volume", "volume", "m³", ",.2f"),
+    form_compare.Quantity("PMB length", "pmb_length", "m", ".3f"),
+    form_compare.Quantity("LCB", "lcb", "m", ".3f"),
+    form_compare.Quantity("Cb", "cb", "", ".4f"),
+    form_compare.Quantity("Bilge radius", "bilge_radius", "m", ".3f"),
 )
 
 
