@@ -176,7 +176,7 @@ def test_attach_and_detach_operators(frame):
     deck.select_set(True)
     bpy.context.view_layer.objects.active = deck
     assert BATTEN_OT_attach_curves.poll(bpy.context)
-    status, reports = execute(BATTEN_OT_attach_curves, bpy.context)
+    status, reports = execute(BATTEN_OT_attach_curves, bpy.context, what="end")
     assert status == {"FINISHED"}, reports
     assert "st4 (end)" in reports[-1][1]
     assert hierarchy.attachments_of(st)[0]["parent"] == "deck"

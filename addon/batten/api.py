@@ -80,6 +80,7 @@ from . import (
     form_stack,
     hierarchy,
     hull_models,
+    point_attributes,
     sections_draw,
 )
 from .atomic_write import write_atomically
@@ -160,6 +161,11 @@ __all__ = [
     "detach",
     "attachments",
     "update_hierarchy",
+    "set_point_attribute",
+    "clear_point_attributes",
+    "point_attributes_of",
+    "set_curve_attribute",
+    "curve_attributes",
     "set_plane",
     "clear_plane",
     "held_planes",
@@ -374,7 +380,12 @@ def _curve_objects_of(objects, what: str) -> list:
 
 
 def attach(
-    children, parent, *, end: str = "nearest", tolerance: float = hierarchy.ATTACH_DISTANCE
+    children,
+    parent,
+    *,
+    end: str = "nearest",
+    point: int | str | None = None,
+    tolerance: float = hierarchy.ATTACH_DISTANCE,
 ) -> list[dict]:
     """Attach an end of each curve object of ``children`` (one object or name, or several) to
     the curve object ``parent`` (seed 002 §5: the curve network hierarchy): the end (``start``,
@@ -384,10 +395,17 @@ def attach(
     (:func:`update_hierarchy`; Build and Live do it on every change). The children are updated
     at once, so their ends lie on the parent.
 
-    Returns the attachments, one ``{"child", "end", "parent", "t"}`` per child (``t``: the
-    parameter on the parent). All children are attached or none: CurveError naming the child
-    when it is not one spline, is the parent or one of the parent's ancestors, or its end is
-    too far; InvalidArgumentError for an unknown end."""
+    With ``point`` a point the child passes through is attached in place of an end: its index
+    among the spline's points (a Bézier spline's points, a cubic Bézier-knot NURBS spline's
+    every third control point), or ``"nearest"``: the one nearest the parent (a station where it
+    crosses a chine). The elastic rule then runs between the attached points and the ends, and
+    the parent's curve attributes act on the point (:func:`set_curve_attribute`).
+
+    Returns the attachments, one ``{"child", "end" or "point", "parent", "t"}`` per child
+    (``t``: the parameter on the parent). All children are attached or none: CurveError naming
+    the child when it is not one spline, is the parent or one of the parent's ancestors, its end
+    or point is too far, or its spline does not pass through its points; InvalidArgumentError
+    for an unknown end or point."""
     children = _curve_objects_of(children, "attach")
     parent = _curve_object(parent, "attach")
     if not (isinstance(tolerance, int | float) and math.isfinite(tolerance) and tolerance > 0):
@@ -396,7 +414,9 @@ def attach(
     made = []
     try:
         for child in children:
-            made.append({"child": child.name, **hierarchy.attach(child, parent, end, float(tolerance))})
+            made.append(
+                {"child": child.name, **hierarchy.attach(child, parent, end, float(tolerance), point)}
+            )
         hierarchy.update(_with_descendants(children))
     except BaseException:
         for child in children:
@@ -418,22 +438,29 @@ def _with_descendants(objects) -> list:
     return [bpy.data.objects[name] for name in sorted(found)]
 
 
-def detach(child, *, end: str | None = None) -> int:
-    """Detach the ends of the curve object ``child`` (only ``end``, ``start`` or ``end``, when
-    given) from their parents; the curve stays where it is. Returns how many were detached."""
+def detach(child, *, end: str | None = None, point: int | None = None) -> int:
+    """Detach the ends and attached points of the curve object ``child`` (only ``end``,
+    ``start`` or ``end``, or only the point ``point``, when given) from their parents; the
+    curve stays where it is. Returns how many were detached."""
     child = _curve_object(child, "detach")
     if end is not None and end not in hierarchy.ENDS:
         raise InvalidArgumentError(f"end '{end}' is none of start, end")
+    if end is not None and point is not None:
+        raise InvalidArgumentError("detach: give an end or a point, not both")
     before = hierarchy.attachments_of(child)
-    kept = [a for a in before if end is not None and a["end"] != end]
+    if end is None and point is None:
+        kept = []
+    else:
+        target = end if end is not None else f"point {point}"
+        kept = [a for a in before if hierarchy.anchor(a) != target]
     hierarchy.store(child, kept)
     return len(before) - len(kept)
 
 
 def attachments(source) -> list[dict]:
     """The attachments of the curve objects of ``source`` (as :func:`curve_objects` takes it),
-    in hierarchy order (every parent's before its children's): each ``{"child", "end",
-    "parent", "t"}``. CurveError naming the curves when they reference each other in a cycle."""
+    in hierarchy order (every parent's before its children's): each ``{"child", "end" (or
+    "point"), "parent", "t"}``. CurveError naming the curves when they reference each other in a cycle."""
     objects = curve_objects(source)
     by_name = {o.name: o for o in objects}
     return [
@@ -534,6 +561,174 @@ def update_hierarchy(source) -> list[str]:
     of the curves that moved. CurveError naming the curve when a parent is gone or curves
     reference each other in a cycle."""
     return hierarchy.update(curve_objects(source))
+
+
+#: The directions :func:`set_point_attribute` names for a tangent.
+AXIS_DIRECTIONS = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
+#: The curve attributes (seed 002 §5): see :func:`set_curve_attribute`.
+CURVE_ATTRIBUTES = ("knuckle", "tangent")
+#: The Bézier handle types each point attribute gives its points (left, right), so Blender's
+#: own handle rules keep the shape while the designer edits: vector handles for a corner or a
+#: straight's inside, aligned ones where the curve runs smoothly through.
+_HANDLE_TYPES = {
+    "knuckle": (("VECTOR", "VECTOR"),),
+    "tangent": (("ALIGNED", "ALIGNED"),),
+    "straight": (("ALIGNED", "VECTOR"), ("VECTOR", "ALIGNED")),
+    "blend": (("ALIGNED", "ALIGNED"), ("ALIGNED", "ALIGNED")),
+}
+
+
+def set_point_attribute(curve, kind: str, point: int, *, direction=None) -> dict:
+    """Give the point ``point`` of the curve object ``curve`` a point attribute (seed 002 §5,
+    Fig. 3) and shape the curve by it at once: ``knuckle`` (a corner there), ``tangent`` (the
+    curve passes through it along ``direction``: ``"x"``, ``"y"``, ``"z"``, three numbers, or
+    None for its direction there now), or, on the point and the next, ``straight`` (a straight
+    line between them, entered and left tangentially) or ``blend`` (a smooth blend between the
+    tangents the curve arrives and leaves with, circular where they allow). ``point`` counts
+    the points the curve passes through (a Bézier spline's points; a cubic Bézier-knot NURBS
+    spline's every third control point). Build and Live keep the attribute as the curve and its
+    parents change (:func:`update_hierarchy`); it is stored on the object, so it stays with the
+    .blend. A knuckle or tangent replaces the point's former knuckle or tangent.
+
+    Returns the attribute ``{"kind", "point"[, "direction"]}``. Nothing changes on an error:
+    CurveError naming the curve when it is not one spline, does not pass through its points, is
+    a POLY spline asked for a tangent or blend, or the attribute contradicts another one on the
+    point (a knuckle with a tangent or a blend, a tangent on a straight's end, two blends);
+    InvalidArgumentError for an unknown kind, point or direction."""
+    obj = _curve_object(curve, "set_point_attribute")
+    if kind not in point_attributes.KINDS:
+        raise InvalidArgumentError(
+            f"unknown point attribute '{kind}' (one of {', '.join(point_attributes.KINDS)})"
+        )
+    spline = hierarchy.single_spline(obj)
+    index, handles = hierarchy.joint_layout(spline, obj.name)
+    if isinstance(point, bool) or not isinstance(point, int) or not 0 <= point < len(index):
+        raise InvalidArgumentError(
+            f"set_point_attribute: point {point!r} of curve '{obj.name}' is none of 0..{len(index) - 1}"
+        )
+    if kind in point_attributes.PAIR_KINDS and point + 1 >= len(index):
+        raise InvalidArgumentError(
+            f"set_point_attribute: a {kind} runs from point {point} to the next, and curve "
+            f"'{obj.name}' has points 0..{len(index) - 1}"
+        )
+    if not handles and kind in ("tangent", "blend"):
+        raise CurveError(
+            f"curve '{obj.name}': a {kind} needs handles, and its POLY spline has none", obj.name
+        )
+    attribute = {"kind": kind, "point": point}
+    if kind == "tangent":
+        attribute["direction"] = _tangent_direction(obj, point, direction)
+    elif direction is not None:
+        raise InvalidArgumentError(f"set_point_attribute: a {kind} takes no direction")
+    slot = {"knuckle", "tangent"} if kind in ("knuckle", "tangent") else {kind}
+    before = hierarchy.point_attributes_of(obj)
+    after = [a for a in before if not (a["point"] == point and a["kind"] in slot)] + [attribute]
+    try:
+        point_attributes.validate(after, len(index))
+    except point_attributes.AttributeConflict as e:
+        raise CurveError(f"curve '{obj.name}': {e}", obj.name) from None
+    types = _handle_types(spline) if spline.type == "BEZIER" else None
+    try:
+        hierarchy.store_point_attributes(obj, after)
+        if types is not None:
+            for offset, (left, right) in enumerate(_HANDLE_TYPES[kind]):
+                p = spline.bezier_points[point + offset]
+                p.handle_left_type, p.handle_right_type = left, right
+        hierarchy.update(_with_descendants([obj]))
+    except BaseException:
+        hierarchy.store_point_attributes(obj, before)
+        if types is not None:
+            for p, (left, right) in zip(spline.bezier_points, types, strict=True):
+                p.handle_left_type, p.handle_right_type = left, right
+        raise
+    return attribute
+
+
+def _handle_types(spline) -> list[tuple[str, str]]:
+    return [(p.handle_left_type, p.handle_right_type) for p in spline.bezier_points]
+
+
+def _tangent_direction(obj, point: int, direction) -> list[float]:
+    if direction is None:
+        d = hierarchy.joint_direction(obj, point)
+    elif isinstance(direction, str) and direction in AXIS_DIRECTIONS:
+        d = np.asarray(AXIS_DIRECTIONS[direction])
+    else:
+        try:
+            d = np.asarray(direction, dtype=float).reshape(-1)
+        except (TypeError, ValueError):
+            d = np.zeros(0)
+    length = float(np.linalg.norm(d)) if d.shape == (3,) else 0.0
+    if not (math.isfinite(length) and length > 0.0):
+        raise InvalidArgumentError(
+            f"set_point_attribute: direction {direction!r} is none of 'x', 'y', 'z', three finite "
+            "numbers not all zero, None"
+        )
+    return (d / length).tolist()
+
+
+def clear_point_attributes(curve, point: int | None = None) -> int:
+    """Take the point attributes off the curve object ``curve`` (only those on ``point``, the
+    pairs it begins included, when given); the curve keeps its shape. Returns how many were
+    taken off."""
+    obj = _curve_object(curve, "clear_point_attributes")
+    before = hierarchy.point_attributes_of(obj)
+    kept = [] if point is None else [a for a in before if a["point"] != point]
+    hierarchy.store_point_attributes(obj, kept)
+    return len(before) - len(kept)
+
+
+def point_attributes_of(source) -> list[dict]:
+    """The point attributes of the curve objects of ``source`` (as :func:`curve_objects` takes
+    it): each ``{"curve", "kind", "point"[, "direction"]}``."""
+    return [
+        {"curve": obj.name, **a} for obj in curve_objects(source) for a in hierarchy.point_attributes_of(obj)
+    ]
+
+
+def set_curve_attribute(curves, kind: str, on: bool = True) -> None:
+    """Give each curve object of ``curves`` a curve attribute (seed 002 §5, Fig. 4), or take it
+    away (``on=False``); it acts on the points of the curves attached to it
+    (:func:`attach` with ``point``). ``knuckle``: the curve is a knuckle line (its role becomes
+    ``knuckle``: the surface keeps a crease across it) and every point attached to it is a
+    knuckle point of its curve. ``tangent``: the curves attached to it enter the plane it is
+    held in tangentially (a flat of side or bottom curve, so stations run into the flat); the
+    curve must be held in a plane (:func:`set_plane`). The attached curves are reshaped at once.
+    All curves or none: CurveError naming a curve not held in a plane for ``tangent``;
+    InvalidArgumentError for an unknown kind."""
+    if kind not in CURVE_ATTRIBUTES:
+        raise InvalidArgumentError(f"unknown curve attribute '{kind}' (one of {', '.join(CURVE_ATTRIBUTES)})")
+    objs = _curve_objects_of(curves, "set_curve_attribute")
+    if kind == "tangent" and on:
+        for obj in objs:
+            if hierarchy.plane_of(obj) is None:
+                raise CurveError(
+                    f"curve '{obj.name}' is held in no plane; hold it in one (Hold in Plane) before "
+                    "giving it the tangent attribute",
+                    obj.name,
+                )
+    before = [(obj, obj.batten.role, hierarchy.has_tangent(obj)) for obj in objs]
+    try:
+        for obj in objs:
+            if kind == "knuckle":
+                if on:
+                    obj.batten.role = "knuckle"
+                elif obj.batten.role == "knuckle":
+                    obj.batten.role = "free"
+            else:
+                hierarchy.store_tangent(obj, on)
+        hierarchy.update(_with_descendants(objs))
+    except BaseException:
+        for obj, role, tangent in before:
+            obj.batten.role = role
+            hierarchy.store_tangent(obj, tangent)
+        raise
+
+
+def curve_attributes(curve) -> dict[str, bool]:
+    """The curve attributes of the curve object ``curve``: ``{"knuckle", "tangent"}``."""
+    obj = _curve_object(curve, "curve_attributes")
+    return {"knuckle": curves_in.role_of(obj) == "knuckle", "tangent": hierarchy.has_tangent(obj)}
 
 
 def example_files() -> list[Path]:

@@ -6,7 +6,7 @@ import json
 
 import bpy
 import numpy as np
-from bpy.props import EnumProperty, StringProperty
+from bpy.props import BoolProperty, EnumProperty, StringProperty
 
 from . import api, hierarchy, hydro_plot
 from ._registry import register_classes, unregister_classes
@@ -258,17 +258,31 @@ class BATTEN_OT_attach_curves(BattenOperator, bpy.types.Operator):
             active is not None and active.type == "CURVE" and bool(_selected_curves(context, but_active=True))
         )
 
+    what: EnumProperty(
+        name="Attach",
+        items=[
+            ("end", "Nearer End", "The end of each curve nearer the active curve"),
+            (
+                "point",
+                "Crossing Point",
+                "The point of each curve nearest the active curve (it passes through it)",
+            ),
+        ],
+        default="end",
+    )
+
     def run(self, context):
         parent = context.view_layer.objects.active
-        made = api.attach(_selected_curves(context, but_active=True), parent)
-        ends = ", ".join(f"{a['child']} ({a['end']})" for a in made)
+        children = _selected_curves(context, but_active=True)
+        made = api.attach(children, parent, point="nearest" if self.what == "point" else None)
+        ends = ", ".join(f"{a['child']} ({hierarchy.anchor(a)})" for a in made)
         self.report({"INFO"}, f"Attached to '{parent.name}': {ends}")
         return {"FINISHED"}
 
 
 class BATTEN_OT_detach_curves(BattenOperator, bpy.types.Operator):
-    """Detach both ends of each selected curve from the curves they are attached to (the curves
-    stay where they are)"""
+    """Detach the ends and points of each selected curve from the curves they are attached to
+    (the curves stay where they are)"""
 
     bl_idname = "batten.detach_curves"
     bl_label = "Detach"
@@ -280,7 +294,7 @@ class BATTEN_OT_detach_curves(BattenOperator, bpy.types.Operator):
 
     def run(self, context):
         count = sum(api.detach(o) for o in _selected_curves(context))
-        self.report({"INFO"}, f"{count} end(s) detached")
+        self.report({"INFO"}, f"{count} end(s) or point(s) detached")
         return {"FINISHED"}
 
 
@@ -330,7 +344,134 @@ class BATTEN_OT_release_plane(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
+def _selected_joints(obj) -> list[int]:
+    """The points of the curve object ``obj``'s spline that are selected in Edit Mode, counted
+    among the points it passes through (:func:`batten.hierarchy.joint_layout`)."""
+    spline = hierarchy.single_spline(obj)
+    index, _ = hierarchy.joint_layout(spline, obj.name)
+    if spline.type == "BEZIER":
+        selected = [p.select_control_point for p in spline.bezier_points]
+    else:
+        selected = [p.select for p in spline.points]
+    return [k for k, j in enumerate(index) if selected[j]]
+
+
+_POINT_KINDS = [
+    ("knuckle", "Knuckle", "A corner at each selected point"),
+    ("tangent", "Tangent", "The curve passes through each selected point along a fixed direction"),
+    ("straight", "Straight", "A straight line between each two neighbouring selected points"),
+    ("blend", "Blend", "A blend (a radius) between each two neighbouring selected points"),
+]
+
+
+class BATTEN_OT_set_point_attribute(BattenOperator, bpy.types.Operator):
+    """Give the selected points of the curve being edited a point attribute (a knuckle, a
+    tangent, or a straight or blend between neighbouring points); Build and Live keep it as the
+    curve changes"""
+
+    bl_idname = "batten.set_point_attribute"
+    bl_label = "Point Attribute"
+    bl_options = {"REGISTER", "UNDO"}
+
+    kind: EnumProperty(name="Attribute", items=_POINT_KINDS, default="knuckle")
+    direction: EnumProperty(
+        name="Direction",
+        items=[
+            ("current", "As It Runs", "The direction the curve runs through the point now"),
+            ("x", "X", "Along the ship"),
+            ("y", "Y", "Across the ship"),
+            ("z", "Z", "Vertical"),
+        ],
+        default="current",
+    )
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.edit_object
+        return obj is not None and obj.type == "CURVE"
+
+    def run(self, context):
+        obj = context.edit_object
+        joints = _selected_joints(obj)
+        if self.kind in ("straight", "blend"):
+            joints = [k for k in joints if k + 1 in joints]
+        if not joints:
+            need = (
+                "two neighbouring points"
+                if self.kind in ("straight", "blend")
+                else "a point it passes through"
+            )
+            self.report({"ERROR"}, f"'{obj.name}': select {need} of the curve")
+            return {"CANCELLED"}
+        direction = None if self.direction == "current" else self.direction
+        for k in joints:
+            api.set_point_attribute(
+                obj, self.kind, k, direction=direction if self.kind == "tangent" else None
+            )
+        self.report({"INFO"}, f"'{obj.name}': {self.kind} on point(s) {', '.join(map(str, joints))}")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_clear_point_attributes(BattenOperator, bpy.types.Operator):
+    """Take the point attributes off the selected points of the curve being edited (in Object
+    Mode: off every point of the selected curves); the curves keep their shape"""
+
+    bl_idname = "batten.clear_point_attributes"
+    bl_label = "Clear Point Attributes"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.edit_object
+        if obj is not None:
+            return bool(hierarchy.point_attributes_of(obj))
+        return any(hierarchy.point_attributes_of(o) for o in _selected_curves(context))
+
+    def run(self, context):
+        obj = context.edit_object
+        if obj is not None:
+            count = sum(api.clear_point_attributes(obj, k) for k in _selected_joints(obj))
+        else:
+            count = sum(api.clear_point_attributes(o) for o in _selected_curves(context))
+        self.report({"INFO"}, f"{count} point attribute(s) cleared")
+        return {"FINISHED"}
+
+
+class BATTEN_OT_set_curve_attribute(BattenOperator, bpy.types.Operator):
+    """Give each selected curve a curve attribute, acting on the points of the curves attached
+    to it: Knuckle (they become knuckle points) or Tangent (they enter the curve's plane
+    tangentially)"""
+
+    bl_idname = "batten.set_curve_attribute"
+    bl_label = "Curve Attribute"
+    bl_options = {"REGISTER", "UNDO"}
+
+    kind: EnumProperty(
+        name="Attribute",
+        items=[
+            ("knuckle", "Knuckle", "A knuckle line: the points attached to it are knuckles"),
+            ("tangent", "Tangent", "The curves attached to it enter its plane tangentially"),
+        ],
+        default="knuckle",
+    )
+    on: BoolProperty(name="On", description="Give the attribute (off: take it away)", default=True)
+
+    @classmethod
+    def poll(cls, context):
+        return bool(_selected_curves(context))
+
+    def run(self, context):
+        curves = _selected_curves(context)
+        api.set_curve_attribute(curves, self.kind, self.on)
+        verb = "given" if self.on else "taken from"
+        self.report({"INFO"}, f"Curve attribute {self.kind} {verb} {', '.join(o.name for o in curves)}")
+        return {"FINISHED"}
+
+
 _CLASSES = (
+    BATTEN_OT_set_point_attribute,
+    BATTEN_OT_clear_point_attributes,
+    BATTEN_OT_set_curve_attribute,
     BATTEN_OT_measure_form,
     BATTEN_OT_transform,
     BATTEN_OT_move_form_vertex,

@@ -18,6 +18,18 @@ stays. A Bézier spline's handles move with their control point. The new control
 computed for every child first and written all or none. A curve held in a plane has its
 control points moved into it last (after its ends followed their parents), so it stays planar
 whatever drags it.
+
+A point the curve passes through (a *joint*: a Bézier point, or every third control point of a
+cubic NURBS spline with end-point and Bézier knots) may be attached too (``{"point": <joint
+index>, ...}`` in place of ``"end"``): a station through a chine or a flat of side. The elastic
+rule then runs piecewise between consecutive anchors (the ends and the attached points).
+
+Point attributes (:mod:`batten.point_attributes`) are stored on the object as
+``batten_point_attributes`` (a JSON list of ``{"kind", "point"[, "direction"]}``) and shape the
+handles at their joints after the elastic rule. Curve attributes act on the points attached to
+a curve: a parent of role ``knuckle`` makes them knuckle points, and a parent held in a plane
+with the *tangent* curve attribute (``batten_tangent``) makes the curves attached to it enter
+the plane tangentially (their tangent there loses its component along the plane's normal).
 """
 
 from __future__ import annotations
@@ -29,6 +41,7 @@ import bpy
 import numpy as np
 from batten_native import CurveError, InvalidArgumentError
 
+from . import point_attributes
 from .bridge import curves_in
 
 #: Object property: the attachments of a curve object's ends (JSON list).
@@ -36,6 +49,11 @@ ATTACHMENTS = "batten_attachments"
 #: Object property: the plane a curve object is held in (its surface attribute, JSON
 #: ``{"normal": [x, y, z], "offset": d}``, the plane ``normal · p = d`` in world coordinates).
 PLANE = "batten_plane"
+#: Object property: the point attributes of a curve object (JSON list).
+POINT_ATTRIBUTES = "batten_point_attributes"
+#: Object property: the curve's *tangent* curve attribute (curves attached to it enter its plane
+#: tangentially).
+TANGENT = "batten_tangent"
 #: The ends a curve can attach.
 ENDS = ("start", "end")
 #: Blender keeps curve points in single precision: an end within this many of its units in
@@ -58,6 +76,38 @@ def store(obj, attachments: list[dict]) -> None:
         obj[ATTACHMENTS] = json.dumps(attachments)
     elif ATTACHMENTS in obj:
         del obj[ATTACHMENTS]
+
+
+def point_attributes_of(obj) -> list[dict]:
+    """The point attributes stored on ``obj`` (an empty list when it has none)."""
+    text = obj.get(POINT_ATTRIBUTES)
+    return json.loads(text) if text else []
+
+
+def store_point_attributes(obj, attributes: list[dict]) -> None:
+    """Store ``attributes`` on ``obj`` (the property is removed when the list is empty)."""
+    if attributes:
+        obj[POINT_ATTRIBUTES] = json.dumps(attributes)
+    elif POINT_ATTRIBUTES in obj:
+        del obj[POINT_ATTRIBUTES]
+
+
+def has_tangent(obj) -> bool:
+    """Whether ``obj`` carries the tangent curve attribute."""
+    return bool(obj.get(TANGENT))
+
+
+def store_tangent(obj, on: bool) -> None:
+    """Give ``obj`` the tangent curve attribute, or take it away."""
+    if on:
+        obj[TANGENT] = 1
+    elif TANGENT in obj:
+        del obj[TANGENT]
+
+
+def anchor(attachment: dict) -> str:
+    """What an attachment holds, for a person: ``start``, ``end`` or ``point 3``."""
+    return attachment["end"] if "end" in attachment else f"point {attachment['point']}"
 
 
 def single_spline(obj):
@@ -99,6 +149,54 @@ def elastic(anchors: np.ndarray, delta0: np.ndarray, delta1: np.ndarray) -> np.n
     return (1.0 - t)[:, None] * np.asarray(delta0)[None, :] + t[:, None] * np.asarray(delta1)[None, :]
 
 
+def joint_layout(spline, name: str) -> tuple[np.ndarray, bool]:
+    """The indices in the spline's control polygon (``co``) of the points it passes through
+    (its joints), and whether they have handles (a Bézier spline's, or a cubic NURBS spline's
+    neighbouring control points). A POLY spline (or a NURBS spline of order 2) passes through
+    every point with no handles. CurveError naming the curve for a NURBS spline whose knots do
+    not make its joints plain (anything but end-point and Bézier knots of order 4)."""
+    if spline.type == "BEZIER":
+        return np.arange(len(spline.bezier_points)), True
+    count = len(spline.points)
+    if spline.type == "POLY" or spline.order_u == 2:
+        return np.arange(count), False
+    if spline.order_u == 4 and spline.use_bezier_u and spline.use_endpoint_u and not spline.use_cyclic_u:
+        if (count - 1) % 3 == 0:
+            return np.arange(0, count, 3), True
+    raise CurveError(
+        f"curve '{name}': its NURBS spline does not pass through its control points; points can be "
+        "attached or given attributes on a Bézier spline or a cubic NURBS spline with end-point and "
+        "Bézier knots (set its spline type to Bézier first)",
+        name,
+    )
+
+
+def _joint_arrays(world: dict[str, np.ndarray], index: np.ndarray):
+    """The joints' points and handles (world) of a spline's arrays, and a writer putting new
+    handles back into them."""
+    co = world["co"]
+    if "handle_left" in world:
+        left, right = world["handle_left"].copy(), world["handle_right"].copy()
+
+        def put(new_left, new_right) -> None:
+            world["handle_left"][:], world["handle_right"][:] = new_left, new_right
+
+        return co[index].copy(), left, right, put
+    # A cubic NURBS spline with Bézier knots: the control points beside each joint.
+    n = len(co)
+    left = np.array([co[j - 1] if j > 0 else co[j] for j in index])
+    right = np.array([co[j + 1] if j + 1 < n else co[j] for j in index])
+
+    def put(new_left, new_right) -> None:
+        for k, j in enumerate(index):
+            if j > 0:
+                co[j - 1] = new_left[k]
+            if j + 1 < n:
+                co[j + 1] = new_right[k]
+
+    return co[index].copy(), left, right, put
+
+
 def _spline_points(spline) -> dict[str, np.ndarray]:
     """The spline's point arrays by attribute (``co`` 3 or 4 wide, and a Bézier spline's
     handles), in the object's space."""
@@ -123,13 +221,19 @@ def _write(spline, arrays: dict[str, np.ndarray]) -> None:
 
 
 def graph(objects) -> dict[str, set[str]]:
-    """Each curve object of ``objects`` with attachments or a plane: the parents it references."""
+    """Each curve object of ``objects`` with attachments, a plane or point attributes: the
+    parents it references."""
     found = ((o, attachments_of(o)) for o in objects)
-    return {o.name: {a["parent"] for a in made} for o, made in found if made or o.get(PLANE)}
+    return {
+        o.name: {a["parent"] for a in made}
+        for o, made in found
+        if made or o.get(PLANE) or o.get(POINT_ATTRIBUTES)
+    }
 
 
 def order(objects) -> list[str]:
-    """The attached curve objects of ``objects`` (and those held in a plane) in hierarchy order
+    """The attached curve objects of ``objects`` (and those held in a plane or with point
+    attributes) in hierarchy order
     (every parent before its children); CurveError naming the curves of a cycle."""
     try:
         ordered = list(TopologicalSorter(graph(objects)).static_order())
@@ -172,33 +276,134 @@ def control_points_world(obj) -> np.ndarray:
     return pts @ matrix[:3, :3].T + matrix[:3, 3]
 
 
+def _parent(obj, attachment: dict):
+    parent = bpy.data.objects.get(attachment["parent"])
+    if parent is None or parent.type != "CURVE":
+        raise CurveError(
+            f"curve '{obj.name}': its {anchor(attachment)} is attached to '{attachment['parent']}', "
+            "which is gone",
+            obj.name,
+        )
+    return parent
+
+
+def _parent_point(parent, t: float) -> np.ndarray:
+    curve = curves_in.read_object(parent)[0]
+    lo, hi = curve.domain
+    return np.asarray(curve.evaluate([min(max(t, lo), hi)]), dtype=float).reshape(3)
+
+
+def _needs_joints(obj, attachments: list[dict]) -> bool:
+    if point_attributes_of(obj) or any("point" in a for a in attachments):
+        return True
+    parents = (bpy.data.objects.get(a["parent"]) for a in attachments)
+    return any(p is not None and has_tangent(p) for p in parents)
+
+
+def _joint_of(obj, attachment: dict, count: int) -> int:
+    if "end" in attachment:
+        return 0 if attachment["end"] == "start" else count - 1
+    k = attachment["point"]
+    if not 0 <= k < count:
+        raise CurveError(
+            f"curve '{obj.name}': its point {k} is attached to '{attachment['parent']}', but the curve "
+            f"has points 0..{count - 1} now",
+            obj.name,
+        )
+    return k
+
+
+def _inherited(obj, attachments: list[dict], count: int) -> list[dict]:
+    """The point attributes ``obj``'s attached points take from their parents' curve
+    attributes: a knuckle from a knuckle curve, a tangent (direction found later) from a curve
+    with the tangent attribute held in a plane."""
+    out = []
+    for a in attachments:
+        parent = _parent(obj, a)
+        k = _joint_of(obj, a, count)
+        if curves_in.role_of(parent) == "knuckle" and "point" in a:
+            out.append({"kind": "knuckle", "point": k})
+        plane = plane_of(parent)
+        if has_tangent(parent) and plane is not None:
+            out.append({"kind": "tangent", "point": k, "plane_normal": plane[0]})
+    return out
+
+
+def _attributed(obj, moved: dict[str, np.ndarray], index: np.ndarray, handles: bool, inherited) -> None:
+    """Shape the handles at ``obj``'s joints by its point attributes and those its parents'
+    curve attributes give (in place on the world arrays ``moved``)."""
+    own = point_attributes_of(obj)
+    if not own and not inherited:
+        return
+    co, left, right, put = _joint_arrays(moved, index)
+    attributes = [dict(a) for a in own]
+    kinds = {(a["kind"], a["point"]) for a in attributes}
+    for a in inherited:
+        if a["kind"] == "tangent":
+            d = point_attributes.through(co, left, right, a["point"])
+            d = point_attributes.tangent_in_plane(d, a["plane_normal"])
+            if d is None:
+                raise CurveError(
+                    f"curve '{obj.name}': at its point {a['point']} it runs square to the plane of the "
+                    "curve it is attached to, so it cannot enter that plane tangentially",
+                    obj.name,
+                )
+            a = {"kind": "tangent", "point": a["point"], "direction": d.tolist()}
+        if (a["kind"], a["point"]) not in kinds:
+            attributes.append(a)
+            kinds.add((a["kind"], a["point"]))
+    if not handles:
+        shaped = sorted({a["kind"] for a in attributes} - {"knuckle", "straight"})
+        if shaped:
+            raise CurveError(
+                f"curve '{obj.name}': a {shaped[0]} needs handles, and its POLY spline has none "
+                "(it is straight between its points with a corner at each)",
+                obj.name,
+            )
+        return
+    try:
+        put(*point_attributes.apply(co, left, right, attributes))
+    except point_attributes.AttributeConflict as e:
+        raise CurveError(f"curve '{obj.name}': {e}", obj.name) from None
+
+
 def new_points(obj) -> dict[str, np.ndarray] | None:
     """The new point arrays of the child ``obj``'s spline (object space) that put its attached
-    ends on their parents' points and its free points where the elastic rule takes them; None
-    when nothing moves. CurveError naming the curve when a parent is gone."""
+    ends and points on their parents' points and its free points where the elastic rule takes
+    them, shape its handles by its point attributes and its parents' curve attributes, and
+    hold it in its plane; None when nothing moves. CurveError naming the curve when a parent is
+    gone or the attributes cannot be met."""
     spline = single_spline(obj)
-    deltas = {}
-    for a in attachments_of(obj):
-        parent = bpy.data.objects.get(a["parent"])
-        if parent is None or parent.type != "CURVE":
-            raise CurveError(
-                f"curve '{obj.name}': its {a['end']} is attached to '{a['parent']}', which is gone", obj.name
-            )
-        curve = curves_in.read_object(parent)[0]
-        lo, hi = curve.domain
-        target = np.asarray(curve.evaluate([min(max(a["t"], lo), hi)]), dtype=float).reshape(3)
-        deltas[a["end"]] = target - end_point(obj, a["end"])
+    attachments = attachments_of(obj)
     plane = plane_of(obj)
     matrix = np.array(obj.matrix_world, dtype=float)
     to_local = np.linalg.inv(matrix[:3, :3])
     arrays = _spline_points(spline)
     world = {attr: a[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for attr, a in arrays.items()}
     moved = {attr: w.copy() for attr, w in world.items()}
+    index, handles = joint_layout(spline, obj.name) if _needs_joints(obj, attachments) else (None, False)
+    last = len(world["co"]) - 1
+    deltas = {}  # control polygon index -> translation
+    for a in attachments:
+        target = _parent_point(_parent(obj, a), a["t"])
+        if "end" in a:
+            deltas[0 if a["end"] == "start" else last] = target - end_point(obj, a["end"])
+        else:
+            at = int(index[_joint_of(obj, a, len(index))])
+            deltas[at] = target - world["co"][at]
     if deltas:
-        # The elastic rule over the control polygon; a Bézier point's handles move with it.
-        moves = elastic(world["co"], deltas.get("start", np.zeros(3)), deltas.get("end", np.zeros(3)))
+        # The elastic rule over the control polygon, piecewise between the anchors (an end
+        # not attached stays); a Bézier point's handles move with it.
+        anchors = sorted({0, last, *deltas})
+        moves = np.zeros_like(world["co"])
+        for lo, hi in zip(anchors, anchors[1:], strict=False):
+            moves[lo : hi + 1] = elastic(
+                world["co"][lo : hi + 1], deltas.get(lo, np.zeros(3)), deltas.get(hi, np.zeros(3))
+            )
         for w in moved.values():
             w += moves
+    if index is not None:
+        _attributed(obj, moved, index, handles, _inherited(obj, attachments, len(index)))
     if plane is not None:
         # The surface attribute: every control point into the plane (the curve, an affine
         # combination of them, lies in it then).
@@ -239,30 +444,65 @@ def update(objects) -> list[str]:
     return moved
 
 
-def attach(child, parent, end: str, tolerance: float) -> dict:
+def joint_points(obj) -> np.ndarray:
+    """The world positions of the points ``obj``'s spline passes through (its joints)."""
+    spline = single_spline(obj)
+    index, _ = joint_layout(spline, obj.name)
+    matrix = np.array(obj.matrix_world, dtype=float)
+    co = _spline_points(spline)["co"][index, :3]
+    return co @ matrix[:3, :3].T + matrix[:3, 3]
+
+
+def joint_direction(obj, k: int) -> np.ndarray:
+    """The direction ``obj``'s curve runs through its joint ``k`` (world): from its left handle
+    to its right one, or from the joint before to the one after where they coincide."""
+    spline = single_spline(obj)
+    index, _ = joint_layout(spline, obj.name)
+    matrix = np.array(obj.matrix_world, dtype=float)
+    world = {a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in _spline_points(spline).items()}
+    co, left, right, _ = _joint_arrays(world, index)
+    return point_attributes.through(co, left, right, k)
+
+
+def attach(child, parent, end: str, tolerance: float, point: int | str | None = None) -> dict:
     """Attach ``child``'s ``end`` (``start``, ``end``, or ``nearest``: the end nearer to
     ``parent``) to the point of ``parent`` nearest to it, which must be within ``tolerance``
-    (m). Replaces that end's former attachment. Returns the attachment. InvalidArgumentError
-    for an unknown end; CurveError naming the curve for a child that is its parent, a parent
-    that descends from the child, or an end too far from the parent."""
+    (m); or, with ``point`` (a joint index, or ``nearest``: the joint nearest ``parent``), that
+    point of the child in place of an end. Replaces that end's or point's former attachment.
+    Returns the attachment. InvalidArgumentError for an unknown end or point; CurveError
+    naming the curve for a child that is its parent, a parent that descends from the child, or
+    an end or point too far from the parent."""
     if end not in (*ENDS, "nearest"):
         raise InvalidArgumentError(f"end '{end}' is none of start, end, nearest")
     single_spline(child)
     if child == parent:
         raise CurveError(f"curve '{child.name}' cannot attach to itself", child.name)
     parent_curve = curves_in.read_object(parent)[0]
-    found = {e: parent_curve.nearest(end_point(child, e)) for e in ENDS}
-    if end == "nearest":
-        end = min(ENDS, key=lambda e: found[e][1])
-    t, distance, _ = found[end]
+    if point is None:
+        found = {e: parent_curve.nearest(end_point(child, e)) for e in ENDS}
+        if end == "nearest":
+            end = min(ENDS, key=lambda e: found[e][1])
+        t, distance, _ = found[end]
+        key, what = {"end": end}, f"its {end}"
+    else:
+        joints = joint_points(child)
+        if point == "nearest":
+            found = [parent_curve.nearest(p) for p in joints]
+            point = min(range(len(joints)), key=lambda k: found[k][1])
+        elif isinstance(point, bool) or not isinstance(point, int) or not 0 <= point < len(joints):
+            raise InvalidArgumentError(
+                f"point {point!r} of curve '{child.name}' is none of 0..{len(joints) - 1}, 'nearest'"
+            )
+        t, distance, _ = parent_curve.nearest(joints[point])
+        key, what = {"point": int(point)}, f"its point {point}"
     if distance > tolerance:
         raise CurveError(
-            f"curve '{child.name}': its {end} is {distance:.4g} m from '{parent.name}' (more than "
+            f"curve '{child.name}': {what} is {distance:.4g} m from '{parent.name}' (more than "
             f"{tolerance:g} m); move it onto the curve first",
             child.name,
         )
-    attachment = {"end": end, "parent": parent.name, "t": float(t)}
-    others = [a for a in attachments_of(child) if a["end"] != end]
+    attachment = {**key, "parent": parent.name, "t": float(t)}
+    others = [a for a in attachments_of(child) if anchor(a) != anchor(attachment)]
     store(child, [*others, attachment])
     try:
         order([o for o in bpy.data.objects if o.type == "CURVE"])
@@ -272,9 +512,17 @@ def attach(child, parent, end: str, tolerance: float) -> dict:
     return attachment
 
 
+def _joint_point(obj, k: int) -> np.ndarray | None:
+    try:
+        joints = joint_points(obj)
+    except CurveError:
+        return None
+    return joints[k] if 0 <= k < len(joints) else None
+
+
 def refresh(objects) -> int:
-    """Take again, for each attachment of ``objects`` whose end lies on its parent (within
-    :data:`ATTACH_DISTANCE`), the parent's parameter nearest to that end: after the parent's
+    """Take again, for each attachment of ``objects`` whose end or point lies on its parent
+    (within :data:`ATTACH_DISTANCE`), the parent's parameter nearest to it: after the parent's
     curve was replaced (a committed transformation refits curves, and its parameters change),
     the attachment references the same point again. Returns how many were refreshed."""
     count = 0
@@ -284,9 +532,74 @@ def refresh(objects) -> int:
             parent = bpy.data.objects.get(a["parent"])
             if parent is None or parent.type != "CURVE":
                 continue
-            t, distance, _ = curves_in.read_object(parent)[0].nearest(end_point(obj, a["end"]))
+            here = end_point(obj, a["end"]) if "end" in a else _joint_point(obj, a["point"])
+            if here is None:
+                continue
+            t, distance, _ = curves_in.read_object(parent)[0].nearest(here)
             if distance <= ATTACH_DISTANCE:
                 a["t"] = float(t)
                 count += 1
         store(obj, kept)
     return count
+
+
+#: Samples per segment of a straight or blend drawn in the overlay.
+MARK_SAMPLES = 16
+
+
+def attribute_marks(objects) -> dict[str, np.ndarray]:
+    """Where the point attributes of the curve objects ``objects`` act, for the overlay, each
+    float32 in world coordinates: ``knuckle`` points (n, 3); ``tangent`` segments (2k, 3)
+    through each tangent point along its direction, a third of its shorter neighbouring chord
+    either side; ``straight`` and ``blend`` segments (2k, 3) along the curve between each
+    pair's points; ``attached`` points (n, 3), the ends and points attached to a parent. A curve
+    whose attributes cannot be read (its spline changed type) marks nothing."""
+    out = {k: [] for k in (*point_attributes.KINDS, "attached")}
+    for obj in objects:
+        own = point_attributes_of(obj) if obj.get(POINT_ATTRIBUTES) else []
+        attached = attachments_of(obj)
+        if not own and not attached:
+            continue
+        try:
+            spline = single_spline(obj)
+            matrix = np.array(obj.matrix_world, dtype=float)
+            world = {
+                a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in _spline_points(spline).items()
+            }
+            if attached:
+                ends = [end_point(obj, a["end"]) for a in attached if "end" in a]
+                points = [a["point"] for a in attached if "point" in a]
+                if points:
+                    ends += list(joint_points(obj)[points])
+                out["attached"].append(np.asarray(ends).reshape(-1, 3))
+            if not own:
+                continue
+            index, handles = joint_layout(spline, obj.name)
+            if not handles:
+                world = {
+                    "co": world["co"],
+                    "handle_left": world["co"].copy(),
+                    "handle_right": world["co"].copy(),
+                }
+            co, left, right, _ = _joint_arrays(world, index)
+        except (CurveError, IndexError):
+            continue
+        for a in own:
+            i = a["point"]
+            if i >= len(co) or (a["kind"] in point_attributes.PAIR_KINDS and i + 1 >= len(co)):
+                continue
+            if a["kind"] == "knuckle":
+                out["knuckle"].append(co[i][None, :])
+            elif a["kind"] == "tangent":
+                chords = [np.linalg.norm(co[j] - co[i]) for j in (i - 1, i + 1) if 0 <= j < len(co)]
+                d = np.asarray(a["direction"], dtype=float) * min(chords, default=0.0) / 3.0
+                out["tangent"].append(np.array([co[i] - d, co[i] + d]))
+            else:
+                u = np.linspace(0.0, 1.0, MARK_SAMPLES + 1)[:, None]
+                b = (1 - u) ** 3 * co[i] + 3 * (1 - u) ** 2 * u * right[i]
+                b = b + 3 * (1 - u) * u**2 * left[i + 1] + u**3 * co[i + 1]
+                out[a["kind"]].append(np.stack([b[:-1], b[1:]], axis=1).reshape(-1, 3))
+    return {
+        k: np.concatenate(v).astype(np.float32) if v else np.zeros((0, 3), dtype=np.float32)
+        for k, v in out.items()
+    }

@@ -1,5 +1,6 @@
 """Viewport overlay: curvature combs on the selected curves; the form topology last measured
-(its edges by kind and its numbered vertices); and from the last build markers
+(its edges by kind and its numbered vertices); the curves' point attributes (knuckles,
+tangents, straights, blends) and attached points; and from the last build markers
 on the network's nodes, T-joints, dangling ends, near misses and other problems, and the
 knuckle edges as thick lines, the automatically found ones in their own colour, and the water
 surface at the Hydrostatics panel's draft, trim and heel (drawn only, nothing stored).
@@ -16,7 +17,7 @@ import json
 import bpy
 import numpy as np
 
-from . import api
+from . import api, hierarchy
 from .network_markers import knuckle_segments, marker_arrays
 from .scene_hydro import hull_box, last_figures
 from .waterplane_outline import waterplane_outline
@@ -61,6 +62,30 @@ KNUCKLE_STYLES = {
     "role": ((1.0, 0.5, 0.0, 1.0), 4.0),
     "auto": ((0.0, 0.9, 0.9, 1.0), 4.0),
 }
+
+
+# Point attributes (hierarchy.attribute_marks): colour, point size or line width (px).
+ATTRIBUTE_POINT_STYLES = {
+    "knuckle": ((1.0, 0.5, 0.0, 1.0), 12.0),
+    "attached": ((0.75, 0.75, 0.75, 1.0), 9.0),
+}
+ATTRIBUTE_LINE_STYLES = {
+    "tangent": ((1.0, 0.95, 0.3, 1.0), 3.0),
+    "straight": ((0.3, 0.9, 0.4, 1.0), 4.0),
+    "blend": ((0.45, 0.6, 1.0, 1.0), 4.0),
+}
+
+
+def attribute_marks(context) -> dict[str, np.ndarray]:
+    """The point attributes and attached points of the scene's hull curves (all the scene's
+    curves when no hull is chosen): :func:`batten.hierarchy.attribute_marks`."""
+    source = context.scene.batten.source
+    objects = source.all_objects if source is not None else context.scene.objects
+    return hierarchy.attribute_marks(
+        o
+        for o in objects
+        if o.type == "CURVE" and (hierarchy.ATTACHMENTS in o or hierarchy.POINT_ATTRIBUTES in o)
+    )
 
 
 _parsed = ("", {})  # the last report text and its parse (the overlay redraws every frame)
@@ -282,8 +307,15 @@ def _draw():
     wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
     wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
     _draw_styled(wide, "LINES", "lineWidth", knuckle_lines(context), KNUCKLE_STYLES)
+    marks = attribute_marks(context)
+    _draw_styled(
+        wide, "LINES", "lineWidth", {k: marks[k] for k in ATTRIBUTE_LINE_STYLES}, ATTRIBUTE_LINE_STYLES
+    )
     dots = gpu.shader.from_builtin("POINT_UNIFORM_COLOR")
     _draw_styled(dots, "POINTS", "size", markers(context), MARKER_STYLES)
+    _draw_styled(
+        dots, "POINTS", "size", {k: marks[k] for k in ATTRIBUTE_POINT_STYLES}, ATTRIBUTE_POINT_STYLES
+    )
 
 
 def _draw_styled(shader, primitive: str, size_uniform: str, groups: dict, styles: dict):

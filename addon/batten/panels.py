@@ -306,27 +306,45 @@ def _draw_change(layout, text: str) -> None:
 
 
 def _draw_hierarchy(layout, context) -> None:
-    """The curve network hierarchy and surface attributes (seed 002 §5, §7.1): attach the
-    selected curves' ends to the active curve or detach them, hold them in a plane or release
-    them, and what the active curve is attached to, carries and is held in."""
+    """The curve network hierarchy and the curves' attributes (seed 002 §5, §7.1): attach the
+    selected curves' ends or crossing points to the active curve or detach them, hold them in a
+    plane or release them, give points of the curve being edited a point attribute and the
+    selected curves a curve attribute; and the active curve's attributes, what it is attached
+    to, carries and is held in."""
     box = layout.box()
     box.label(text="Hierarchy", icon="LINKED")
     row = box.row(align=True)
-    row.operator("batten.attach_curves", icon="LINKED")
+    row.operator_menu_enum("batten.attach_curves", "what", text="Attach to Active", icon="LINKED")
     row.operator("batten.detach_curves", icon="UNLINKED")
     row = box.row(align=True)
     row.operator_menu_enum("batten.hold_in_plane", "plane", icon="MESH_PLANE")
     row.operator("batten.release_plane", text="", icon="X")
+    row = box.row(align=True)
+    row.operator_menu_enum("batten.set_point_attribute", "kind", icon="HANDLE_VECTOR")
+    row.operator("batten.clear_point_attributes", text="", icon="X")
+    row = box.row(align=True)
+    row.operator_menu_enum("batten.set_curve_attribute", "kind", icon="IPO_CONSTANT")
     active = context.view_layer.objects.active
     if active is None or active.type != "CURVE":
         return
     col = box.column(align=True)
+    attributes = api.curve_attributes(active)
+    if any(attributes.values()):
+        on = [k for k, v in attributes.items() if v]
+        col.label(text=f"{active.name}: curve attribute {', '.join(on)}")
+    for a in hierarchy.point_attributes_of(active):
+        pair = (
+            f"points {a['point']}–{a['point'] + 1}"
+            if a["kind"] in ("straight", "blend")
+            else f"point {a['point']}"
+        )
+        col.label(text=f"{a['kind'].capitalize()} on {pair}")
     plane = hierarchy.plane_of(active)
     if plane is not None:
         n, d = plane
         col.label(text=f"{active.name} in the plane ({n[0]:.3f}, {n[1]:.3f}, {n[2]:.3f})·p = {d:.4g}")
     for a in hierarchy.attachments_of(active):
-        col.label(text=f"{active.name} {a['end']} → {a['parent']} (t {a['t']:.4g})")
+        col.label(text=f"{active.name} {hierarchy.anchor(a)} → {a['parent']} (t {a['t']:.4g})")
     children = sorted(
         o.name
         for o in bpy.data.objects

@@ -12,6 +12,7 @@ BPY_FREE = (
     "batten.chart",
     "batten.hydro_table",
     "batten.form_compare",
+    "batten.point_attributes",
     "batten.waterplane_outline",
     "batten.file_text",
     "batten.fit_data",
