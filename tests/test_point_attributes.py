@@ -166,6 +166,8 @@ def test_bad_point_attributes_are_refused_with_nothing_changed(midship):
     with pytest.raises(CurveError, match="point 2 ends two blends"):
         api.set_point_attribute(midship, "blend", 2)
     unchanged()
+    with pytest.raises(InvalidArgumentError, match="point 3 is an end of curve 'midship'"):
+        api.set_point_attribute(midship, "knuckle", 3)
     with pytest.raises(InvalidArgumentError, match="point 4 of curve 'midship' is none of 0..3"):
         api.set_point_attribute(midship, "knuckle", 4)
     with pytest.raises(InvalidArgumentError, match="from point 3 to the next.*points 0..3"):
@@ -300,11 +302,107 @@ def test_the_overlay_marks_the_attributes(midship, chined):
     assert len(marks["knuckle"]) == len(marks["tangent"]) == len(marks["attached"]) == 0
     coll, chine, fob, st = chined
     api.set_point_attribute(st, "tangent", 0, direction="y")
-    api.set_point_attribute(st, "knuckle", 2)
+    api.set_point_attribute(st, "knuckle", 1)
     api.attach(st, chine, point=1)
     marks = hierarchy.attribute_marks([st])
     # The tangent at the keel: along y through it, a third of its chord (√5) either side.
     third = np.sqrt(5.0) / 3.0
     assert marks["tangent"] == pytest.approx(np.array([[4, -third, 0], [4, third, 0]]), abs=1e-6)
-    assert marks["knuckle"] == pytest.approx(np.array([[4, 2.6, 2.5]]), abs=1e-6)
+    assert marks["knuckle"] == pytest.approx(np.array([[4, 2, 1]]), abs=1e-6)
     assert marks["attached"] == pytest.approx(np.array([[4, 2, 1]]), abs=1e-6)
+
+
+def _flat_station(coll, lift: float = 0.0):
+    """A flat of bottom line at y = 2 in z = 0, and a station at x = 4 whose flat piece runs
+    along y in z = ``lift`` past the line to its point 1 at y = 2.0003 (0.3 mm aside)."""
+    fob = new_curve("fob", "POLY", [(0, 2, 0), (10, 2, 0)], collection=coll)
+    co = [(4, 0, lift), (4, 2.0003, lift), (4, 3, 1)]
+    left = [(4, -0.6, lift), (4, 1.4, lift), (4, 3, 0.5)]
+    right = [(4, 0.6, lift), (4, 2.5, lift), (4, 3, 1.5)]
+    return fob, new_bezier("st4", co, left, right, collection=coll)
+
+
+def test_a_point_near_a_curve_its_curve_already_meets_keeps_its_offset_and_nothing_moves():
+    coll = new_collection("flat")
+    fob, st = _flat_station(coll)
+    before = _bezier_arrays(st)
+    made = api.attach(st, fob, point="nearest")
+    assert made[0]["point"] == 1
+    assert made[0]["offset"] == pytest.approx([0.0, 3e-4, 0.0], abs=1e-6)
+    for k, v in _bezier_arrays(st).items():
+        assert np.array_equal(v, before[k]), "attaching moved nothing"
+    # The flat of bottom widened by 0.5 m: the point follows it, keeping its 0.3 mm.
+    fob.data.splines[0].points.foreach_set(
+        "co", np.array([[0, 2.5, 0, 1], [10, 2.5, 0, 1]], dtype=np.float32).ravel()
+    )
+    assert api.update_hierarchy(coll) == ["st4"]
+    co = _bezier_arrays(st)["co"]
+    assert co == pytest.approx(np.array([(4, 0, 0), (4, 2.5003, 0), (4, 3, 1)]), abs=1e-6)
+    # Drawn 5 mm apart, the curves do not meet: the point is moved onto the line.
+    coll = new_collection("lifted")
+    fob, st = _flat_station(coll, lift=0.005)
+    made = api.attach(st, fob, point="nearest")
+    assert "offset" not in made[0]
+    assert _bezier_arrays(st)["co"][1] == pytest.approx([4, 2.0, 0.0], abs=1e-6)
+
+
+def _shape(obj, n: int = 801) -> tuple[object, np.ndarray]:
+    curve = _curve(obj)
+    a, b = curve.domain
+    return curve, np.asarray(curve.evaluate(np.linspace(a, b, n)))
+
+
+def _same_shape(before, obj) -> float:
+    """The largest distance (m) between the curve ``before`` was and ``obj``'s curve now."""
+    (c0, p0), (c1, p1) = before, _shape(obj)
+    return max(max(c1.nearest(p)[1] for p in p0), max(c0.nearest(p)[1] for p in p1))
+
+
+@pytest.mark.parametrize("kind", ["BEZIER", "NURBS"])
+def test_a_crossing_without_a_point_gets_one_with_the_shape_unchanged(kind):
+    coll = new_collection(f"split {kind}")
+    if kind == "BEZIER":
+        st = new_bezier(
+            "st",
+            [(4, 0, 0), (4, 2.6, 2.5)],
+            [(4, -0.5, -0.2), (4, 2.5, 2.0)],
+            [(4, 1.5, 0.1), (4, 2.7, 3.0)],
+            collection=coll,
+        )
+    else:
+        pts = [(4, 0, 0), (4, 1.5, 0.1), (4, 2.5, 2.0), (4, 2.6, 2.5)]
+        st = new_curve("st", "NURBS", pts, order=4, endpoint=True, bezier=True, collection=coll)
+    api.set_point_attribute(st, "tangent", 1)  # the end: point 1 before, 2 after
+    # A chine along x through the station's point at t = 0.37 (no point of it there).
+    at = _curve(st).evaluate([0.37])[0]
+    chine = new_curve("chine", "POLY", [(0, at[1], at[2]), (10, at[1], at[2])], collection=coll)
+    wl = new_curve("wl", "POLY", [(0, 2.6, 2.5), (4, 2.6, 2.5)], collection=coll)
+    api.attach(wl, st, end="end")  # a curve attached to the station, to the station's end
+    before = _shape(st)
+    made = api.attach(st, chine, point="nearest")
+    assert made[0]["point"] == 1 and "offset" not in made[0]
+    assert len(hierarchy.joint_points(st)) == 3
+    assert hierarchy.joint_points(st)[1] == pytest.approx(at, abs=1e-6)
+    assert _same_shape(before, st) < 1e-6, "the split kept the curve's shape"
+    assert [(a["kind"], a["point"]) for a in api.point_attributes_of(st)] == [("tangent", 2)]
+    # The waterline's attachment to the station's end: its parameter taken again (t 1 → 2).
+    assert hierarchy.attachments_of(wl)[0]["t"] == pytest.approx(2.0, abs=1e-9)
+    assert api.update_hierarchy(coll) == []
+    # The chine raised: the station's new point follows it, its ends stay.
+    chine.data.splines[0].points.foreach_set(
+        "co", np.array([[0, at[1], at[2] + 0.2, 1], [10, at[1], at[2] + 0.2, 1]], dtype=np.float32).ravel()
+    )
+    assert "st" in api.update_hierarchy(coll)
+    assert hierarchy.joint_points(st)[1] == pytest.approx(at + (0, 0, 0.2), abs=1e-6)
+    assert hierarchy.joint_points(st)[[0, 2]] == pytest.approx(np.array([(4, 0, 0), (4, 2.6, 2.5)]), abs=1e-6)
+
+
+def test_a_curve_that_passes_far_from_the_parent_is_refused_unsplit(chined):
+    coll, chine, fob, st = chined
+    far = new_curve("far", "POLY", [(0, 5, 5), (10, 5, 5)], collection=coll)
+    before = _bezier_arrays(st)
+    with pytest.raises(CurveError, match="'st4' passes .* m from 'far' at the nearest"):
+        api.attach(st, far, point="nearest")
+    assert len(st.data.splines[0].bezier_points) == 3 and hierarchy.ATTACHMENTS not in st
+    for k, v in _bezier_arrays(st).items():
+        assert np.array_equal(v, before[k])

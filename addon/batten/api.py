@@ -393,7 +393,10 @@ def attach(
     to it, which must be within ``tolerance`` m. From then on the end follows that point of the
     parent, and the child's free control points follow by the elastic rule
     (:func:`update_hierarchy`; Build and Live do it on every change). The children are updated
-    at once, so their ends lie on the parent.
+    at once, so their ends lie on the parent; but where a child's curve already meets the
+    parent there (within the default model tolerance) and only its end or point lies a little
+    aside, that offset is kept and nothing moves (moving it would move the child's other
+    meetings off their curves).
 
     With ``point`` a point the child passes through is attached in place of an end: its index
     among the spline's points (a Bézier spline's points, a cubic Bézier-knot NURBS spline's
@@ -401,8 +404,8 @@ def attach(
     crosses a chine). The elastic rule then runs between the attached points and the ends, and
     the parent's curve attributes act on the point (:func:`set_curve_attribute`).
 
-    Returns the attachments, one ``{"child", "end" or "point", "parent", "t"}`` per child
-    (``t``: the parameter on the parent). All children are attached or none: CurveError naming
+    Returns the attachments, one ``{"child", "end" or "point", "parent", "t"[, "offset"]}`` per
+    child (``t``: the parameter on the parent). All children are attached or none: CurveError naming
     the child when it is not one spline, is the parent or one of the parent's ancestors, its end
     or point is too far, or its spline does not pass through its points; InvalidArgumentError
     for an unknown end or point."""
@@ -415,12 +418,21 @@ def attach(
     try:
         for child in children:
             made.append(
-                {"child": child.name, **hierarchy.attach(child, parent, end, float(tolerance), point)}
+                {
+                    "child": child.name,
+                    **hierarchy.attach(child, parent, end, float(tolerance), point, DEFAULT_TOLERANCE),
+                }
             )
         hierarchy.update(_with_descendants(children))
     except BaseException:
-        for child in children:
-            hierarchy.store(child, before[child.name])
+        for child, a in zip(children, made, strict=False):
+            # Its new attachment off, the one it replaced back; a point a crossing gave the
+            # child stays (its shape is the same, its later points already renumbered).
+            kept = [k for k in hierarchy.attachments_of(child) if hierarchy.anchor(k) != hierarchy.anchor(a)]
+            former = [
+                k for k in before[child.name] if "end" in k and hierarchy.anchor(k) == hierarchy.anchor(a)
+            ]
+            hierarchy.store(child, kept + former)
         raise
     return made
 
@@ -605,6 +617,11 @@ def set_point_attribute(curve, kind: str, point: int, *, direction=None) -> dict
     if isinstance(point, bool) or not isinstance(point, int) or not 0 <= point < len(index):
         raise InvalidArgumentError(
             f"set_point_attribute: point {point!r} of curve '{obj.name}' is none of 0..{len(index) - 1}"
+        )
+    if kind == "knuckle" and point in (0, len(index) - 1):
+        raise InvalidArgumentError(
+            f"set_point_attribute: point {point} is an end of curve '{obj.name}'; a knuckle is a corner "
+            "inside a curve"
         )
     if kind in point_attributes.PAIR_KINDS and point + 1 >= len(index):
         raise InvalidArgumentError(

@@ -7,9 +7,10 @@ control points follow by the elastic rule of Fig. 6; descendants update in hiera
 
 An attachment is stored on the child object as the custom property ``batten_attachments``: a
 JSON list of ``{"end": "start" | "end", "parent": <object name>, "t": <parameter on the
-parent>}``, so it stays with the .blend. The referenced point is the parent's point at ``t``
-(world coordinates): moving the parent's control points carries it along; to slide an end
-along its parent, attach it again.
+parent>[, "offset": [dx, dy, dz]]}``, so it stays with the .blend. The referenced point is the
+parent's point at ``t`` (world coordinates), plus the offset the child's point had from it when
+attached where the two curves already met there (:func:`attach`): moving the parent's control
+points carries it along; to slide an end along its parent, attach it again.
 
 The elastic rule (Fig. 6): the control points of the child's spline between its two ends (its
 anchors) move by the anchors' translations blended by their normalised chord distance along the
@@ -41,7 +42,7 @@ import bpy
 import numpy as np
 from batten_native import CurveError, InvalidArgumentError
 
-from . import point_attributes
+from . import point_attributes, spline_split
 from .bridge import curves_in
 
 #: Object property: the attachments of a curve object's ends (JSON list).
@@ -385,7 +386,7 @@ def new_points(obj) -> dict[str, np.ndarray] | None:
     last = len(world["co"]) - 1
     deltas = {}  # control polygon index -> translation
     for a in attachments:
-        target = _parent_point(_parent(obj, a), a["t"])
+        target = _parent_point(_parent(obj, a), a["t"]) + np.asarray(a.get("offset", (0.0, 0.0, 0.0)))
         if "end" in a:
             deltas[0 if a["end"] == "start" else last] = target - end_point(obj, a["end"])
         else:
@@ -464,14 +465,25 @@ def joint_direction(obj, k: int) -> np.ndarray:
     return point_attributes.through(co, left, right, k)
 
 
-def attach(child, parent, end: str, tolerance: float, point: int | str | None = None) -> dict:
+def attach(
+    child, parent, end: str, tolerance: float, point: int | str | None = None, meet: float = 0.0
+) -> dict:
     """Attach ``child``'s ``end`` (``start``, ``end``, or ``nearest``: the end nearer to
     ``parent``) to the point of ``parent`` nearest to it, which must be within ``tolerance``
-    (m); or, with ``point`` (a joint index, or ``nearest``: the joint nearest ``parent``), that
-    point of the child in place of an end. Replaces that end's or point's former attachment.
-    Returns the attachment. InvalidArgumentError for an unknown end or point; CurveError
-    naming the curve for a child that is its parent, a parent that descends from the child, or
-    an end or point too far from the parent."""
+    (m); or, with ``point`` (a joint index, or ``nearest``), that point of the child in place of
+    an end. ``nearest`` is the point where the child's curve passes nearest the parent (a
+    station where it crosses a chine); where the child has no point within ``tolerance`` of
+    there, its spline gets one, its shape unchanged (:mod:`batten.spline_split`). Replaces that
+    end's or point's former attachment. Returns the attachment. InvalidArgumentError for an
+    unknown end or point; CurveError naming the curve for a child that is its parent, a parent
+    that descends from the child, or an end, point or curve too far from the parent.
+
+    Where the child's curve already passes within ``meet`` (m) of the parent's point (the two
+    meet there, to the model tolerance, though the child's point itself may lie a little
+    aside: a station's joint a fraction of a millimetre from where it crosses a fitted flat
+    of bottom curve), the attachment keeps the point's ``offset`` from the parent's point and
+    nothing moves: moving the child onto it would move its other meetings off their curves.
+    Farther off, the point is moved onto the parent."""
     if end not in (*ENDS, "nearest"):
         raise InvalidArgumentError(f"end '{end}' is none of start, end, nearest")
     single_spline(child)
@@ -483,18 +495,19 @@ def attach(child, parent, end: str, tolerance: float, point: int | str | None = 
         if end == "nearest":
             end = min(ENDS, key=lambda e: found[e][1])
         t, distance, _ = found[end]
-        key, what = {"end": end}, f"its {end}"
+        key, what, here = {"end": end}, f"its {end}", end_point(child, end)
     else:
         joints = joint_points(child)
         if point == "nearest":
-            found = [parent_curve.nearest(p) for p in joints]
-            point = min(range(len(joints)), key=lambda k: found[k][1])
+            point, split_at = _crossing_joint(child, parent_curve, joints, tolerance)
+            if split_at is not None:
+                return _attach_split(child, parent, parent_curve, point, split_at)
         elif isinstance(point, bool) or not isinstance(point, int) or not 0 <= point < len(joints):
             raise InvalidArgumentError(
                 f"point {point!r} of curve '{child.name}' is none of 0..{len(joints) - 1}, 'nearest'"
             )
         t, distance, _ = parent_curve.nearest(joints[point])
-        key, what = {"point": int(point)}, f"its point {point}"
+        key, what, here = {"point": int(point)}, f"its point {point}", joints[point]
     if distance > tolerance:
         raise CurveError(
             f"curve '{child.name}': {what} is {distance:.4g} m from '{parent.name}' (more than "
@@ -502,6 +515,9 @@ def attach(child, parent, end: str, tolerance: float, point: int | str | None = 
             child.name,
         )
     attachment = {**key, "parent": parent.name, "t": float(t)}
+    on_parent = np.asarray(parent_curve.evaluate([t]), dtype=float).reshape(3)
+    if distance > still(here) and curves_in.read_object(child)[0].nearest(on_parent)[1] <= meet:
+        attachment["offset"] = (here - on_parent).tolist()
     others = [a for a in attachments_of(child) if anchor(a) != anchor(attachment)]
     store(child, [*others, attachment])
     try:
@@ -509,6 +525,111 @@ def attach(child, parent, end: str, tolerance: float, point: int | str | None = 
     except CurveError:
         store(child, others)
         raise
+    return attachment
+
+
+#: Samples per piece of a curve in the search for where it passes nearest another.
+CROSSING_SAMPLES = 32
+#: Alternating projections refining that search.
+CROSSING_STEPS = 60
+
+
+def crossing(child_curve, parent_curve) -> tuple[float, np.ndarray, float]:
+    """Where ``child_curve`` passes nearest ``parent_curve``: ``(t on the child, the child's
+    point there, the distance)``: the nearest pair of dense samples of both, refined by
+    projecting from one curve to the other and back until it stays (a crossing converges)."""
+
+    def samples(curve):
+        a, b = curve.domain
+        n = CROSSING_SAMPLES * max(1, len(np.unique(curve.knots)) - 1) + 1
+        t = np.linspace(a, b, n)
+        return t, np.asarray(curve.evaluate(t), dtype=float)
+
+    tc, pc = samples(child_curve)
+    _, pp = samples(parent_curve)
+    best, best_d = 0, np.inf
+    for lo in range(0, len(pc), 256):  # bounded memory: 256 × parent samples at a time
+        d = np.linalg.norm(pc[lo : lo + 256, None, :] - pp[None, :, :], axis=2).min(axis=1)
+        k = int(np.argmin(d))
+        if d[k] < best_d:
+            best, best_d = lo + k, float(d[k])
+    t = float(tc[best])
+    here = pc[best]
+    for _ in range(CROSSING_STEPS):
+        _, _, on_parent = parent_curve.nearest(here)
+        t_new, _, back = child_curve.nearest(np.asarray(on_parent, dtype=float))
+        back = np.asarray(back, dtype=float)
+        if np.linalg.norm(back - here) <= 1e-12 * max(1.0, float(np.abs(here).max())):
+            t, here = float(t_new), back
+            break
+        t, here = float(t_new), back
+    return t, here, float(parent_curve.nearest(here)[1])
+
+
+def _crossing_joint(child, parent_curve, joints: np.ndarray, tolerance: float):
+    """``(joint, None)``: the child's point at (within ``tolerance`` of) where its curve passes
+    nearest the parent; or ``(piece, u)`` where no point of it is there and the piece must be
+    split at ``u`` to give one."""
+    child_curve = curves_in.read_object(child)[0]
+    t, here, distance = crossing(child_curve, parent_curve)
+    if distance > tolerance:
+        raise CurveError(
+            f"curve '{child.name}' passes {distance:.4g} m from '{parent_curve.name}' at the nearest (more "
+            f"than {tolerance:g} m); move it onto the curve first",
+            child.name,
+        )
+    gaps = np.linalg.norm(joints - here, axis=1)
+    k = int(np.argmin(gaps))
+    if gaps[k] <= tolerance:
+        return k, None
+    a, _ = child_curve.domain
+    piece = min(int(np.floor(t - a)), len(joints) - 2)
+    return piece, (t - a) - piece
+
+
+def _attach_split(child, parent, parent_curve, piece: int, u: float) -> dict:
+    """Give ``child`` a point where its curve crosses ``parent`` (piece ``piece`` at ``u``, its
+    shape unchanged) and attach that point; the child's attributes and attachments of later
+    points move up one, and the curves attached to the child take their parameters again."""
+    new = piece + 1
+    attributes = point_attributes_of(child)
+    if any(a["kind"] == "blend" and a["point"] == piece for a in attributes):
+        raise CurveError(
+            f"curve '{child.name}' crosses '{parent.name}' inside its blend from point {piece}; "
+            "a blend has no point inside it",
+            child.name,
+        )
+    shifted = []
+    for a in attributes:
+        a = dict(a)
+        if a["point"] >= new:
+            a["point"] += 1
+        shifted.append(a)
+        if a["kind"] == "straight" and a["point"] == piece:
+            shifted.append({"kind": "straight", "point": new})  # both halves straight
+    own = [
+        {**a, "point": a["point"] + 1} if "point" in a and a["point"] >= new else a
+        for a in attachments_of(child)
+    ]
+    before = attachments_of(child)
+    attachment = {"point": new, "parent": parent.name, "t": 0.0}
+    store(child, [*own, attachment])
+    try:
+        order([o for o in bpy.data.objects if o.type == "CURVE"])
+    except CurveError:
+        store(child, before)
+        raise
+    spline_split.split(single_spline(child), piece, u)
+    store_point_attributes(child, shifted)
+    t, distance, _ = parent_curve.nearest(joint_points(child)[new])
+    attachment["t"] = float(t)
+    store(child, [*own, attachment])
+    # The curves attached to the child: its parameters moved on by one piece after the split.
+    refresh(
+        o
+        for o in bpy.data.objects
+        if o.type == "CURVE" and any(a["parent"] == child.name for a in attachments_of(o))
+    )
     return attachment
 
 
@@ -535,9 +656,12 @@ def refresh(objects) -> int:
             here = end_point(obj, a["end"]) if "end" in a else _joint_point(obj, a["point"])
             if here is None:
                 continue
-            t, distance, _ = curves_in.read_object(parent)[0].nearest(here)
+            curve = curves_in.read_object(parent)[0]
+            t, distance, _ = curve.nearest(here)
             if distance <= ATTACH_DISTANCE:
                 a["t"] = float(t)
+                if "offset" in a:
+                    a["offset"] = (here - np.asarray(curve.evaluate([t]), dtype=float).reshape(3)).tolist()
                 count += 1
         store(obj, kept)
     return count

@@ -1,8 +1,9 @@
 """Point attributes of a curve (seed 002 §5, Fig. 3): rules on a curve's control points that
 shape it where it passes through them, without the designer placing handles by hand.
 
-- ``knuckle`` on a point: the curve has a corner there (its handles point at the neighbouring
-  points, a third of the way: Blender's *vector* handles);
+- ``knuckle`` on a point: the curve has a corner there. Where it runs smoothly through the
+  point, its handles are turned to point at the neighbouring points, a third of the way
+  (Blender's *vector* handles); where it already turns there (a fitted chine), its handles stay;
 - ``tangent`` on a point: the curve passes through it along a fixed direction (both handles on
   that line, their lengths kept);
 - ``straight`` on a point pair (``point`` and the next): the curve is a straight line between
@@ -29,6 +30,8 @@ import numpy as np
 KINDS = ("knuckle", "tangent", "straight", "blend")
 #: The attributes on a pair of points (``point`` and ``point + 1``).
 PAIR_KINDS = ("straight", "blend")
+#: A point where the curve turns by more than this (radians) is a corner already.
+CORNER = math.radians(0.1)
 #: A handle shorter than this fraction of its segment's chord has no direction to keep.
 SHORT_HANDLE = 1e-9
 
@@ -118,12 +121,13 @@ def apply(co: np.ndarray, left: np.ndarray, right: np.ndarray, attributes: list[
             d = _unit(np.asarray(a["direction"], dtype=float))
             set_along(i, _oriented(d, through(co, left, right, i)))
     for a in attributes:
-        if a["kind"] == "knuckle":
+        if a["kind"] == "knuckle" and 0 < a["point"] < n - 1:  # an end is no corner
             i = a["point"]
-            if i > 0:
-                left[i] = co[i] + chord(i, i - 1) / 3.0
-            if i + 1 < n:
-                right[i] = co[i] + chord(i, i + 1) / 3.0
+            into, out = _unit(co[i] - left[i]), _unit(right[i] - co[i])
+            if into is not None and out is not None and float(into @ out) < math.cos(CORNER):
+                continue  # a corner already: the designer's (or the fit's) handles stay
+            left[i] = co[i] + chord(i, i - 1) / 3.0
+            right[i] = co[i] + chord(i, i + 1) / 3.0
     knuckles = {a["point"] for a in attributes if a["kind"] == "knuckle"}
     straights = [a["point"] for a in attributes if a["kind"] == "straight"]
     for i in straights:

@@ -61,12 +61,17 @@ def test_straight_blend_straight_and_idempotent():
     assert np.array_equal(again[0], left) and np.array_equal(again[1], right)
 
 
-def test_a_knuckle_has_vector_handles_and_a_tangent_keeps_its_lengths():
+def test_a_knuckle_has_vector_handles_where_the_curve_was_smooth_and_a_tangent_keeps_its_lengths():
     co, left, right = _joints()
+    left[1], right[1] = co[1] + [0, 0.4, 1.0], co[1] + [0, -0.2, -0.5]  # smooth through point 1
     new_left, new_right = pa.apply(co, left, right, [{"kind": "knuckle", "point": 1}])
     assert new_left[1] == pytest.approx(co[1] + (co[0] - co[1]) / 3)
     assert new_right[1] == pytest.approx(co[1] + (co[2] - co[1]) / 3)
     assert np.array_equal(new_left[[0, 2, 3]], left[[0, 2, 3]]), "the others keep their handles"
+    # A corner already (by 0.6°, a fitted chine): its handles stay.
+    co, left, right = _joints()
+    kept = pa.apply(co, left, right, [{"kind": "knuckle", "point": 1}])
+    assert np.array_equal(kept[0], left) and np.array_equal(kept[1], right)
     new_left, new_right = pa.apply(co, left, right, [{"kind": "tangent", "point": 2, "direction": [0, 2, 0]}])
     # Oriented the way the curve runs (towards −y here), lengths kept.
     assert new_right[2] == pytest.approx(co[2] + [0, -np.linalg.norm(right[2] - co[2]), 0])
