@@ -14,7 +14,7 @@ use glam::DVec3;
 use super::error::FormError;
 use super::identify::{FormOptions, FormTopology};
 use super::parameters::{Bilge, FormParameters, ParallelMiddleBody};
-use crate::curve::NurbsCurve;
+use crate::curve::{Aabb, NurbsCurve};
 use crate::network::{Network, Role};
 
 /// Samples per Bézier span when a curve is searched for extremes or plane crossings.
@@ -224,11 +224,24 @@ fn arc_radius(curve: &NurbsCurve, t0: f64, t1: f64, tol: f64) -> Option<f64> {
 }
 
 /// The largest `dir · C(t)` over the curves (sampled per span, refined by golden section).
+/// A span whose control points (their box: the span lies in their convex hull) cannot reach
+/// beyond the largest value found so far is not sampled: it cannot change the result.
 fn max_along<'a>(curves: impl Iterator<Item = &'a NurbsCurve>, dir: DVec3) -> f64 {
     let mut best = f64::NEG_INFINITY;
     for c in curves {
         let f = |t: f64| dir.dot(c.point(t));
-        for (t0, t1) in spans(c) {
+        // The spans by the most their control points allow, largest first.
+        let mut pieces: Vec<(f64, f64, f64)> = c
+            .bezier_decomposition()
+            .pieces
+            .iter()
+            .map(|piece| (upper_bound(&piece.hull_box(), dir), piece.t0, piece.t1))
+            .collect();
+        pieces.sort_by(|a, b| b.0.total_cmp(&a.0));
+        for (bound, t0, t1) in pieces {
+            if bound <= best {
+                break;
+            }
             let n = SAMPLES_PER_SPAN;
             let ts: Vec<f64> = (0..=n)
                 .map(|j| t0 + (t1 - t0) * j as f64 / n as f64)
@@ -244,6 +257,13 @@ fn max_along<'a>(curves: impl Iterator<Item = &'a NurbsCurve>, dir: DVec3) -> f6
         }
     }
     best
+}
+
+/// The largest `dir · p` over the box `b` (at one of its corners).
+fn upper_bound(b: &Aabb, dir: DVec3) -> f64 {
+    dir.x * if dir.x >= 0.0 { b.max.x } else { b.min.x }
+        + dir.y * if dir.y >= 0.0 { b.max.y } else { b.min.y }
+        + dir.z * if dir.z >= 0.0 { b.max.z } else { b.min.z }
 }
 
 /// Golden-section search for the maximum of `f` on `[a, b]`.
@@ -269,17 +289,10 @@ fn golden_max(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     fc.max(fd)
 }
 
-/// The non-empty knot spans of `c`.
-fn spans(c: &NurbsCurve) -> Vec<(f64, f64)> {
-    c.knots()
-        .windows(2)
-        .filter(|w| w[0] < w[1])
-        .map(|w| (w[0], w[1]))
-        .collect()
-}
-
 /// The largest y where the curves meet the waterplane `z = draft`: crossings found by sign
-/// changes and bisection, and the whole of curves lying in the plane.
+/// changes and bisection, and the whole of curves lying in the plane. A span whose control
+/// points lie all above or all below the plane, or cannot reach beyond the largest y found so
+/// far, is not searched: it cannot change the result.
 fn waterline_half_breadth(network: &Network, draft: f64, tol: f64) -> f64 {
     let mut best: f64 = 0.0;
     for nc in network.curves() {
@@ -290,7 +303,12 @@ fn waterline_half_breadth(network: &Network, draft: f64, tol: f64) -> f64 {
             continue;
         }
         let g = |t: f64| c.point(t).z - draft;
-        for (t0, t1) in spans(c) {
+        for piece in &c.bezier_decomposition().pieces {
+            let hull = piece.hull_box();
+            if draft < hull.min.z || draft > hull.max.z || hull.max.y <= best {
+                continue;
+            }
+            let (t0, t1) = (piece.t0, piece.t1);
             let n = SAMPLES_PER_SPAN;
             for j in 0..n {
                 let (mut a, mut b) = (
