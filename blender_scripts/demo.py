@@ -30,6 +30,7 @@ import time
 from pathlib import Path
 
 import bpy
+import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -90,6 +91,7 @@ VIEWS = {
     "bow": ((0.7, 1.0, 0.35), (0.68, 1.0)),
     "stern": ((-0.7, 1.0, 0.35), (0.0, 0.3)),
     "side": ((0.0, 1.0, 0.08), (0.0, 1.0)),
+    "body": ((1.0, 0.0, 0.0), (0.0, 1.0)),
 }
 
 
@@ -692,6 +694,100 @@ def fairing_showcase(api, examples: Path, out: Path, engine: str, size: str) -> 
         _log(f"fairing: {type(e).__name__}: {e}")
 
 
+#: The hierarchy showcase: the hard-chine boat's chine moved (m) at its middle control point,
+#: out and up.
+HIERARCHY_CHINE_MOVE = (0.0, 0.3, 0.15)
+
+
+def hierarchy_showcase(api, examples: Path, out: Path, engine: str, size: str) -> None:
+    """The curve network hierarchy and curve attributes (seed 002 §5, §7.1) on the hard-chine
+    boat: every station's keel end attached to the keel, its sheer end to the sheer and the
+    point where it crosses the chine to the chine (a knuckle curve, so those points are knuckle
+    points); then the chine is pulled out and up at its middle and the stations follow it,
+    the surface rebuilt. Renders of the curves looking aft along the hull before and after
+    (``hard_chine_hierarchy_before.png``, ``hard_chine_hierarchy_after.png``: the old stations
+    and chine in red beside the new), of the new surface
+    (``hard_chine_hierarchy_surface.png``), and the .blend with its attachments
+    (``hard_chine_hierarchy.blend``). An error is logged."""
+    path = examples / "hard_chine.json"
+    if not path.is_file():
+        return
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    try:
+        coll = api.load_network(path)
+        coll.name = "hard_chine_hierarchy"
+        scene = bpy.context.scene
+        scene.batten.source = coll
+        objects = {o.name: o for o in api.curve_objects(coll)}
+        stations = [o for name, o in objects.items() if name.startswith("station")]
+        api.attach(stations, objects["keel"], end="start")
+        api.attach(stations, objects["sheer"], end="end")
+        api.attach(stations, objects["chine"], point="nearest")
+        api.set_curve_attribute(objects["chine"], "knuckle")
+        before = api.build(coll)
+        _stage(coll, engine, size, before.object, tube=EXAMPLE_TUBE)
+        lo, hi = _bounds(list(coll.objects) + [before.object])
+        hi = hi + np.asarray(HIERARCHY_CHINE_MOVE)  # room for the wider hull after the change
+
+        def render(name: str, view: str, surface: bool) -> None:
+            api.build(coll).object.hide_render = not surface
+            cam = scene.camera
+            if view == "body":
+                # A body plan: orthographic, looking aft, framing the sections.
+                from mathutils import Euler, Vector
+
+                cam.data.type = "ORTHO"
+                centre = (lo + hi) / 2
+                aspect = scene.render.resolution_x / scene.render.resolution_y
+                cam.data.ortho_scale = 1.2 * max(hi[1] - lo[1], (hi[2] - lo[2]) * aspect)
+                cam.location = Vector((hi[0] + 10.0, centre[1], centre[2]))
+                cam.rotation_euler = Euler((math.pi / 2, 0.0, math.pi / 2))
+            else:
+                cam.data.type = "PERSP"
+                aim_camera(scene, view, lo, hi)
+            scene.render.filepath = str((out / name).resolve())
+            bpy.ops.render.render(write_still=True)
+
+        # Looking aft along the hull at its curves (a body plan), before the change.
+        render("hard_chine_hierarchy_before.png", "body", False)
+        # The stations and chine as they were, thin and red, to stay beside the new ones.
+        ghost = bpy.data.materials.new("batten before")
+        ghost.diffuse_color = (0.85, 0.15, 0.1, 1.0)
+        for o in [*stations, objects["chine"]]:
+            copy = o.copy()
+            copy.data = o.data.copy()
+            copy.pop("batten_attachments", None)  # a picture of the curve, attached to nothing
+            copy.data.bevel_depth *= 0.6
+            copy.data.materials.clear()
+            copy.data.materials.append(ghost)
+            scene.collection.objects.link(copy)
+        points = api.read_curves(stations)
+        chine = objects["chine"].data.splines[0].points[1]
+        chine.co = (*(np.asarray(chine.co[:3]) + HIERARCHY_CHINE_MOVE), chine.co[3])
+        t0 = time.perf_counter()
+        moved = api.update_hierarchy(coll)
+        t_update = time.perf_counter() - t0
+        report = api.build(coll).report
+        shift = max(
+            float(np.abs(np.asarray(a.control_points) - np.asarray(b.control_points)).max())
+            for a, b in zip(points, api.read_curves(stations), strict=True)
+        )
+        _log(
+            f"hierarchy: {len(stations)} stations attached to keel, sheer and chine (a knuckle "
+            f"curve); the chine moved {HIERARCHY_CHINE_MOVE} m at its middle, {len(moved)} "
+            f"curve(s) followed in {t_update * 1e3:.1f} ms (largest control point move "
+            f"{shift:.3f} m); rebuilt: {report['faces']} faces, {len(report['warnings'])} "
+            f"warning(s), max normal jump {report['max_normal_angle_deg']:.2g} deg"
+        )
+        render("hard_chine_hierarchy_after.png", "body", False)
+        render("hard_chine_hierarchy_surface.png", "model", True)
+        blend = out / "hard_chine_hierarchy.blend"
+        bpy.ops.wm.save_as_mainfile(filepath=str(blend.resolve()))
+        _log(f"hierarchy: renders {out}/hard_chine_hierarchy_{{before,after,surface}}.png, scene {blend}")
+    except api.BattenError as e:
+        _log(f"hierarchy: {type(e).__name__}: {e}")
+
+
 #: The form showcase: the frigate's design draft (m) and its breadth change.
 FORM_DRAFT = 4.8
 FORM_BREADTH_FACTOR = 1.05
@@ -747,6 +843,7 @@ def main() -> None:
         run_example(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
     fairing_showcase(api, args.examples, args.out, args.engine, args.size)
     form_showcase(api, args.examples, args.out)
+    hierarchy_showcase(api, args.examples, args.out, args.engine, args.size)
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:
         _log(f"no real ships in {args.ships} (the shared/hulls folder beside the checkout)")
