@@ -10,7 +10,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from batten import hierarchy
+from batten import attribute_marks, hierarchy, spline_joints
 from batten.form_operators import (
     BATTEN_OT_attach_curves,
     BATTEN_OT_clear_point_attributes,
@@ -35,7 +35,7 @@ def _samples(obj, n: int = 4001) -> np.ndarray:
 
 
 def _bezier_arrays(obj) -> dict[str, np.ndarray]:
-    return {k: v.copy() for k, v in hierarchy._spline_points(obj.data.splines[0]).items()}
+    return {k: v.copy() for k, v in spline_joints.spline_points(obj.data.splines[0]).items()}
 
 
 def _tangent_at(obj, point: np.ndarray, side: float = 1.0) -> np.ndarray:
@@ -134,7 +134,7 @@ def test_a_cubic_nurbs_with_bezier_knots_takes_attributes_at_every_third_point()
     pts = [(0, 0, 0), (1, 0.2, 0), (2, 0.8, 0), (3, 1, 0), (4, 1.3, 0), (5, 2.0, 0), (6, 2.2, 0)]
     obj = new_curve("wl", "NURBS", pts, order=4, endpoint=True, bezier=True, collection=coll)
     api.set_point_attribute(obj, "straight", 0)
-    co = hierarchy._spline_points(obj.data.splines[0])["co"][:, :3]
+    co = spline_joints.spline_points(obj.data.splines[0])["co"][:, :3]
     assert co[1] == pytest.approx((2 * co[0] + co[3]) / 3, abs=1e-6)  # on the chord, a third along
     p = _samples(obj)
     first = p[p[:, 0] <= 3.0]
@@ -295,8 +295,8 @@ def test_the_operators_and_the_panel(chined):
 def test_the_overlay_marks_the_attributes(midship, chined):
     for kind, point in (("straight", 0), ("blend", 1), ("straight", 2)):
         api.set_point_attribute(midship, kind, point)
-    marks = hierarchy.attribute_marks([midship])
-    assert marks["straight"].shape == (4 * hierarchy.MARK_SAMPLES, 3)
+    marks = attribute_marks.attribute_marks([midship])
+    assert marks["straight"].shape == (4 * attribute_marks.MARK_SAMPLES, 3)
     radius = np.linalg.norm(marks["blend"][:, 1:] - (3.0, 2.0), axis=1)
     assert np.abs(radius - 2.0).max() < 2.8e-4 * 2.0
     assert len(marks["knuckle"]) == len(marks["tangent"]) == len(marks["attached"]) == 0
@@ -304,7 +304,7 @@ def test_the_overlay_marks_the_attributes(midship, chined):
     api.set_point_attribute(st, "tangent", 0, direction="y")
     api.set_point_attribute(st, "knuckle", 1)
     api.attach(st, chine, point=1)
-    marks = hierarchy.attribute_marks([st])
+    marks = attribute_marks.attribute_marks([st])
     # The tangent at the keel: along y through it, a third of its chord (√5) either side.
     third = np.sqrt(5.0) / 3.0
     assert marks["tangent"] == pytest.approx(np.array([[4, -third, 0], [4, third, 0]]), abs=1e-6)
@@ -381,8 +381,8 @@ def test_a_crossing_without_a_point_gets_one_with_the_shape_unchanged(kind):
     before = _shape(st)
     made = api.attach(st, chine, point="nearest")
     assert made[0]["point"] == 1 and "offset" not in made[0]
-    assert len(hierarchy.joint_points(st)) == 3
-    assert hierarchy.joint_points(st)[1] == pytest.approx(at, abs=1e-6)
+    assert len(spline_joints.joint_points(st)) == 3
+    assert spline_joints.joint_points(st)[1] == pytest.approx(at, abs=1e-6)
     assert _same_shape(before, st) < 1e-6, "the split kept the curve's shape"
     assert [(a["kind"], a["point"]) for a in api.point_attributes_of(st)] == [("tangent", 2)]
     # The waterline's attachment to the station's end: its parameter taken again (t 1 → 2).
@@ -393,8 +393,10 @@ def test_a_crossing_without_a_point_gets_one_with_the_shape_unchanged(kind):
         "co", np.array([[0, at[1], at[2] + 0.2, 1], [10, at[1], at[2] + 0.2, 1]], dtype=np.float32).ravel()
     )
     assert "st" in api.update_hierarchy(coll)
-    assert hierarchy.joint_points(st)[1] == pytest.approx(at + (0, 0, 0.2), abs=1e-6)
-    assert hierarchy.joint_points(st)[[0, 2]] == pytest.approx(np.array([(4, 0, 0), (4, 2.6, 2.5)]), abs=1e-6)
+    assert spline_joints.joint_points(st)[1] == pytest.approx(at + (0, 0, 0.2), abs=1e-6)
+    assert spline_joints.joint_points(st)[[0, 2]] == pytest.approx(
+        np.array([(4, 0, 0), (4, 2.6, 2.5)]), abs=1e-6
+    )
 
 
 def test_a_curve_that_passes_far_from_the_parent_is_refused_unsplit(chined):

@@ -82,6 +82,7 @@ from . import (
     hull_models,
     point_attributes,
     sections_draw,
+    spline_joints,
 )
 from .atomic_write import write_atomically
 from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors
@@ -504,7 +505,7 @@ def set_plane(objects, plane="fit", *, tolerance: float = hierarchy.ATTACH_DISTA
         raise InvalidArgumentError(f"set_plane: tolerance {tolerance!r} must be a positive distance (m)")
     planes = []
     for obj in curves:
-        points = hierarchy.control_points_world(obj)
+        points = spline_joints.control_points_world(obj)
         if isinstance(plane, str) and plane in PLANE_AXES:
             normal = np.eye(3)[PLANE_AXES[plane]]
             offset = float(points[:, PLANE_AXES[plane]].mean())
@@ -612,8 +613,8 @@ def set_point_attribute(curve, kind: str, point: int, *, direction=None) -> dict
         raise InvalidArgumentError(
             f"unknown point attribute '{kind}' (one of {', '.join(point_attributes.KINDS)})"
         )
-    spline = hierarchy.single_spline(obj)
-    index, handles = hierarchy.joint_layout(spline, obj.name)
+    spline = spline_joints.single_spline(obj)
+    index, handles = spline_joints.joint_layout(spline, obj.name)
     if isinstance(point, bool) or not isinstance(point, int) or not 0 <= point < len(index):
         raise InvalidArgumentError(
             f"set_point_attribute: point {point!r} of curve '{obj.name}' is none of 0..{len(index) - 1}"
@@ -667,7 +668,7 @@ def _handle_types(spline) -> list[tuple[str, str]]:
 
 def _tangent_direction(obj, point: int, direction) -> list[float]:
     if direction is None:
-        d = hierarchy.joint_direction(obj, point)
+        d = spline_joints.joint_direction(obj, point)
     elif isinstance(direction, str) and direction in AXIS_DIRECTIONS:
         d = np.asarray(AXIS_DIRECTIONS[direction])
     else:

@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty, EnumProperty, StringProperty
 
-from . import api, hierarchy, hydro_plot
+from . import api, hierarchy, hydro_plot, spline_joints
 from ._registry import register_classes, unregister_classes
 from .operator_base import BattenOperator, HullOperator
 from .scene_hydro import draft_of
@@ -346,9 +346,9 @@ class BATTEN_OT_release_plane(BattenOperator, bpy.types.Operator):
 
 def _selected_joints(obj) -> list[int]:
     """The points of the curve object ``obj``'s spline that are selected in Edit Mode, counted
-    among the points it passes through (:func:`batten.hierarchy.joint_layout`)."""
-    spline = hierarchy.single_spline(obj)
-    index, _ = hierarchy.joint_layout(spline, obj.name)
+    among the points it passes through (:func:`batten.spline_joints.joint_layout`)."""
+    spline = spline_joints.single_spline(obj)
+    index, _ = spline_joints.joint_layout(spline, obj.name)
     if spline.type == "BEZIER":
         selected = [p.select_control_point for p in spline.bezier_points]
     else:

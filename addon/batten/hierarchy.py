@@ -44,6 +44,16 @@ from batten_native import CurveError, InvalidArgumentError
 
 from . import point_attributes, spline_split
 from .bridge import curves_in
+from .spline_joints import (
+    crossing,
+    end_point,
+    joint_arrays,
+    joint_layout,
+    joint_points,
+    single_spline,
+    spline_points,
+    write_points,
+)
 
 #: Object property: the attachments of a curve object's ends (JSON list).
 ATTACHMENTS = "batten_attachments"
@@ -111,25 +121,6 @@ def anchor(attachment: dict) -> str:
     return attachment["end"] if "end" in attachment else f"point {attachment['point']}"
 
 
-def single_spline(obj):
-    """The only spline of the curve object ``obj``; CurveError naming it otherwise."""
-    if obj.type != "CURVE":
-        raise CurveError(f"object '{obj.name}' is a {obj.type.lower()}, not a curve object", obj.name)
-    if len(obj.data.splines) != 1:
-        raise CurveError(
-            f"curve '{obj.name}' has {len(obj.data.splines)} splines; only a curve of one spline can attach",
-            obj.name,
-        )
-    return obj.data.splines[0]
-
-
-def end_point(obj, end: str) -> np.ndarray:
-    """The world position of ``obj``'s ``end`` (``start`` or ``end``)."""
-    curve = curves_in.read_object(obj)[0]
-    a, b = curve.domain
-    return np.asarray(curve.evaluate([a if end == "start" else b]), dtype=float).reshape(3)
-
-
 def still(point) -> float:
     """The largest move (m) of ``point`` that is no move: the rounding of Blender's single
     precision there (:data:`STILL_ULPS` units in the last place of its largest coordinate)."""
@@ -148,77 +139,6 @@ def elastic(anchors: np.ndarray, delta0: np.ndarray, delta1: np.ndarray) -> np.n
     else:
         t = np.linspace(0.0, 1.0, n) if n > 1 else np.zeros(1)
     return (1.0 - t)[:, None] * np.asarray(delta0)[None, :] + t[:, None] * np.asarray(delta1)[None, :]
-
-
-def joint_layout(spline, name: str) -> tuple[np.ndarray, bool]:
-    """The indices in the spline's control polygon (``co``) of the points it passes through
-    (its joints), and whether they have handles (a Bézier spline's, or a cubic NURBS spline's
-    neighbouring control points). A POLY spline (or a NURBS spline of order 2) passes through
-    every point with no handles. CurveError naming the curve for a NURBS spline whose knots do
-    not make its joints plain (anything but end-point and Bézier knots of order 4)."""
-    if spline.type == "BEZIER":
-        return np.arange(len(spline.bezier_points)), True
-    count = len(spline.points)
-    if spline.type == "POLY" or spline.order_u == 2:
-        return np.arange(count), False
-    if spline.order_u == 4 and spline.use_bezier_u and spline.use_endpoint_u and not spline.use_cyclic_u:
-        if (count - 1) % 3 == 0:
-            return np.arange(0, count, 3), True
-    raise CurveError(
-        f"curve '{name}': its NURBS spline does not pass through its control points; points can be "
-        "attached or given attributes on a Bézier spline or a cubic NURBS spline with end-point and "
-        "Bézier knots (set its spline type to Bézier first)",
-        name,
-    )
-
-
-def _joint_arrays(world: dict[str, np.ndarray], index: np.ndarray):
-    """The joints' points and handles (world) of a spline's arrays, and a writer putting new
-    handles back into them."""
-    co = world["co"]
-    if "handle_left" in world:
-        left, right = world["handle_left"].copy(), world["handle_right"].copy()
-
-        def put(new_left, new_right) -> None:
-            world["handle_left"][:], world["handle_right"][:] = new_left, new_right
-
-        return co[index].copy(), left, right, put
-    # A cubic NURBS spline with Bézier knots: the control points beside each joint.
-    n = len(co)
-    left = np.array([co[j - 1] if j > 0 else co[j] for j in index])
-    right = np.array([co[j + 1] if j + 1 < n else co[j] for j in index])
-
-    def put(new_left, new_right) -> None:
-        for k, j in enumerate(index):
-            if j > 0:
-                co[j - 1] = new_left[k]
-            if j + 1 < n:
-                co[j + 1] = new_right[k]
-
-    return co[index].copy(), left, right, put
-
-
-def _spline_points(spline) -> dict[str, np.ndarray]:
-    """The spline's point arrays by attribute (``co`` 3 or 4 wide, and a Bézier spline's
-    handles), in the object's space."""
-    if spline.type == "BEZIER":
-        pts = spline.bezier_points
-        out = {}
-        for attr in ("co", "handle_left", "handle_right"):
-            buf = np.empty(3 * len(pts), dtype=np.float32)
-            pts.foreach_get(attr, buf)
-            out[attr] = buf.reshape(-1, 3).astype(float)
-        return out
-    buf = np.empty(4 * len(spline.points), dtype=np.float32)
-    spline.points.foreach_get("co", buf)
-    return {"co": buf.reshape(-1, 4).astype(float)}
-
-
-def _write(spline, arrays: dict[str, np.ndarray]) -> None:
-    points = spline.bezier_points if spline.type == "BEZIER" else spline.points
-    for attr, values in arrays.items():
-        points.foreach_set(attr, values.astype(np.float32).ravel())
-    spline.id_data.update_tag()
 
 
 def graph(objects) -> dict[str, set[str]]:
@@ -267,14 +187,6 @@ def store_plane(obj, plane: tuple[np.ndarray, float] | None) -> None:
         return
     normal, offset = plane
     obj[PLANE] = json.dumps({"normal": [float(c) for c in normal], "offset": float(offset)})
-
-
-def control_points_world(obj) -> np.ndarray:
-    """Every control point of ``obj``'s spline (with a Bézier spline's handles), world (n, 3)."""
-    matrix = np.array(obj.matrix_world, dtype=float)
-    arrays = _spline_points(single_spline(obj))
-    pts = np.concatenate([a[:, :3] for a in arrays.values()])
-    return pts @ matrix[:3, :3].T + matrix[:3, 3]
 
 
 def _parent(obj, attachment: dict):
@@ -336,7 +248,7 @@ def _attributed(obj, moved: dict[str, np.ndarray], index: np.ndarray, handles: b
     own = point_attributes_of(obj)
     if not own and not inherited:
         return
-    co, left, right, put = _joint_arrays(moved, index)
+    co, left, right, put = joint_arrays(moved, index)
     attributes = [dict(a) for a in own]
     kinds = {(a["kind"], a["point"]) for a in attributes}
     for a in inherited:
@@ -379,7 +291,7 @@ def new_points(obj) -> dict[str, np.ndarray] | None:
     plane = plane_of(obj)
     matrix = np.array(obj.matrix_world, dtype=float)
     to_local = np.linalg.inv(matrix[:3, :3])
-    arrays = _spline_points(spline)
+    arrays = spline_points(spline)
     world = {attr: a[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for attr, a in arrays.items()}
     moved = {attr: w.copy() for attr, w in world.items()}
     index, handles = joint_layout(spline, obj.name) if _needs_joints(obj, attachments) else (None, False)
@@ -435,34 +347,14 @@ def update(objects) -> list[str]:
             if arrays is None:
                 continue
             spline = single_spline(obj)
-            written.append((spline, _spline_points(spline)))
-            _write(spline, arrays)
+            written.append((spline, spline_points(spline)))
+            write_points(spline, arrays)
             moved.append(name)
     except BaseException:
         for spline, before in reversed(written):
-            _write(spline, before)
+            write_points(spline, before)
         raise
     return moved
-
-
-def joint_points(obj) -> np.ndarray:
-    """The world positions of the points ``obj``'s spline passes through (its joints)."""
-    spline = single_spline(obj)
-    index, _ = joint_layout(spline, obj.name)
-    matrix = np.array(obj.matrix_world, dtype=float)
-    co = _spline_points(spline)["co"][index, :3]
-    return co @ matrix[:3, :3].T + matrix[:3, 3]
-
-
-def joint_direction(obj, k: int) -> np.ndarray:
-    """The direction ``obj``'s curve runs through its joint ``k`` (world): from its left handle
-    to its right one, or from the joint before to the one after where they coincide."""
-    spline = single_spline(obj)
-    index, _ = joint_layout(spline, obj.name)
-    matrix = np.array(obj.matrix_world, dtype=float)
-    world = {a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in _spline_points(spline).items()}
-    co, left, right, _ = _joint_arrays(world, index)
-    return point_attributes.through(co, left, right, k)
 
 
 def attach(
@@ -526,44 +418,6 @@ def attach(
         store(child, others)
         raise
     return attachment
-
-
-#: Samples per piece of a curve in the search for where it passes nearest another.
-CROSSING_SAMPLES = 32
-#: Alternating projections refining that search.
-CROSSING_STEPS = 60
-
-
-def crossing(child_curve, parent_curve) -> tuple[float, np.ndarray, float]:
-    """Where ``child_curve`` passes nearest ``parent_curve``: ``(t on the child, the child's
-    point there, the distance)``: the nearest pair of dense samples of both, refined by
-    projecting from one curve to the other and back until it stays (a crossing converges)."""
-
-    def samples(curve):
-        a, b = curve.domain
-        n = CROSSING_SAMPLES * max(1, len(np.unique(curve.knots)) - 1) + 1
-        t = np.linspace(a, b, n)
-        return t, np.asarray(curve.evaluate(t), dtype=float)
-
-    tc, pc = samples(child_curve)
-    _, pp = samples(parent_curve)
-    best, best_d = 0, np.inf
-    for lo in range(0, len(pc), 256):  # bounded memory: 256 × parent samples at a time
-        d = np.linalg.norm(pc[lo : lo + 256, None, :] - pp[None, :, :], axis=2).min(axis=1)
-        k = int(np.argmin(d))
-        if d[k] < best_d:
-            best, best_d = lo + k, float(d[k])
-    t = float(tc[best])
-    here = pc[best]
-    for _ in range(CROSSING_STEPS):
-        _, _, on_parent = parent_curve.nearest(here)
-        t_new, _, back = child_curve.nearest(np.asarray(on_parent, dtype=float))
-        back = np.asarray(back, dtype=float)
-        if np.linalg.norm(back - here) <= 1e-12 * max(1.0, float(np.abs(here).max())):
-            t, here = float(t_new), back
-            break
-        t, here = float(t_new), back
-    return t, here, float(parent_curve.nearest(here)[1])
 
 
 def _crossing_joint(child, parent_curve, joints: np.ndarray, tolerance: float):
@@ -665,65 +519,3 @@ def refresh(objects) -> int:
                 count += 1
         store(obj, kept)
     return count
-
-
-#: Samples per segment of a straight or blend drawn in the overlay.
-MARK_SAMPLES = 16
-
-
-def attribute_marks(objects) -> dict[str, np.ndarray]:
-    """Where the point attributes of the curve objects ``objects`` act, for the overlay, each
-    float32 in world coordinates: ``knuckle`` points (n, 3); ``tangent`` segments (2k, 3)
-    through each tangent point along its direction, a third of its shorter neighbouring chord
-    either side; ``straight`` and ``blend`` segments (2k, 3) along the curve between each
-    pair's points; ``attached`` points (n, 3), the ends and points attached to a parent. A curve
-    whose attributes cannot be read (its spline changed type) marks nothing."""
-    out = {k: [] for k in (*point_attributes.KINDS, "attached")}
-    for obj in objects:
-        own = point_attributes_of(obj) if obj.get(POINT_ATTRIBUTES) else []
-        attached = attachments_of(obj)
-        if not own and not attached:
-            continue
-        try:
-            spline = single_spline(obj)
-            matrix = np.array(obj.matrix_world, dtype=float)
-            world = {
-                a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in _spline_points(spline).items()
-            }
-            if attached:
-                ends = [end_point(obj, a["end"]) for a in attached if "end" in a]
-                points = [a["point"] for a in attached if "point" in a]
-                if points:
-                    ends += list(joint_points(obj)[points])
-                out["attached"].append(np.asarray(ends).reshape(-1, 3))
-            if not own:
-                continue
-            index, handles = joint_layout(spline, obj.name)
-            if not handles:
-                world = {
-                    "co": world["co"],
-                    "handle_left": world["co"].copy(),
-                    "handle_right": world["co"].copy(),
-                }
-            co, left, right, _ = _joint_arrays(world, index)
-        except (CurveError, IndexError):
-            continue
-        for a in own:
-            i = a["point"]
-            if i >= len(co) or (a["kind"] in point_attributes.PAIR_KINDS and i + 1 >= len(co)):
-                continue
-            if a["kind"] == "knuckle":
-                out["knuckle"].append(co[i][None, :])
-            elif a["kind"] == "tangent":
-                chords = [np.linalg.norm(co[j] - co[i]) for j in (i - 1, i + 1) if 0 <= j < len(co)]
-                d = np.asarray(a["direction"], dtype=float) * min(chords, default=0.0) / 3.0
-                out["tangent"].append(np.array([co[i] - d, co[i] + d]))
-            else:
-                u = np.linspace(0.0, 1.0, MARK_SAMPLES + 1)[:, None]
-                b = (1 - u) ** 3 * co[i] + 3 * (1 - u) ** 2 * u * right[i]
-                b = b + 3 * (1 - u) * u**2 * left[i + 1] + u**3 * co[i + 1]
-                out[a["kind"]].append(np.stack([b[:-1], b[1:]], axis=1).reshape(-1, 3))
-    return {
-        k: np.concatenate(v).astype(np.float32) if v else np.zeros((0, 3), dtype=np.float32)
-        for k, v in out.items()
-    }

@@ -17,7 +17,7 @@ import json
 import bpy
 import numpy as np
 
-from . import api, hierarchy
+from . import api, attribute_marks, hierarchy
 from .network_markers import knuckle_segments, marker_arrays
 from .scene_hydro import hull_box, last_figures
 from .waterplane_outline import waterplane_outline
@@ -64,7 +64,7 @@ KNUCKLE_STYLES = {
 }
 
 
-# Point attributes (hierarchy.attribute_marks): colour, point size or line width (px).
+# Point attributes (attribute_marks.attribute_marks): colour, point size or line width (px).
 ATTRIBUTE_POINT_STYLES = {
     "knuckle": ((1.0, 0.5, 0.0, 1.0), 12.0),
     "attached": ((0.75, 0.75, 0.75, 1.0), 9.0),
@@ -76,12 +76,12 @@ ATTRIBUTE_LINE_STYLES = {
 }
 
 
-def attribute_marks(context) -> dict[str, np.ndarray]:
+def attribute_mark_arrays(context) -> dict[str, np.ndarray]:
     """The point attributes and attached points of the scene's hull curves (all the scene's
-    curves when no hull is chosen): :func:`batten.hierarchy.attribute_marks`."""
+    curves when no hull is chosen): :func:`batten.attribute_marks.attribute_marks`."""
     source = context.scene.batten.source
     objects = source.all_objects if source is not None else context.scene.objects
-    return hierarchy.attribute_marks(
+    return attribute_marks.attribute_marks(
         o
         for o in objects
         if o.type == "CURVE" and (hierarchy.ATTACHMENTS in o or hierarchy.POINT_ATTRIBUTES in o)
@@ -307,7 +307,7 @@ def _draw():
     wide = gpu.shader.from_builtin("POLYLINE_UNIFORM_COLOR")
     wide.uniform_float("viewportSize", gpu.state.viewport_get()[2:])
     _draw_styled(wide, "LINES", "lineWidth", knuckle_lines(context), KNUCKLE_STYLES)
-    marks = attribute_marks(context)
+    marks = attribute_mark_arrays(context)
     _draw_styled(
         wide, "LINES", "lineWidth", {k: marks[k] for k in ATTRIBUTE_LINE_STYLES}, ATTRIBUTE_LINE_STYLES
     )

@@ -4,7 +4,7 @@ coordinates, so a rational NURBS piece splits exactly too), so a station gets a 
 own where it crosses a chine and can be attached there (:func:`batten.hierarchy.attach`).
 
 The splines it splits are those whose points the curve passes through
-(:func:`batten.hierarchy.joint_layout`): Bézier splines, cubic NURBS splines with end-point and
+(:func:`batten.spline_joints.joint_layout`): Bézier splines, cubic NURBS splines with end-point and
 Bézier knots, and POLY splines. Their core curves (:mod:`batten.bridge.curves_in`) have a unit
 of parameter per piece, so parameter ``t`` lies in piece ``floor(t)``.
 """
