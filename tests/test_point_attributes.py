@@ -19,6 +19,7 @@ from batten.form_operators import (
 )
 from helpers import new_bezier, new_curve
 from operator_runs import execute, new_collection
+from test_form import barge  # noqa: F401 (the fixture)
 from test_form_panel import _draw
 
 CurveError, InvalidArgumentError = api.CurveError, api.InvalidArgumentError
@@ -408,3 +409,43 @@ def test_a_curve_that_passes_far_from_the_parent_is_refused_unsplit(chined):
     assert len(st.data.splines[0].bezier_points) == 3 and hierarchy.ATTACHMENTS not in st
     for k, v in _bezier_arrays(st).items():
         assert np.array_equal(v, before[k])
+
+
+@pytest.mark.parametrize(
+    "key, text",
+    [
+        (hierarchy.POINT_ATTRIBUTES, "not json"),
+        (hierarchy.POINT_ATTRIBUTES, '[{"kind": "fillet", "point": 1}]'),
+        (hierarchy.POINT_ATTRIBUTES, '[{"kind": "tangent", "point": 1, "direction": [0, 0]}]'),
+        (hierarchy.ATTACHMENTS, "[1, 2]"),
+        (hierarchy.ATTACHMENTS, '[{"end": "middle", "parent": "keel", "t": 0}]'),
+        (hierarchy.ATTACHMENTS, '[{"point": 1, "parent": "chine", "t": NaN}]'),
+        (hierarchy.PLANE, '{"normal": [0, 0, 0], "offset": 1}'),
+        (hierarchy.PLANE, '{"normal": [1, 0, 0]}'),
+    ],
+)
+def test_a_property_edited_by_hand_is_named_and_nothing_breaks(barge, key, text):  # noqa: F811
+    from batten.scene_build import build_into_scene
+
+    st = barge.objects["st10"]
+    bpy.context.scene.batten.source = barge
+    st[key] = text
+    before = _bezier_arrays(st) if st.data.splines[0].type == "BEZIER" else None
+    report = build_into_scene(bpy.context.scene)
+    assert f"curve 'st10': its property '{key}' is not what batten stores there" in report["hierarchy_error"]
+    assert report["faces"] > 0, "the build goes on with the curves as they are"
+    assert before is None or all(np.array_equal(v, before[k]) for k, v in _bezier_arrays(st).items())
+    assert len(attribute_marks.attribute_marks([st])["attached"]) == 0
+    bpy.context.view_layer.objects.active = st
+    drawn = _draw()
+    assert any("its property" in text for text in drawn["alerts"]), "the panel says so"
+    with pytest.raises(CurveError, match="its property"):
+        api.attach(st, barge.objects["deck"], end="end")
+    # Clearing, detaching or releasing takes the broken property away.
+    {
+        hierarchy.POINT_ATTRIBUTES: lambda: api.clear_point_attributes(st),
+        hierarchy.ATTACHMENTS: lambda: api.detach(st),
+        hierarchy.PLANE: lambda: api.clear_plane(st),
+    }[key]()
+    assert key not in st
+    assert "hierarchy_error" not in build_into_scene(bpy.context.scene)

@@ -460,12 +460,17 @@ def detach(child, *, end: str | None = None, point: int | None = None) -> int:
         raise InvalidArgumentError(f"end '{end}' is none of start, end")
     if end is not None and point is not None:
         raise InvalidArgumentError("detach: give an end or a point, not both")
-    before = hierarchy.attachments_of(child)
     if end is None and point is None:
-        kept = []
-    else:
-        target = end if end is not None else f"point {point}"
-        kept = [a for a in before if hierarchy.anchor(a) != target]
+        # All of them: also a property edited by hand that no longer reads.
+        try:
+            count = len(hierarchy.attachments_of(child))
+        except CurveError:
+            count = 0
+        hierarchy.store(child, [])
+        return count
+    before = hierarchy.attachments_of(child)
+    target = end if end is not None else f"point {point}"
+    kept = [a for a in before if hierarchy.anchor(a) != target]
     hierarchy.store(child, kept)
     return len(before) - len(kept)
 
@@ -550,7 +555,7 @@ def clear_plane(objects) -> int:
     how many were held."""
     count = 0
     for obj in _curve_objects_of(objects, "clear_plane"):
-        count += hierarchy.plane_of(obj) is not None
+        count += hierarchy.PLANE in obj  # a property edited by hand goes too
         hierarchy.store_plane(obj, None)
     return count
 
@@ -690,8 +695,16 @@ def clear_point_attributes(curve, point: int | None = None) -> int:
     pairs it begins included, when given); the curve keeps its shape. Returns how many were
     taken off."""
     obj = _curve_object(curve, "clear_point_attributes")
+    if point is None:
+        # All of them: also a property edited by hand that no longer reads.
+        try:
+            count = len(hierarchy.point_attributes_of(obj))
+        except CurveError:
+            count = 0
+        hierarchy.store_point_attributes(obj, [])
+        return count
     before = hierarchy.point_attributes_of(obj)
-    kept = [] if point is None else [a for a in before if a["point"] != point]
+    kept = [a for a in before if a["point"] != point]
     hierarchy.store_point_attributes(obj, kept)
     return len(before) - len(kept)
 

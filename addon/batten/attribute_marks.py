@@ -20,14 +20,15 @@ def attribute_marks(objects) -> dict[str, np.ndarray]:
     through each tangent point along its direction, a third of its shorter neighbouring chord
     either side; ``straight`` and ``blend`` segments (2k, 3) along the curve between each
     pair's points; ``attached`` points (n, 3), the ends and points attached to a parent. A curve
-    whose attributes cannot be read (its spline changed type) marks nothing."""
+    whose attributes cannot be read (its spline changed type, its property edited by hand)
+    marks nothing: Build names it."""
     out = {k: [] for k in (*point_attributes.KINDS, "attached")}
     for obj in objects:
-        own = point_attributes_of(obj) if obj.get(POINT_ATTRIBUTES) else []
-        attached = attachments_of(obj)
-        if not own and not attached:
-            continue
         try:
+            own = point_attributes_of(obj) if obj.get(POINT_ATTRIBUTES) else []
+            attached = attachments_of(obj)
+            if not own and not attached:
+                continue
             spline = single_spline(obj)
             matrix = np.array(obj.matrix_world, dtype=float)
             world = {a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in spline_points(spline).items()}

@@ -290,7 +290,7 @@ class BATTEN_OT_detach_curves(BattenOperator, bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return any(hierarchy.attachments_of(o) for o in _selected_curves(context))
+        return any(hierarchy.ATTACHMENTS in o for o in _selected_curves(context))
 
     def run(self, context):
         count = sum(api.detach(o) for o in _selected_curves(context))
@@ -336,7 +336,7 @@ class BATTEN_OT_release_plane(BattenOperator, bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return any(hierarchy.plane_of(o) is not None for o in _selected_curves(context))
+        return any(hierarchy.PLANE in o for o in _selected_curves(context))
 
     def run(self, context):
         count = api.clear_plane(_selected_curves(context))
@@ -424,8 +424,8 @@ class BATTEN_OT_clear_point_attributes(BattenOperator, bpy.types.Operator):
     def poll(cls, context):
         obj = context.edit_object
         if obj is not None:
-            return bool(hierarchy.point_attributes_of(obj))
-        return any(hierarchy.point_attributes_of(o) for o in _selected_curves(context))
+            return hierarchy.POINT_ATTRIBUTES in obj
+        return any(hierarchy.POINT_ATTRIBUTES in o for o in _selected_curves(context))
 
     def run(self, context):
         obj = context.edit_object

@@ -75,10 +75,63 @@ STILL_ULPS = 4.0
 ATTACH_DISTANCE = 0.01
 
 
+def _stored(obj, key: str, valid) -> object | None:
+    """The JSON value stored on ``obj`` under ``key`` (None when there is none); CurveError
+    naming the curve and the property when it is no JSON or ``valid(value)`` is false (a
+    property edited by hand: nothing reads it half-way)."""
+    text = obj.get(key)
+    if not text:
+        return None
+    try:
+        value = json.loads(text) if isinstance(text, str) else None
+        ok = value is not None and valid(value)
+    except (ValueError, TypeError, KeyError):
+        ok = False
+    if not ok:
+        raise CurveError(
+            f"curve '{obj.name}': its property '{key}' is not what batten stores there; delete it "
+            "(or undo the edit) and set it again from the Form panel",
+            obj.name,
+        )
+    return value
+
+
+def _finite(v) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool) and np.isfinite(v)
+
+
+def _index(v) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool) and v >= 0
+
+
+def _vector(v) -> bool:
+    return isinstance(v, list) and len(v) == 3 and all(_finite(c) for c in v)
+
+
+def _valid_attachment(a) -> bool:
+    return (
+        isinstance(a, dict)
+        and (a.get("end") in ENDS if "end" in a else _index(a.get("point")))
+        and isinstance(a.get("parent"), str)
+        and _finite(a.get("t"))
+        and ("offset" not in a or _vector(a["offset"]))
+    )
+
+
+def _valid_attribute(a) -> bool:
+    return (
+        isinstance(a, dict)
+        and a.get("kind") in point_attributes.KINDS
+        and _index(a.get("point"))
+        and (a["kind"] != "tangent" or _vector(a.get("direction")))
+    )
+
+
 def attachments_of(obj) -> list[dict]:
-    """The attachments stored on ``obj`` (an empty list when it has none)."""
-    text = obj.get(ATTACHMENTS)
-    return json.loads(text) if text else []
+    """The attachments stored on ``obj`` (an empty list when it has none); CurveError naming
+    the curve when the stored property is not a list of attachments."""
+    value = _stored(obj, ATTACHMENTS, lambda v: isinstance(v, list) and all(map(_valid_attachment, v)))
+    return value or []
 
 
 def store(obj, attachments: list[dict]) -> None:
@@ -90,9 +143,10 @@ def store(obj, attachments: list[dict]) -> None:
 
 
 def point_attributes_of(obj) -> list[dict]:
-    """The point attributes stored on ``obj`` (an empty list when it has none)."""
-    text = obj.get(POINT_ATTRIBUTES)
-    return json.loads(text) if text else []
+    """The point attributes stored on ``obj`` (an empty list when it has none); CurveError
+    naming the curve when the stored property is not a list of point attributes."""
+    value = _stored(obj, POINT_ATTRIBUTES, lambda v: isinstance(v, list) and all(map(_valid_attribute, v)))
+    return value or []
 
 
 def store_point_attributes(obj, attributes: list[dict]) -> None:
@@ -171,12 +225,19 @@ def order(objects) -> list[str]:
 
 def plane_of(obj) -> tuple[np.ndarray, float] | None:
     """The plane ``(unit normal, offset)`` the curve object ``obj`` is held in (its surface
-    attribute), or None."""
-    text = obj.get(PLANE)
-    if not text:
+    attribute), or None; CurveError naming the curve when the stored property is no plane."""
+    plane = _stored(
+        obj,
+        PLANE,
+        lambda v: (
+            isinstance(v, dict) and _vector(v.get("normal")) and any(v["normal"]) and _finite(v.get("offset"))
+        ),
+    )
+    if plane is None:
         return None
-    plane = json.loads(text)
-    return np.asarray(plane["normal"], dtype=float), float(plane["offset"])
+    normal = np.asarray(plane["normal"], dtype=float)
+    length = float(np.linalg.norm(normal))
+    return normal / length, float(plane["offset"]) / length
 
 
 def store_plane(obj, plane: tuple[np.ndarray, float] | None) -> None:

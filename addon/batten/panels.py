@@ -328,6 +328,18 @@ def _draw_hierarchy(layout, context) -> None:
     if active is None or active.type != "CURVE":
         return
     col = box.column(align=True)
+    try:
+        _draw_attachments(col, active)
+    except api.BattenError as e:
+        row = col.row()
+        row.alert = True
+        row.label(text=str(e), icon="ERROR")
+
+
+def _draw_attachments(col, active) -> None:
+    """What the curve object ``active`` carries: its curve and point attributes, its plane,
+    what it is attached to and what is attached to it (BattenError where a stored property is
+    broken)."""
     attributes = api.curve_attributes(active)
     if any(attributes.values()):
         on = [k for k, v in attributes.items() if v]
