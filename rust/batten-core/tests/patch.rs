@@ -199,6 +199,7 @@ fn patch_interpolates_boundary_curves_and_ribbon_planes() {
             assert!(p.warnings().is_empty(), "no repairs: {:?}", p.warnings());
             let mut pos_err: f64 = 0.0;
             let mut angle: f64 = 0.0;
+            let mut boundary: f64 = 0.0;
             for (i, c) in curves.iter().enumerate() {
                 for k in 0..=40 {
                     let s = k as f64 / 40.0;
@@ -212,6 +213,10 @@ fn patch_interpolates_boundary_curves_and_ribbon_planes() {
                         let tan = c.derivs(s).d1.normalize();
                         let ribbon_normal = tan.cross(rib).normalize();
                         angle = angle.max(nrm.angle_between(ribbon_normal).to_degrees());
+                        // The boundary normal (side tangent × inward derivative, three
+                        // evaluations) is the normal the domain's axes give (five).
+                        let on_side = p.boundary_normal(i, s);
+                        boundary = boundary.max(on_side.angle_between(nrm).to_degrees());
                     }
                 }
             }
@@ -223,6 +228,10 @@ fn patch_interpolates_boundary_curves_and_ribbon_planes() {
             assert!(
                 angle <= 1e-3,
                 "N={n} {kind:?}: normal off ribbon plane by {angle}°"
+            );
+            assert!(
+                boundary <= 1e-5,
+                "N={n} {kind:?}: boundary normal off the normal by {boundary}°"
             );
         }
     }

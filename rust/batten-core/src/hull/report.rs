@@ -191,7 +191,7 @@ fn polygons_volume<'a>(p: impl Fn(u32) -> DVec3, polygons: impl Iterator<Item = 
 fn edge_normal_at(patch: &Patch, side: usize, seg: usize, forward: bool, lambda: f64) -> DVec3 {
     let local = if forward { lambda } else { 1.0 - lambda };
     let s = patch.segment_side_parameter(side, seg, local);
-    patch.normal(patch.domain().side_point(side, s))
+    patch.boundary_normal(side, s)
 }
 
 /// What the build found besides the patches, for [`report`].

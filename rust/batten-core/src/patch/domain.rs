@@ -95,6 +95,11 @@ impl Domain {
         }
     }
 
+    /// The inward unit normal of side `i`.
+    pub(crate) fn inward(&self, i: usize) -> DVec2 {
+        self.normals[i % self.n]
+    }
+
     /// Signed distance of `x` to the line of side `i`, positive inside.
     #[inline]
     pub(crate) fn distance(&self, i: usize, x: DVec2) -> f64 {

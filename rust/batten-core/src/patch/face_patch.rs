@@ -222,6 +222,27 @@ impl Patch {
         du.cross(dv).normalize_or_zero()
     }
 
+    /// The unit surface normal on side `i` at side parameter `s` (as [`Patch::normal`] at that
+    /// boundary point): the side curve's tangent crossed with the patch's derivative into the
+    /// domain. The tangent is the side's own (central differences of [`Patch::side_point`],
+    /// one-sided at its ends: the patch interpolates its sides), the cross derivative a
+    /// second-order one-sided difference along the side's inward normal: three patch
+    /// evaluations where [`Patch::normal`] takes five. Zero where the patch is singular.
+    pub fn boundary_normal(&self, i: usize, s: f64) -> DVec3 {
+        let i = i % self.domain.sides();
+        let s = s.clamp(0.0, 1.0);
+        let x = self.domain.side_point_v(i, s);
+        let inward = self.domain.inward(i);
+        let h = DERIV_STEP;
+        let p = self.eval_v(x);
+        let across =
+            (self.eval_v(x + inward * h) * 4.0 - p * 3.0 - self.eval_v(x + inward * (2.0 * h)))
+                / (2.0 * h);
+        let (lo, hi) = ((s - h).max(0.0), (s + h).min(1.0));
+        let along = (self.side_point(i, hi) - self.side_point(i, lo)) / (hi - lo);
+        along.cross(across).normalize_or_zero()
+    }
+
     /// The boundary curve of side `i` at side parameter `s ∈ [0, 1]` (the designer curve, with
     /// the corner corrections that close gaps below the tolerance).
     pub fn side_point(&self, i: usize, s: f64) -> DVec3 {
