@@ -124,7 +124,7 @@ impl NurbsCurve {
     fn gauss(&self, a: f64, b: f64) -> f64 {
         let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
         GL8.iter()
-            .map(|&(x, w)| w * self.derivs(mid + half * x).d1.length())
+            .map(|&(x, w)| w * self.point_d1(mid + half * x).1.length())
             .sum::<f64>()
             * half
     }
@@ -175,6 +175,47 @@ mod tests {
             None,
         )
         .expect("line")
+    }
+
+    #[test]
+    fn the_first_derivative_alone_is_bit_for_bit_that_of_all_three() {
+        // point_d1 (what the quadrature evaluates) against derivs, on a rational quintic with
+        // uneven knots and on a cubic, at knots and between them.
+        let quintic = NurbsCurve::try_new(
+            5,
+            vec![
+                0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.3, 0.35, 1.7, 2.0, 2.0, 2.0, 2.0, 2.0, 2.0,
+            ],
+            (0..9)
+                .map(|i| DVec3::new(i as f64, (i as f64 * 1.3).sin(), (i * i) as f64 * 0.1))
+                .collect(),
+            Some(vec![1.0, 0.5, 2.0, 1.5, 0.7, 1.1, 3.0, 0.9, 1.0]),
+        )
+        .expect("quintic");
+        let cubic = NurbsCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            vec![
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::new(2.0, 1.0, 0.0),
+                DVec3::new(3.0, 0.0, 1.0),
+            ],
+            None,
+        )
+        .expect("cubic");
+        for c in [quintic, cubic] {
+            let (a, b) = c.domain();
+            for k in 0..=200 {
+                let t = a + (b - a) * k as f64 / 200.0;
+                let d = c.derivs(t);
+                assert_eq!(c.point_d1(t), (d.point, d.d1), "t = {t}");
+            }
+            for &t in c.knots() {
+                let d = c.derivs(t);
+                assert_eq!(c.point_d1(t), (d.point, d.d1), "knot {t}");
+            }
+        }
     }
 
     #[test]

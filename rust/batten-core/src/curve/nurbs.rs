@@ -266,6 +266,25 @@ impl NurbsCurve {
         self.derivs_in_span(span, t)
     }
 
+    /// C(t) and C′(t): the first two of [`NurbsCurve::derivs`], bit for bit (A2.3's first
+    /// derivatives do not depend on the higher ones), without the work of the higher ones.
+    pub(crate) fn point_d1(&self, t: f64) -> (DVec3, DVec3) {
+        let t = self.clamp(t);
+        let span = find_span(&self.knots, self.degree, self.cw.len(), t);
+        let p = self.degree;
+        let mut d = [[0.0; MAX_ORDER]; 4];
+        ders_basis_funs(&self.knots, span, t, p, 1, &mut d);
+        let mut h = [DVec4::ZERO; 2];
+        for (hk, dk) in h.iter_mut().zip(&d) {
+            for (c, dkj) in self.cw[span - p..=span].iter().zip(dk) {
+                *hk += *c * *dkj;
+            }
+        }
+        let c0 = h[0].truncate() / h[0].w;
+        let c1 = (h[1].truncate() - h[1].w * c0) / h[0].w;
+        (c0, c1)
+    }
+
     /// Derivatives at `t` using the polynomial piece of knot span `span` (so that at a knot the
     /// one-sided derivative of either neighbouring piece can be asked for).
     pub(crate) fn derivs_in_span(&self, span: usize, t: f64) -> CurveDerivs {
