@@ -14,6 +14,7 @@ from batten import attribute_marks, hierarchy, spline_joints
 from batten.form_operators import (
     BATTEN_OT_attach_curves,
     BATTEN_OT_clear_point_attributes,
+    BATTEN_OT_make_bezier,
     BATTEN_OT_set_curve_attribute,
     BATTEN_OT_set_point_attribute,
 )
@@ -291,6 +292,12 @@ def test_the_operators_and_the_panel(chined):
     assert "chine: curve attribute knuckle" in _draw()["labels"]
     status, reports = execute(BATTEN_OT_set_curve_attribute, bpy.context, kind="tangent", on=True)
     assert status == {"CANCELLED"} and "held in no plane" in reports[-1][1]
+    # Make Bézier on the (POLY) chine.
+    assert BATTEN_OT_make_bezier.poll(bpy.context)
+    status, reports = execute(BATTEN_OT_make_bezier, bpy.context)
+    assert status == {"FINISHED"} and "chine" in reports[-1][1]
+    assert chine.data.splines[0].type == "BEZIER" and not BATTEN_OT_make_bezier.poll(bpy.context)
+    assert "batten.make_bezier" in _draw()["ops"]
 
 
 def test_the_overlay_marks_the_attributes(midship, chined):
@@ -449,3 +456,63 @@ def test_a_property_edited_by_hand_is_named_and_nothing_breaks(barge, key, text)
     }[key]()
     assert key not in st
     assert "hierarchy_error" not in build_into_scene(bpy.context.scene)
+
+
+@pytest.mark.parametrize(
+    "kind, points, order, bezier",
+    [
+        ("POLY", [(0, 0, 0), (1, 0.5, 0), (2, 0.2, 0.4), (3, 1.0, 0.3)], 4, False),
+        ("NURBS", [(0, 0, 0), (1, 0.5, 0), (2, 0.2, 0.4), (3, 1.0, 0.3), (4, 0.8, 0)], 3, False),
+        ("NURBS", [(0, 0, 0), (1, 0.5, 0), (2, 0.2, 0.4), (3, 1.0, 0.3), (4, 0.8, 0)], 3, True),
+        ("NURBS", [(0, 0, 0), (1, 0.5, 0), (2, 0.2, 0.4), (3, 1.0, 0.3), (4, 0.8, 0), (5, 0, 1)], 4, False),
+    ],
+)
+def test_make_bezier_keeps_the_shape_exactly(kind, points, order, bezier):
+    coll = new_collection("to bezier")
+    obj = new_curve("c", kind, points, order=order, endpoint=True, bezier=bezier, collection=coll)
+    obj.location = (10.0, -2.0, 1.0)  # the object's transform is kept
+    bpy.context.view_layer.update()
+    before = _shape(obj)
+    child = new_curve("child", "POLY", [before[1][400], before[1][400] + (0, 0, 1)], collection=coll)
+    api.attach(child, obj, end="start")
+    assert api.to_bezier([obj]) == ["c"]
+    spline = obj.data.splines[0]
+    assert spline.type == "BEZIER"
+    assert _same_shape(before, obj) < 2e-6, "the same shape, to Blender's single precision"
+    # The curve attached to it references the same point, on the new parameters.
+    assert api.update_hierarchy(coll) == [], "nothing moves"
+    assert _co_of(child)[0] == pytest.approx(before[1][400], abs=1e-5)
+    # Its points now carry attributes.
+    api.set_point_attribute(obj, "knuckle", 1)
+    assert _curve(obj).corners()[0] == pytest.approx(1.0), "a corner at point 1"
+    assert api.to_bezier([obj]) == [], "a Bézier spline is left as it is"
+
+
+def _co_of(obj) -> np.ndarray:
+    spline = obj.data.splines[0]
+    buf = np.empty(4 * len(spline.points), dtype=np.float32)
+    spline.points.foreach_get("co", buf)
+    return buf.reshape(-1, 4)[:, :3].astype(float)
+
+
+def test_make_bezier_refuses_what_has_no_exact_bezier_form():
+    coll = new_collection("no bezier")
+    quintic = new_curve(
+        "quintic", "NURBS", [(i, (i % 2) * 0.3, 0) for i in range(7)], order=6, endpoint=True, collection=coll
+    )
+    arc = new_curve(
+        "arc",
+        "NURBS",
+        [(1, 0, 0), (1, 1, 0), (0, 1, 0)],
+        order=3,
+        endpoint=True,
+        weights=[1.0, 0.7071, 1.0],
+        collection=coll,
+    )
+    plain = new_curve("plain", "POLY", [(0, 0, 0), (1, 0, 0)], collection=coll)
+    with pytest.raises(CurveError, match="'quintic' is of degree 5"):
+        api.to_bezier([plain, quintic])
+    assert plain.data.splines[0].type == "POLY", "all or none"
+    with pytest.raises(CurveError, match="'arc' is rational"):
+        api.to_bezier(arc)
+    assert arc.data.splines[0].type == "NURBS"

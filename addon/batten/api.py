@@ -72,6 +72,7 @@ from batten_native import form_topology as _form_topology
 from batten_native import topology as _topology
 
 from . import (
+    bezier_form,
     cad_export,
     closed_mesh,
     curvature_map,
@@ -167,6 +168,7 @@ __all__ = [
     "point_attributes_of",
     "set_curve_attribute",
     "curve_attributes",
+    "to_bezier",
     "set_plane",
     "clear_plane",
     "held_planes",
@@ -754,6 +756,27 @@ def set_curve_attribute(curves, kind: str, on: bool = True) -> None:
             obj.batten.role = role
             hierarchy.store_tangent(obj, tangent)
         raise
+
+
+def to_bezier(curves) -> list[str]:
+    """Write each curve object of ``curves`` (one object or name, or several) again as a Bézier
+    spline of exactly the same shape (:mod:`batten.bezier_form`: its Bézier pieces raised to
+    cubic), so the points it passes through can carry point attributes and be attached, and its
+    handles be edited. Curves already Bézier splines are left as they are; the curves attached
+    to a converted one take their parameters on it again. Returns the names of the curves
+    converted. All or none: CurveError naming the curve when it is not one spline, is rational
+    (a true circle arc) or of degree above 3."""
+    objs = _curve_objects_of(curves, "to_bezier")
+    todo = [(o, bezier_form.cubic_pieces(o)) for o in objs if spline_joints.single_spline(o).type != "BEZIER"]
+    for obj, pieces in todo:
+        bezier_form.write_bezier(obj, pieces)
+    converted = {o.name for o, _ in todo}
+    hierarchy.refresh(
+        o
+        for o in bpy.data.objects
+        if o.type == "CURVE" and any(a["parent"] in converted for a in hierarchy.attachments_of(o))
+    )
+    return [o.name for o, _ in todo]
 
 
 def curve_attributes(curve) -> dict[str, bool]:

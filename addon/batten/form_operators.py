@@ -468,7 +468,29 @@ class BATTEN_OT_set_curve_attribute(BattenOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
+class BATTEN_OT_make_bezier(BattenOperator, bpy.types.Operator):
+    """Write each selected curve again as a Bézier spline of exactly the same shape (its points
+    can then carry point attributes and be attached; a rational curve or one of degree above 3
+    has no such form and is left as it is)"""
+
+    bl_idname = "batten.make_bezier"
+    bl_label = "Make Bézier"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return context.edit_object is None and any(
+            o.data.splines and o.data.splines[0].type != "BEZIER" for o in _selected_curves(context)
+        )
+
+    def run(self, context):
+        converted = api.to_bezier(_selected_curves(context))
+        self.report({"INFO"}, f"Bézier splines now: {', '.join(converted) or 'none (they were)'}")
+        return {"FINISHED"}
+
+
 _CLASSES = (
+    BATTEN_OT_make_bezier,
     BATTEN_OT_set_point_attribute,
     BATTEN_OT_clear_point_attributes,
     BATTEN_OT_set_curve_attribute,

@@ -322,6 +322,7 @@ def _draw_hierarchy(layout, context) -> None:
     row = box.row(align=True)
     row.operator_menu_enum("batten.set_point_attribute", "kind", icon="HANDLE_VECTOR")
     row.operator("batten.clear_point_attributes", text="", icon="X")
+    row.operator("batten.make_bezier", text="", icon="IPO_BEZIER")
     row = box.row(align=True)
     row.operator_menu_enum("batten.set_curve_attribute", "kind", icon="IPO_CONSTANT")
     active = context.view_layer.objects.active

@@ -51,7 +51,7 @@ def joint_layout(spline, name: str) -> tuple[np.ndarray, bool]:
     raise CurveError(
         f"curve '{name}': its NURBS spline does not pass through its control points; points can be "
         "attached or given attributes on a Bézier spline or a cubic NURBS spline with end-point and "
-        "Bézier knots (set its spline type to Bézier first)",
+        "Bézier knots (Make Bézier in the Form panel turns it into a Bézier spline of the same shape)",
         name,
     )
 
