@@ -516,3 +516,11 @@ def test_make_bezier_refuses_what_has_no_exact_bezier_form():
     with pytest.raises(CurveError, match="'arc' is rational"):
         api.to_bezier(arc)
     assert arc.data.splines[0].type == "NURBS"
+    bpy.context.view_layer.objects.active = plain
+    bpy.ops.object.mode_set(mode="EDIT")
+    try:
+        with pytest.raises(CurveError, match="'plain' is in Edit Mode"):
+            api.to_bezier(plain)
+    finally:
+        bpy.ops.object.mode_set(mode="OBJECT")
+    assert plain.data.splines[0].type == "POLY"

@@ -767,6 +767,11 @@ def to_bezier(curves) -> list[str]:
     converted. All or none: CurveError naming the curve when it is not one spline, is rational
     (a true circle arc) or of degree above 3."""
     objs = _curve_objects_of(curves, "to_bezier")
+    editing = [o.name for o in objs if o.mode == "EDIT"]
+    if editing:
+        raise CurveError(
+            f"curve '{editing[0]}' is in Edit Mode; leave it to make it a Bézier spline", editing[0]
+        )
     todo = [(o, bezier_form.cubic_pieces(o)) for o in objs if spline_joints.single_spline(o).type != "BEZIER"]
     for obj, pieces in todo:
         bezier_form.write_bezier(obj, pieces)
