@@ -524,3 +524,15 @@ def test_make_bezier_refuses_what_has_no_exact_bezier_form():
     finally:
         bpy.ops.object.mode_set(mode="OBJECT")
     assert plain.data.splines[0].type == "POLY"
+
+
+def test_attributes_hold_through_a_transformation_committed_to_the_original(barge):  # noqa: F811
+    st = barge.objects["st10"]
+    assert api.to_bezier([st]) == ["st10"]
+    api.set_point_attribute(st, "knuckle", 1)
+    result = api.transform(barge, breadth=21.0, draft=8.0)
+    api.commit(result)
+    # The committed curve is written again (its joints the same), and keeps its attribute.
+    assert [(a["kind"], a["point"]) for a in api.point_attributes_of(st)] == [("knuckle", 1)]
+    assert _curve(st).corners() == pytest.approx([1.0])
+    assert api.update_hierarchy(barge) == [], "the attribute holds already"
