@@ -773,15 +773,21 @@ def to_bezier(curves) -> list[str]:
             f"curve '{editing[0]}' is in Edit Mode; leave it to make it a Bézier spline", editing[0]
         )
     todo = [(o, bezier_form.cubic_pieces(o)) for o in objs if spline_joints.single_spline(o).type != "BEZIER"]
+    converted = {o.name for o, _ in todo}
+    children = [o for o in bpy.data.objects if o.type == "CURVE" and _references(o, converted)]
     for obj, pieces in todo:
         bezier_form.write_bezier(obj, pieces)
-    converted = {o.name for o, _ in todo}
-    hierarchy.refresh(
-        o
-        for o in bpy.data.objects
-        if o.type == "CURVE" and any(a["parent"] in converted for a in hierarchy.attachments_of(o))
-    )
+    hierarchy.refresh(children)
     return [o.name for o, _ in todo]
+
+
+def _references(obj, parents: set[str]) -> bool:
+    """Whether the curve object ``obj`` is attached to one of ``parents`` (False where its
+    attachments do not read: Build names those)."""
+    try:
+        return any(a["parent"] in parents for a in hierarchy.attachments_of(obj))
+    except CurveError:
+        return False
 
 
 def curve_attributes(curve) -> dict[str, bool]:

@@ -563,7 +563,10 @@ def refresh(objects) -> int:
     the attachment references the same point again. Returns how many were refreshed."""
     count = 0
     for obj in objects:
-        kept = attachments_of(obj)
+        try:
+            kept = attachments_of(obj)
+        except CurveError:
+            continue  # a property edited by hand: Build names it
         for a in kept:
             parent = bpy.data.objects.get(a["parent"])
             if parent is None or parent.type != "CURVE":
