@@ -271,32 +271,31 @@ impl NurbsCurve {
     pub(crate) fn point_d1(&self, t: f64) -> (DVec3, DVec3) {
         let t = self.clamp(t);
         let span = find_span(&self.knots, self.degree, self.cw.len(), t);
-        let p = self.degree;
-        let mut d = [[0.0; MAX_ORDER]; 4];
-        ders_basis_funs(&self.knots, span, t, p, 1, &mut d);
-        let mut h = [DVec4::ZERO; 2];
-        for (hk, dk) in h.iter_mut().zip(&d) {
-            for (c, dkj) in self.cw[span - p..=span].iter().zip(dk) {
-                *hk += *c * *dkj;
-            }
-        }
+        let h: [DVec4; 2] = self.homogeneous_derivs(span, t);
         let c0 = h[0].truncate() / h[0].w;
         let c1 = (h[1].truncate() - h[1].w * c0) / h[0].w;
         (c0, c1)
     }
 
-    /// Derivatives at `t` using the polynomial piece of knot span `span` (so that at a knot the
-    /// one-sided derivative of either neighbouring piece can be asked for).
-    pub(crate) fn derivs_in_span(&self, span: usize, t: f64) -> CurveDerivs {
+    /// The homogeneous point and its first `N − 1` derivatives (`N` ≤ 4) at `t` on knot span
+    /// `span`: the basis functions' derivatives (A2.3) applied to the weighted control points.
+    fn homogeneous_derivs<const N: usize>(&self, span: usize, t: f64) -> [DVec4; N] {
         let p = self.degree;
         let mut d = [[0.0; MAX_ORDER]; 4];
-        ders_basis_funs(&self.knots, span, t, p, 3, &mut d);
-        let mut h = [DVec4::ZERO; 4];
+        ders_basis_funs(&self.knots, span, t, p, N - 1, &mut d);
+        let mut h = [DVec4::ZERO; N];
         for (hk, dk) in h.iter_mut().zip(&d) {
             for (c, dkj) in self.cw[span - p..=span].iter().zip(dk) {
                 *hk += *c * *dkj;
             }
         }
+        h
+    }
+
+    /// Derivatives at `t` using the polynomial piece of knot span `span` (so that at a knot the
+    /// one-sided derivative of either neighbouring piece can be asked for).
+    pub(crate) fn derivs_in_span(&self, span: usize, t: f64) -> CurveDerivs {
+        let h: [DVec4; 4] = self.homogeneous_derivs(span, t);
         let (a, w) = (h.map(|v| v.truncate()), h.map(|v| v.w));
         let c0 = a[0] / w[0];
         let c1 = (a[1] - w[1] * c0) / w[0];
