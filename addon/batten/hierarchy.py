@@ -210,8 +210,9 @@ def order(objects) -> list[str]:
     """The attached curve objects of ``objects`` (and those held in a plane or with point
     attributes) in hierarchy order
     (every parent before its children); CurveError naming the curves of a cycle."""
+    parents = graph(objects)
     try:
-        ordered = list(TopologicalSorter(graph(objects)).static_order())
+        ordered = list(TopologicalSorter(parents).static_order())
     except CycleError as e:
         cycle = list(dict.fromkeys(e.args[1]))
         raise CurveError(
@@ -219,8 +220,7 @@ def order(objects) -> list[str]:
             "a curve cannot be its own ancestor",
             cycle[0],
         ) from e
-    children = set(graph(objects))
-    return [name for name in ordered if name in children]
+    return [name for name in ordered if name in parents]
 
 
 def plane_of(obj) -> tuple[np.ndarray, float] | None:
