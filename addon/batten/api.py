@@ -463,18 +463,23 @@ def detach(child, *, end: str | None = None, point: int | None = None) -> int:
     if end is not None and point is not None:
         raise InvalidArgumentError("detach: give an end or a point, not both")
     if end is None and point is None:
-        # All of them: also a property edited by hand that no longer reads.
-        try:
-            count = len(hierarchy.attachments_of(child))
-        except CurveError:
-            count = 0
-        hierarchy.store(child, [])
-        return count
+        return _take_all(child, hierarchy.attachments_of, hierarchy.store)
     before = hierarchy.attachments_of(child)
     target = end if end is not None else f"point {point}"
     kept = [a for a in before if hierarchy.anchor(a) != target]
     hierarchy.store(child, kept)
     return len(before) - len(kept)
+
+
+def _take_all(obj, read, store) -> int:
+    """Take every item ``read(obj)`` gives off ``obj`` with ``store(obj, [])``, a property edited
+    by hand that no longer reads included (counted as none). Returns how many there were."""
+    try:
+        count = len(read(obj))
+    except CurveError:
+        count = 0
+    store(obj, [])
+    return count
 
 
 def attachments(source) -> list[dict]:
@@ -698,13 +703,7 @@ def clear_point_attributes(curve, point: int | None = None) -> int:
     taken off."""
     obj = _curve_object(curve, "clear_point_attributes")
     if point is None:
-        # All of them: also a property edited by hand that no longer reads.
-        try:
-            count = len(hierarchy.point_attributes_of(obj))
-        except CurveError:
-            count = 0
-        hierarchy.store_point_attributes(obj, [])
-        return count
+        return _take_all(obj, hierarchy.point_attributes_of, hierarchy.store_point_attributes)
     before = hierarchy.point_attributes_of(obj)
     kept = [a for a in before if a["point"] != point]
     hierarchy.store_point_attributes(obj, kept)
