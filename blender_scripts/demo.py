@@ -647,6 +647,16 @@ FAIRING_NOISE = 0.3
 FAIRING_SEED = 3
 
 
+def _example_in_empty_scene(examples: Path, name: str) -> Path | None:
+    """The example network file ``name`` in ``examples``, Blender's scene emptied for it; None
+    (the scene untouched) when the file is missing."""
+    path = examples / name
+    if not path.is_file():
+        return None
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    return path
+
+
 def fairing_showcase(api, examples: Path, out: Path, engine: str, size: str) -> None:
     """Surface fairing before and after, as images: the Wigley lines plan made noisy (30 % of
     a 10 mm tolerance), its Gaussian-curvature map (``fairing_noisy_gaussian_curvature.png``), then
@@ -656,10 +666,9 @@ def fairing_showcase(api, examples: Path, out: Path, engine: str, size: str) -> 
     import batten_native
     from batten.bridge import curves_out
 
-    path = examples / "wigley_lines.json"
-    if not path.is_file():
+    path = _example_in_empty_scene(examples, "wigley_lines.json")
+    if path is None:
         return
-    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     try:
         coll = api.load_network(path)
         coll.name = "fairing"
@@ -709,10 +718,9 @@ def hierarchy_showcase(api, examples: Path, out: Path, engine: str, size: str) -
     and chine in red beside the new), of the new surface
     (``hard_chine_hierarchy_surface.png``), and the .blend with its attachments
     (``hard_chine_hierarchy.blend``). An error is logged."""
-    path = examples / "hard_chine.json"
-    if not path.is_file():
+    path = _example_in_empty_scene(examples, "hard_chine.json")
+    if path is None:
         return
-    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     try:
         coll = api.load_network(path)
         coll.name = "hard_chine_hierarchy"
@@ -800,10 +808,9 @@ def form_showcase(api, examples: Path, out: Path) -> None:
     change) and their sectional area curves drawn together
     (``frigate_breadth_comparison_sac.png``). An error is logged."""
     hydro_plot = _batten_module(api, "hydro_plot")
-    path = examples / "frigate_network.json"
-    if not path.is_file():
+    path = _example_in_empty_scene(examples, "frigate_network.json")
+    if path is None:
         return
-    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
     try:
         coll = api.load_network(path)
         breadth = api.form_topology(coll, draft=FORM_DRAFT)["parameters"]["breadth"]
