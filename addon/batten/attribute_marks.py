@@ -8,7 +8,7 @@ from batten_native import CurveError
 
 from . import point_attributes
 from .hierarchy import POINT_ATTRIBUTES, attachments_of, point_attributes_of
-from .spline_joints import end_point, joint_arrays, joint_layout, joint_points, single_spline, spline_points
+from .spline_joints import end_point, joint_arrays, joint_layout, joint_points, single_spline, world_points
 
 #: Samples per segment of a straight or blend drawn in the overlay.
 MARK_SAMPLES = 16
@@ -30,8 +30,7 @@ def attribute_marks(objects) -> dict[str, np.ndarray]:
             if not own and not attached:
                 continue
             spline = single_spline(obj)
-            matrix = np.array(obj.matrix_world, dtype=float)
-            world = {a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in spline_points(spline).items()}
+            world = world_points(obj, spline)
             if attached:
                 ends = [end_point(obj, a["end"]) for a in attached if "end" in a]
                 points = [a["point"] for a in attached if "point" in a]

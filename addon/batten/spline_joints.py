@@ -105,21 +105,23 @@ def write_points(spline, arrays: dict[str, np.ndarray]) -> None:
     spline.id_data.update_tag()
 
 
+def world_points(obj, spline) -> dict[str, np.ndarray]:
+    """``spline``'s point arrays (:func:`spline_points`) in world coordinates, (n, 3) each, by
+    ``obj``'s transform."""
+    matrix = np.array(obj.matrix_world, dtype=float)
+    return {a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in spline_points(spline).items()}
+
+
 def control_points_world(obj) -> np.ndarray:
     """Every control point of ``obj``'s spline (with a Bézier spline's handles), world (n, 3)."""
-    matrix = np.array(obj.matrix_world, dtype=float)
-    arrays = spline_points(single_spline(obj))
-    pts = np.concatenate([a[:, :3] for a in arrays.values()])
-    return pts @ matrix[:3, :3].T + matrix[:3, 3]
+    return np.concatenate(list(world_points(obj, single_spline(obj)).values()))
 
 
 def joint_points(obj) -> np.ndarray:
     """The world positions of the points ``obj``'s spline passes through (its joints)."""
     spline = single_spline(obj)
     index, _ = joint_layout(spline, obj.name)
-    matrix = np.array(obj.matrix_world, dtype=float)
-    co = spline_points(spline)["co"][index, :3]
-    return co @ matrix[:3, :3].T + matrix[:3, 3]
+    return world_points(obj, spline)["co"][index]
 
 
 def joint_direction(obj, k: int) -> np.ndarray:
@@ -127,8 +129,7 @@ def joint_direction(obj, k: int) -> np.ndarray:
     to its right one, or from the joint before to the one after where they coincide."""
     spline = single_spline(obj)
     index, _ = joint_layout(spline, obj.name)
-    matrix = np.array(obj.matrix_world, dtype=float)
-    world = {a: w[:, :3] @ matrix[:3, :3].T + matrix[:3, 3] for a, w in spline_points(spline).items()}
+    world = world_points(obj, spline)
     co, left, right, _ = joint_arrays(world, index)
     return point_attributes.through(co, left, right, k)
 
