@@ -16,6 +16,7 @@ mod fair;
 mod form;
 mod hull;
 mod hydro;
+mod hydro_transform;
 mod network;
 mod patch;
 mod sections;
@@ -63,6 +64,10 @@ pub use hydro::{
     OpenChain, PatchHydroModel, SectionArc, SectionSegment, TriangleHull, Waterplane, WetIntegrals,
     CAP_FLATNESS_RELATIVE, CENTREPLANE_RELATIVE, CENTREPLANE_TOLERANCE_RELATIVE,
     ENTRANCE_FIT_FRACTION, HALF_HULL_SLACK, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
+};
+pub use hydro_transform::{
+    transform_hydrostatic, Explored, HydroTargets, HydroTransformOptions, HydroTransformed, Stop,
+    VolumeTarget, LCB_TOLERANCE, MAX_EVALUATIONS, MIN_LENGTH_FRACTION, VOLUME_TOLERANCE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

@@ -5,9 +5,11 @@
 mod common;
 
 use batten_core::{
-    build_hull, fairness_metrics, form_topology, transform, transform_to, EdgeKind, FormError,
-    FormOptions, FormTopology, HullOptions, Network, NurbsCurve, Role, Target, Tolerance,
-    VertexMove,
+    build_hull, fairness_metrics, form_topology, hydrostatics, transform, transform_hydrostatic,
+    transform_to, CellDensity, EdgeKind, Flotation, FormError, FormOptions, FormTopology,
+    HullOptions, HydroTargets, HydroTransformOptions, HydroTransformed, Network, NurbsCurve, Role,
+    Stop, Target, Tolerance, VertexMove, VolumeTarget, LCB_TOLERANCE, SEA_WATER_DENSITY,
+    VOLUME_TOLERANCE,
 };
 use common::nc;
 use glam::DVec3;
@@ -559,4 +561,235 @@ fn frigate_breadth_depth_and_a_vertex_drag() {
         1e-9
     );
     no_new_warnings(&n, &dragged.network, "drag");
+}
+
+// Hydrostatic transformations (seed 002 §8): the barge's PMB ends moved to hit ∇ and LCB.
+
+fn hydro_options() -> HydroTransformOptions {
+    HydroTransformOptions {
+        draft: T,
+        datums: None,
+        density: SEA_WATER_DENSITY,
+        hull: HullOptions::try_new(Tolerance::DEFAULT.get(), 8).unwrap(),
+    }
+}
+
+/// The result's hydrostatics recomputed from its network alone (not the solver's figures).
+fn recheck(out: &HydroTransformed) -> batten_core::Hydrostatics {
+    let o = hydro_options();
+    let hull = build_hull(&out.network, &o.hull).unwrap();
+    let cells = hull.hydro_model(CellDensity::DEFAULT);
+    let f = Flotation {
+        draft: T,
+        trim: 0.0,
+        heel_deg: 0.0,
+        density: SEA_WATER_DENSITY,
+    };
+    hydrostatics(&cells, &f, &out.datums).unwrap()
+}
+
+/// Converged within the tolerances, in at most 12 hull evaluations, confirmed by a fresh
+/// build; the midship sections only moved along x, the deck stayed in its plane.
+fn assert_hit(n: &Network, out: &HydroTransformed, what: &str) {
+    assert_eq!(out.stop, Stop::Converged, "{what}: {:?}", out.stop);
+    assert!(
+        out.evaluations <= 12,
+        "{what}: {} evaluations",
+        out.evaluations
+    );
+    let h = recheck(out);
+    let lpp = out.datums.x_fp - out.datums.x_ap;
+    let dv = (h.volume / out.target_volume - 1.0).abs();
+    let dl = (h.lcb - out.target_lcb).abs() / lpp;
+    assert!(dv <= VOLUME_TOLERANCE, "{what}: volume misses by {dv:e}");
+    assert!(dl <= LCB_TOLERANCE, "{what}: LCB misses by {dl:e} Lpp");
+    for name in ["ms_aft", "ms_fwd"] {
+        let (a, b) = (curve(n, name), curve(&out.network, name));
+        let dx = b.control_points()[0].x - a.control_points()[0].x;
+        for (p, q) in a.control_points().iter().zip(b.control_points()) {
+            assert_near!(
+                q.x - p.x,
+                dx,
+                1e-9,
+                "{what}: {name} moves along x as a whole"
+            );
+            assert_near!(q.y, p.y, 1e-9, "{what}: {name} keeps its shape");
+            assert_near!(q.z, p.z, 1e-9, "{what}: {name} keeps its shape");
+        }
+    }
+    for p in curve(&out.network, "deck").control_points() {
+        assert_near!(p.z, D, 1e-12, "{what}: the deck stays in its plane");
+    }
+    for p in curve(&out.network, "fos").control_points() {
+        assert_near!(
+            p.y,
+            HB,
+            1e-12,
+            "{what}: the flat of side stays in its plane"
+        );
+    }
+    no_new_warnings(n, &out.network, what);
+}
+
+#[test]
+fn barge_cb_plus_one_hundredth_with_lcb_held() {
+    let n = barge(2.0, 0.2);
+    let o = hydro_options();
+    let before = transform_hydrostatic(&n, HydroTargets::default(), &o).unwrap();
+    assert_eq!(
+        before.evaluations, 1,
+        "nothing asked: the original is the answer"
+    );
+    let cb = before.before.cb + 0.01;
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Cb(cb)),
+        lcb: None,
+    };
+    let out = transform_hydrostatic(&n, targets, &o).unwrap();
+    assert_hit(&n, &out, "Cb + 0.01");
+    assert_near!(recheck(&out).cb, cb, 1e-5, "Cb reached");
+    assert_near!(out.target_lcb, out.before.lcb, 0.0, "LCB held at its value");
+    assert!(
+        out.pmb_length[1] > out.pmb_length[0] + 10.0,
+        "a fuller hull has a longer PMB: {:?}",
+        out.pmb_length
+    );
+}
+
+#[test]
+fn barge_lcb_forward_and_aft_with_volume_held_mirror_each_other() {
+    let n = barge(2.0, 0.2);
+    let o = hydro_options();
+    let base = transform_hydrostatic(&n, HydroTargets::default(), &o).unwrap();
+    let lpp = base.datums.x_fp - base.datums.x_ap;
+    let mut runs = Vec::new();
+    for sign in [1.0, -1.0] {
+        let targets = HydroTargets {
+            volume: None,
+            lcb: Some(base.before.lcb + sign * 0.0025 * lpp),
+        };
+        let out = transform_hydrostatic(&n, targets, &o).unwrap();
+        assert_hit(&n, &out, "LCB ± 0.25 % Lpp");
+        runs.push(out);
+    }
+    // The barge is symmetric fore and aft: LCB forward is LCB aft mirrored.
+    assert_near!(runs[0].entrance_length[1], runs[1].run_length[1], 1e-6);
+    assert_near!(runs[0].run_length[1], runs[1].entrance_length[1], 1e-6);
+    assert!(
+        runs[0].entrance_length[1] < 40.0,
+        "LCB forward: the PMB moves forward"
+    );
+}
+
+#[test]
+fn barge_volume_and_lcb_together() {
+    let n = barge(2.0, 0.2);
+    let o = hydro_options();
+    let base = transform_hydrostatic(&n, HydroTargets::default(), &o).unwrap();
+    let lpp = base.datums.x_fp - base.datums.x_ap;
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Volume(base.before.volume * 1.005)),
+        lcb: Some(base.before.lcb - 0.001 * lpp),
+    };
+    assert_hit(
+        &n,
+        &transform_hydrostatic(&n, targets, &o).unwrap(),
+        "∇ +0.5 %, LCB aft",
+    );
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Displacement(base.before.displacement * 1.01)),
+        lcb: None,
+    };
+    assert_hit(
+        &n,
+        &transform_hydrostatic(&n, targets, &o).unwrap(),
+        "Δ + 1 %",
+    );
+}
+
+#[test]
+fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
+    let n = barge(2.0, 0.2);
+    let o = hydro_options();
+    let base = transform_hydrostatic(&n, HydroTargets::default(), &o).unwrap();
+    // Cb + 0.2 asks for a box; the ends cannot squeeze that far.
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Cb(base.before.cb + 0.2)),
+        lcb: None,
+    };
+    let out = transform_hydrostatic(&n, targets, &o).unwrap();
+    let Stop::OutOfRange { limit } = &out.stop else {
+        panic!("out of range expected, got {:?}", out.stop)
+    };
+    assert!(!limit.is_empty());
+    assert!(out.evaluations <= batten_core::MAX_EVALUATIONS);
+    let h = recheck(&out);
+    assert!(
+        h.volume > base.before.volume * 1.02,
+        "the closest hull went towards the target: {} → {}",
+        base.before.volume,
+        h.volume
+    );
+    assert_near!(
+        h.volume,
+        out.after.volume,
+        1e-9 * h.volume,
+        "the result is the hull reported"
+    );
+    assert!(out.explored.volume[1] >= h.volume);
+    no_new_warnings(&n, &out.network, "closest hull");
+    // Smaller than the PMB allows: stopped by the PMB's minimum length, said so.
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Volume(base.before.volume * 0.9)),
+        lcb: None,
+    };
+    let out = transform_hydrostatic(&n, targets, &o).unwrap();
+    match &out.stop {
+        Stop::OutOfRange { limit } => assert!(limit.contains("parallel middle body"), "{limit}"),
+        s => panic!("out of range expected, got {s:?}"),
+    }
+    assert!(
+        out.pmb_length[1] < 3.0,
+        "PMB squeezed to its limit: {:?}",
+        out.pmb_length
+    );
+}
+
+#[test]
+fn hydrostatic_transformation_refuses_what_it_cannot_do() {
+    let o = HydroTransformOptions {
+        draft: 4.8,
+        ..hydro_options()
+    };
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Cb(0.5)),
+        lcb: None,
+    };
+    match transform_hydrostatic(&frigate(), targets, &o) {
+        Err(FormError::NoParallelMiddleBody { .. }) => {}
+        other => panic!("frigate has no PMB: {:?}", other.map(|o| o.stop)),
+    }
+    let n = barge(2.0, 0.2);
+    for bad in [
+        HydroTargets {
+            volume: Some(VolumeTarget::Volume(f64::NAN)),
+            lcb: None,
+        },
+        HydroTargets {
+            volume: Some(VolumeTarget::Cb(-0.5)),
+            lcb: None,
+        },
+        HydroTargets {
+            volume: None,
+            lcb: Some(f64::INFINITY),
+        },
+    ] {
+        assert!(
+            matches!(
+                transform_hydrostatic(&n, bad, &hydro_options()),
+                Err(FormError::BadTarget { .. })
+            ),
+            "{bad:?}"
+        );
+    }
 }

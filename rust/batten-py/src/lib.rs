@@ -17,6 +17,7 @@ mod form;
 mod hull;
 mod hull_model;
 mod hydro;
+mod hydro_transform;
 mod live;
 mod network;
 mod progress;
@@ -77,6 +78,7 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(topology::topology, m)?)?;
     m.add_function(wrap_pyfunction!(form::form_topology, m)?)?;
     m.add_function(wrap_pyfunction!(form::transform_network, m)?)?;
+    m.add_function(wrap_pyfunction!(hydro_transform::transform_hydrostatic, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_surface, m)?)?;
     m.add_function(wrap_pyfunction!(hull::build_hull_model, m)?)?;
     m.add_class::<hull_model::HullModel>()?;

@@ -58,6 +58,7 @@ from ._native import (
     section_noise,
     snap_to_nodes,
     topology,
+    transform_hydrostatic,
     transform_network,
 )
 
@@ -110,5 +111,6 @@ __all__ = [
     "snap_to_nodes",
     "topology",
     "form_topology",
+    "transform_hydrostatic",
     "transform_network",
 ]

@@ -209,6 +209,21 @@ def transform_network(
     tolerance: float = ...,  # DEFAULT_TOLERANCE
     draft: float | None = None,
 ) -> tuple[list[Curve], dict]: ...
+def transform_hydrostatic(
+    curves: list[Curve],
+    draft: float,
+    *,
+    volume: float | None = None,
+    displacement: float | None = None,
+    cb: float | None = None,
+    cp: float | None = None,
+    lcb: float | None = None,
+    lpp: float | None = None,
+    fp: float | None = None,
+    density: float = ...,  # SEA_WATER_DENSITY
+    tolerance: float = ...,  # DEFAULT_TOLERANCE
+    resolution: int = ...,  # DEFAULT_RESOLUTION
+) -> tuple[list[Curve], dict]: ...
 
 SEA_WATER_DENSITY: float
 

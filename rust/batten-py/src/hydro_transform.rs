@@ -1,0 +1,118 @@
+//! Hydrostatic transformations (seed 002 §8) as plain Python data.
+
+use batten_core::{
+    transform_hydrostatic as core_transform_hydrostatic, Datums, HullOptions, HydroTargets,
+    HydroTransformOptions, Stop, VolumeTarget, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
+    SEA_WATER_DENSITY,
+};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::curve::{curves_of, network_of, Curve};
+use crate::errors::{arg_err, core_err, form_err, guard};
+use crate::hydro::hydrostatics_dict;
+
+/// Take the network `curves` to a target volume (one of `volume` m³, `displacement` t, `cb`,
+/// `cp`) and/or `lcb` (x, m) by moving the ends of its parallel middle body (Lackenby's model,
+/// then quasi-Newton on the exact hydrostatics; a target not given is held), floating level at
+/// `draft`. Perpendiculars: `fp` with `lpp`, else those the original implies at `draft`.
+/// Returns `(curves, report)`: `before`, `after` (hydrostatics dicts), `target_volume`,
+/// `target_lcb`, `entrance_length`, `run_length`, `pmb_length` (each `[before, after]`),
+/// `evaluations`, `stop` (`"converged"`, `"out_of_range"`, `"evaluations_spent"`), `limit`
+/// (what stopped it, or None), `explored` (`volume`, `lcb`: `[min, max]` over the hulls evaluated), `x_ap`,
+/// `x_fp`.
+#[pyfunction]
+#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn transform_hydrostatic<'py>(
+    py: Python<'py>,
+    curves: Vec<PyRef<'py, Curve>>,
+    draft: f64,
+    volume: Option<f64>,
+    displacement: Option<f64>,
+    cb: Option<f64>,
+    cp: Option<f64>,
+    lcb: Option<f64>,
+    lpp: Option<f64>,
+    fp: Option<f64>,
+    density: f64,
+    tolerance: f64,
+    resolution: usize,
+) -> PyResult<(Vec<Curve>, Bound<'py, PyDict>)> {
+    let given: Vec<VolumeTarget> = [
+        volume.map(VolumeTarget::Volume),
+        displacement.map(VolumeTarget::Displacement),
+        cb.map(VolumeTarget::Cb),
+        cp.map(VolumeTarget::Cp),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    if given.len() > 1 {
+        return Err(arg_err(
+            "transform_hydrostatic: give one of volume, displacement, cb and cp, not several",
+        ));
+    }
+    if given.is_empty() && lcb.is_none() {
+        return Err(arg_err(
+            "transform_hydrostatic: give a volume (or displacement, cb, cp) target, an lcb target, or both",
+        ));
+    }
+    if !(draft.is_finite() && density.is_finite() && density > 0.0) {
+        return Err(arg_err(format!(
+            "transform_hydrostatic: draft {draft} and density {density} must be finite (density > 0)"
+        )));
+    }
+    let datums = match (fp, lpp) {
+        (Some(fp), Some(lpp)) => Some(Datums {
+            x_ap: fp - lpp,
+            x_fp: fp,
+        }),
+        (None, None) => None,
+        _ => {
+            return Err(arg_err(
+                "transform_hydrostatic: give fp and lpp together, or neither",
+            ))
+        }
+    };
+    let hull = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
+    let network = network_of("", &curves)?;
+    let options = HydroTransformOptions {
+        draft,
+        datums,
+        density,
+        hull,
+    };
+    let targets = HydroTargets {
+        volume: given.first().copied(),
+        lcb,
+    };
+    let out = py.detach(|| {
+        guard("transforming the hull to its hydrostatic targets", || {
+            core_transform_hydrostatic(&network, targets, &options).map_err(form_err)
+        })
+    })?;
+    let report = PyDict::new(py);
+    report.set_item("before", hydrostatics_dict(py, &out.before)?)?;
+    report.set_item("after", hydrostatics_dict(py, &out.after)?)?;
+    report.set_item("target_volume", out.target_volume)?;
+    report.set_item("target_lcb", out.target_lcb)?;
+    report.set_item("entrance_length", out.entrance_length.to_vec())?;
+    report.set_item("run_length", out.run_length.to_vec())?;
+    report.set_item("pmb_length", out.pmb_length.to_vec())?;
+    report.set_item("evaluations", out.evaluations)?;
+    let (stop, limit) = match &out.stop {
+        Stop::Converged => ("converged", None),
+        Stop::OutOfRange { limit } => ("out_of_range", Some(limit.clone())),
+        Stop::EvaluationsSpent => ("evaluations_spent", None),
+    };
+    report.set_item("stop", stop)?;
+    report.set_item("limit", limit)?;
+    let explored = PyDict::new(py);
+    explored.set_item("volume", out.explored.volume.to_vec())?;
+    explored.set_item("lcb", out.explored.lcb.to_vec())?;
+    report.set_item("explored", explored)?;
+    report.set_item("x_ap", out.datums.x_ap)?;
+    report.set_item("x_fp", out.datums.x_fp)?;
+    Ok((curves_of(&out.network), report))
+}
