@@ -70,6 +70,9 @@ from batten_native import (
 )
 from batten_native import form_topology as _form_topology
 from batten_native import topology as _topology
+from batten_native import (
+    transform_hydrostatic as _transform_hydrostatic,
+)
 
 from . import (
     bezier_form,
@@ -2283,6 +2286,98 @@ def transform(
     report["description"] = description
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, description, resolution=resolution)
+    return TransformResult(coll, report)
+
+
+#: Stations (AP to FP inclusive) of the sectional-area curves in a hydrostatic transformation's
+#: report.
+SAC_STATIONS = 41
+
+
+def transform_hydrostatic(
+    source,
+    *,
+    volume: float | None = None,
+    displacement: float | None = None,
+    cb: float | None = None,
+    cp: float | None = None,
+    lcb: float | None = None,
+    draft: float | None = None,
+    lpp: float | None = None,
+    fp: float | None = None,
+    density: float = SEA_WATER_DENSITY,
+    tolerance: float = DEFAULT_TOLERANCE,
+    resolution: int = CURVE_RESOLUTION,
+) -> TransformResult:
+    """Take the hull collection ``source`` (an original or a copy on its stack) to a target
+    displaced volume and LCB by moving the ends of its parallel middle body (seed 002 §8.1,
+    §8.3): the ends, the deck and the midship section keep their shape. Give one of
+    ``volume`` (m³), ``displacement`` (t), ``cb`` or ``cp`` (linked through Cm, which does not
+    change), and/or ``lcb`` (x of the centre of buoyancy, m, as :func:`hydrostatics` gives it);
+    a target not given is held at the hull's present value. The result is a new copy on the
+    stack, as :func:`transform` makes (undo with :func:`abandon`, keep with :func:`commit`).
+
+    Lackenby's model (general case, with a parallel middle body) starts a quasi-Newton
+    iteration on batten's exact hydrostatics of each transformed and rebuilt hull, until ∇ is
+    within 1e-5 of its target and the LCB within 1e-5·Lpp. A target beyond the deformation's
+    limits (the PMB, entrance and run each at least 2 % of the length; every hull building with
+    the original's faces and no new warning) gives the closest hull, no exception.
+
+    ``draft``: the collection's design draft when not given. Perpendiculars as in
+    :func:`hydrostatics`, held for every hull. ``report``: ``before`` and ``after`` (the
+    hydrostatics dicts), ``target_volume``, ``target_lcb``, ``entrance_length``,
+    ``run_length``, ``pmb_length`` (each ``[before, after]``), ``evaluations`` (hulls
+    transformed, rebuilt and floated, the original's included), ``stop`` (``"converged"``,
+    ``"out_of_range"`` or ``"evaluations_spent"``), ``limit`` (what stopped it), ``explored``
+    (``volume`` and ``lcb`` ``[min, max]`` over the hulls evaluated), ``sac`` (``x``,
+    ``before``, ``after``: the sectional areas at :data:`SAC_STATIONS` stations from AP to
+    FP), ``x_ap``, ``x_fp`` and ``description``.
+
+    Raises InvalidArgumentError for a hull with no parallel middle body (the face-bulge mode of
+    §8.2, for such hulls, is not built yet), for no target, several volume targets, or a
+    target that is not a finite positive number; HydrostaticsError when the hull does not float
+    at the draft. Nothing is created then.
+    """
+    if not isinstance(source, bpy.types.Collection):
+        kind = type(source).__name__
+        raise InvalidArgumentError(f"transform_hydrostatic needs a hull collection, got {kind}")
+    original = form_stack.original_of(source)
+    draft = design_draft(original) if draft is None else draft
+    if draft is None:
+        raise InvalidArgumentError(
+            f"transform_hydrostatic: collection '{original.name}' has no design draft; give draft="
+        )
+    lpp, fp = _datums(original, lpp, fp)
+    curves, object_of = _read_source(source)
+    with errors_named_by_object(object_of):
+        new_curves, report = _transform_hydrostatic(
+            curves,
+            float(draft),
+            volume=volume,
+            displacement=displacement,
+            cb=cb,
+            cp=cp,
+            lcb=lcb,
+            lpp=lpp,
+            fp=fp,
+            density=density,
+            tolerance=tolerance,
+        )
+    asked = [
+        f"{name} {value:g}"
+        for name, value in (("∇", volume), ("Δ", displacement), ("Cb", cb), ("Cp", cp), ("LCB", lcb))
+        if value is not None
+    ]
+    report["description"] = "hydrostatic: " + ", ".join(asked)
+    sources = form_stack.source_objects(source, object_of)
+    coll = form_stack.push_copy(original, new_curves, sources, report["description"], resolution=resolution)
+    datums = {"lpp": report["x_fp"] - report["x_ap"], "fp": report["x_fp"]}
+    xs = np.linspace(report["x_ap"], report["x_fp"], SAC_STATIONS)
+    report["sac"] = {
+        "x": xs,
+        "before": sectional_areas(source, draft, xs, **datums)[1],
+        "after": sectional_areas(coll, draft, xs, **datums)[1],
+    }
     return TransformResult(coll, report)
 
 

@@ -83,8 +83,11 @@ pub struct HydroTargets {
 pub struct HydroTransformOptions {
     /// Draft (m above the baseline), upright and level.
     pub draft: f64,
-    /// Perpendiculars; `None`: those the original implies at `draft` (held for every hull).
+    /// Perpendiculars; `None`: those the original implies at `draft` (FP at the fore end of
+    /// its waterline, AP `lpp` aft of it or at the waterline's aft end), held for every hull.
     pub datums: Option<Datums>,
+    /// Lpp for the implied perpendiculars (when `datums` is `None`).
+    pub lpp: Option<f64>,
     /// Water density (t/m³).
     pub density: f64,
     /// Model tolerance and resolution of the rebuilt hulls.
@@ -267,7 +270,7 @@ pub fn transform_hydrostatic(
     let cells = original.hydro_model(CellDensity::DEFAULT);
     let datums = match options.datums {
         Some(d) => d,
-        None => default_datums(&cells, options.draft, None).map_err(Error::from)?,
+        None => default_datums(&cells, options.draft, options.lpp).map_err(Error::from)?,
     };
     let before = hydrostatics(&cells, &flotation, &datums).map_err(Error::from)?;
     let lpp = datums.x_fp - datums.x_ap;

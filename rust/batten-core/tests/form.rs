@@ -569,6 +569,7 @@ fn hydro_options() -> HydroTransformOptions {
     HydroTransformOptions {
         draft: T,
         datums: None,
+        lpp: None,
         density: SEA_WATER_DENSITY,
         hull: HullOptions::try_new(Tolerance::DEFAULT.get(), 8).unwrap(),
     }

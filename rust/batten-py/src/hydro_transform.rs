@@ -15,7 +15,8 @@ use crate::hydro::hydrostatics_dict;
 /// Take the network `curves` to a target volume (one of `volume` m³, `displacement` t, `cb`,
 /// `cp`) and/or `lcb` (x, m) by moving the ends of its parallel middle body (Lackenby's model,
 /// then quasi-Newton on the exact hydrostatics; a target not given is held), floating level at
-/// `draft`. Perpendiculars: `fp` with `lpp`, else those the original implies at `draft`.
+/// `draft`. Perpendiculars: `fp` with `lpp`, else FP at the fore end of the original's waterline at
+/// `draft` and AP `lpp` aft of it (or at the waterline's aft end); held for every hull.
 /// Returns `(curves, report)`: `before`, `after` (hydrostatics dicts), `target_volume`,
 /// `target_lcb`, `entrance_length`, `run_length`, `pmb_length` (each `[before, after]`),
 /// `evaluations`, `stop` (`"converged"`, `"out_of_range"`, `"evaluations_spent"`), `limit`
@@ -68,10 +69,10 @@ pub(crate) fn transform_hydrostatic<'py>(
             x_ap: fp - lpp,
             x_fp: fp,
         }),
-        (None, None) => None,
-        _ => {
+        (None, _) => None,
+        (Some(_), None) => {
             return Err(arg_err(
-                "transform_hydrostatic: give fp and lpp together, or neither",
+                "transform_hydrostatic: fp was given without lpp: give the length between perpendiculars too",
             ))
         }
     };
@@ -80,6 +81,7 @@ pub(crate) fn transform_hydrostatic<'py>(
     let options = HydroTransformOptions {
         draft,
         datums,
+        lpp,
         density,
         hull,
     };
