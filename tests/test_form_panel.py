@@ -167,3 +167,43 @@ def test_moving_a_numbered_form_vertex_makes_a_copy_with_the_vertex_moved(exampl
     status, reports = execute(BATTEN_OT_move_form_vertex, bpy.context)
     assert status == {"CANCELLED"} and "999" in reports[-1][1], reports
     assert settings.source == copy, "a refused move changes nothing"
+
+
+def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_aim(barge):
+    from batten.form_operators import BATTEN_OT_transform_hydrostatic
+
+    settings = bpy.context.scene.batten
+    settings.draft = 0.0  # the collection's design draft
+    before = api.hydrostatics(barge, T)
+    settings.hydro_volume_target = "hold"
+    settings.hydro_use_lcb = False
+    status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
+    assert status == {"CANCELLED"} and any("volume target" in text for _, text in reports), reports
+    assert len(api.transform_stack(barge)) == 1, "nothing made"
+    settings.hydro_volume_target = "cb"
+    settings.hydro_volume_value = before["cb"] + 0.01
+    settings.hydro_use_lcb = True
+    settings.hydro_lcb = before["lcb"] + 0.2
+    status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
+    assert status == {"FINISHED"}, reports
+    copy = settings.source
+    assert copy != barge and api.transform_stack(barge)[-1]["collection"] == copy
+    summary = json.loads(settings.last_hydro_transform)
+    assert summary["stop"] == "converged" and summary["copy"] == copy.name
+    rows = {row["label"]: row for row in summary["rows"]}
+    assert rows["Cb"]["after"] == pytest.approx(before["cb"] + 0.01, abs=2e-5)
+    assert rows["LCB (m)"]["aim"] == pytest.approx(before["lcb"] + 0.2, abs=1e-6)
+    after = api.hydrostatics(copy, T, lpp=before["lpp"], fp=before["x_fp"])
+    assert after["lcb"] == pytest.approx(before["lcb"] + 0.2, abs=2e-3)
+    drawn = _draw()["labels"]
+    assert f"{before['cb']:.4f} → {before['cb'] + 0.01:.4f}" in drawn
+    assert any("hull evaluations" in t for t in drawn)
+    # A target beyond reach: the closest copy, and the panel says what stopped it.
+    settings.source = barge
+    settings.hydro_use_lcb = False
+    settings.hydro_volume_target = "volume"
+    settings.hydro_volume_value = 0.5 * before["volume"]
+    status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
+    assert status == {"FINISHED"}, reports
+    assert any("out of range" in text for _, text in reports), reports
+    assert any("parallel middle body" in t for t in _draw()["labels"])

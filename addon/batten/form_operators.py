@@ -101,6 +101,72 @@ class BATTEN_OT_transform(HullOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
+#: The figures of a hydrostatic transformation the Form panel shows: key in the hydrostatics,
+#: label, format.
+HYDRO_ROWS = (
+    ("volume", "∇ (m³)", "{:.2f}"),
+    ("displacement", "Δ (t)", "{:.2f}"),
+    ("cb", "Cb", "{:.4f}"),
+    ("cp", "Cp", "{:.4f}"),
+    ("lcb", "LCB (m)", "{:.3f}"),
+)
+
+
+def hydro_summary(result) -> dict:
+    """What the Form panel shows of a hydrostatic transformation (``result`` an
+    :class:`api.TransformResult` of :func:`batten.api.transform_hydrostatic`): each figure
+    before, after and aimed at (None where nothing was aimed at), and how it ended."""
+    r = result.report
+    rows = []
+    for key, label, fmt in HYDRO_ROWS:
+        aim = {"volume": r["target_volume"], "lcb": r["target_lcb"]}.get(key)
+        before, after = r["before"][key], r["after"][key]
+        rows.append({"label": label, "format": fmt, "before": before, "after": after, "aim": aim})
+    return {
+        "copy": result.collection.name,
+        "description": r["description"],
+        "rows": rows,
+        "evaluations": r["evaluations"],
+        "stop": r["stop"],
+        "limit": r["limit"],
+        "pmb_length": r["pmb_length"],
+    }
+
+
+class BATTEN_OT_transform_hydrostatic(HullOperator, bpy.types.Operator):
+    """Move the ends of the parallel middle body until the hull has the volume (∇, Δ, Cb or Cp)
+    and LCB asked for, in a new copy on its transformation stack (a target beyond reach gives
+    the closest hull, and says what stopped it)"""
+
+    bl_idname = "batten.transform_hydrostatic"
+    bl_label = "Reach Targets"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def run(self, context):
+        settings = context.scene.batten
+        targets = {}
+        if settings.hydro_volume_target != "hold":
+            targets[settings.hydro_volume_target] = settings.hydro_volume_value
+        if settings.hydro_use_lcb:
+            targets["lcb"] = settings.hydro_lcb
+        if not targets:
+            self.report({"ERROR"}, "Choose a volume target or tick LCB")
+            return {"CANCELLED"}
+        result = api.transform_hydrostatic(settings.source, draft=draft_of(settings) or None, **targets)
+        summary = hydro_summary(result)
+        settings.last_hydro_transform = json.dumps(summary)
+        settings.source = result.collection
+        settings.last_transform = ""
+        level = "INFO" if summary["stop"] == "converged" else "WARNING"
+        why = "" if summary["limit"] is None else f" ({summary['limit']})"
+        self.report(
+            {level},
+            f"'{result.collection.name}': {summary['stop'].replace('_', ' ')} in "
+            f"{summary['evaluations']} hull evaluations{why}",
+        )
+        return {"FINISHED"}
+
+
 class BATTEN_OT_move_form_vertex(HullOperator, bpy.types.Operator):
     """Move one form vertex by the translation given, in a new copy of the hull on its stack:
     the move passes along the form edges by their kind and the curves inside the faces follow"""
@@ -496,6 +562,7 @@ _CLASSES = (
     BATTEN_OT_set_curve_attribute,
     BATTEN_OT_measure_form,
     BATTEN_OT_transform,
+    BATTEN_OT_transform_hydrostatic,
     BATTEN_OT_move_form_vertex,
     BATTEN_OT_select_transform,
     BATTEN_OT_compare_transform,

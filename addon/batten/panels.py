@@ -222,6 +222,20 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
         row = col.row(align=True)
         row.operator("batten.move_form_vertex", icon="EMPTY_ARROWS")
         row.operator("batten.drag_form_vertex", icon="RESTRICT_SELECT_OFF")
+        box = layout.box()
+        box.label(text="Hydrostatic targets (PMB ends)", icon="MOD_FLUIDSIM")
+        row = box.row(align=True)
+        row.prop(settings, "hydro_volume_target", text="")
+        sub = row.row(align=True)
+        sub.enabled = settings.hydro_volume_target != "hold"
+        sub.prop(settings, "hydro_volume_value", text="")
+        row = box.row(align=True)
+        row.prop(settings, "hydro_use_lcb")
+        sub = row.row(align=True)
+        sub.enabled = settings.hydro_use_lcb
+        sub.prop(settings, "hydro_lcb", text="")
+        box.operator("batten.transform_hydrostatic", icon="DUPLICATE")
+        _draw_hydro_change(layout, settings.last_hydro_transform, source)
         try:
             stack = api.transform_stack(source) if source is not None else []
         except api.BattenError:
@@ -365,6 +379,32 @@ def _draw_attachments(col, active) -> None:
     )
     if children:
         col.label(text=f"Carries: {_names(children)}")
+
+
+def _draw_hydro_change(layout, text: str, source) -> None:
+    """The last hydrostatic transformation, while its copy is the panel's hull: each figure
+    before → after (and the target), the evaluations, and why it stopped."""
+    if not text or source is None:
+        return
+    change = json.loads(text)
+    if change.get("copy") != source.name:
+        return
+    box = layout.box()
+    box.label(text=f"{change['copy']}: {change['description']}", icon="SORTSIZE")
+    col = box.column(align=True)
+    for row in change["rows"]:
+        fmt = row["format"]
+        split = col.split(factor=0.3, align=True)
+        split.label(text=row["label"])
+        split = split.split(factor=0.6, align=True)
+        split.label(text=f"{fmt.format(row['before'])} → {fmt.format(row['after'])}")
+        split.label(text="—" if row["aim"] is None else fmt.format(row["aim"]))
+    pmb = change["pmb_length"]
+    col.label(text=f"PMB {pmb[0]:.3f} → {pmb[1]:.3f} m; {change['evaluations']} hull evaluations")
+    if change["stop"] != "converged":
+        text = f"{change['stop'].replace('_', ' ')}: {change['limit'] or 'targets not met'}"
+        for i, line in enumerate(textwrap.wrap(text, ERROR_LINE_CHARS)):
+            col.label(text=line, icon="ERROR" if i == 0 else "BLANK1")
 
 
 def _draw_comparison(layout, text: str, source) -> None:

@@ -183,6 +183,48 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         subtype="TRANSLATION",
         unit="LENGTH",
     )
+    hydro_volume_target: EnumProperty(
+        name="Volume target",
+        description="What the hydrostatic transformation aims at for the volume (seed 002 §8); "
+        "Hold keeps the present volume",
+        items=[
+            ("hold", "Hold ∇", "Keep the present displaced volume"),
+            ("volume", "∇ (m³)", "Displaced volume, both sides"),
+            ("displacement", "Δ (t)", "Displacement at the scene's density"),
+            ("cb", "Cb", "Block coefficient on Lpp, Bwl and the draft"),
+            ("cp", "Cp", "Prismatic coefficient on the midship section and Lpp"),
+        ],
+        default="cb",
+    )
+    hydro_volume_value: FloatProperty(
+        name="Value",
+        description="The target of the chosen volume figure",
+        default=0.7,
+        min=0.0,
+        max=1e9,
+        precision=4,
+    )
+    hydro_use_lcb: BoolProperty(
+        name="LCB",
+        description="Aim at an LCB too (else the present LCB is held)",
+        default=False,
+    )
+    hydro_lcb: FloatProperty(
+        name="LCB",
+        description="The target x of the centre of buoyancy (m, as the Hydrostatics panel gives it)",
+        default=0.0,
+        min=-1e5,
+        max=1e5,
+        precision=3,
+        unit="LENGTH",
+    )
+    last_hydro_transform: StringProperty(
+        name="Last hydrostatic transform",
+        description="The last hydrostatic transformation's figures before, after and aimed at (JSON), "
+        "shown in the Form panel",
+        default="",
+        options={"HIDDEN"},
+    )
     last_form: StringProperty(
         name="Last form",
         description="The form parameters last measured (JSON), shown in the Form panel",
