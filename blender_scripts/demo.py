@@ -835,6 +835,51 @@ def form_showcase(api, examples: Path, out: Path) -> None:
         _log(f"form: {type(e).__name__}: {e}")
 
 
+#: The hydrostatic-transformation showcase (seed 002 §8): the PMB barge at its design draft,
+#: taken to Cb + HYDRO_CB_CHANGE with its LCB moved forward by HYDRO_LCB_CHANGE of Lpp.
+HYDRO_DRAFT = 8.0
+HYDRO_CB_CHANGE = 0.01
+HYDRO_LCB_CHANGE = 0.0025
+
+
+def hydrostatic_showcase(api, examples: Path, out: Path) -> None:
+    """A hydrostatic transformation (seed 002 §8) beside its original: the PMB barge taken to
+    Cb + 0.01 and LCB + 0.25 % Lpp by moving its PMB's ends into a copy on its stack, then both
+    measured side by side (``pmb_barge_hydrostatic.json``: the solve's report and the
+    comparison) with their sectional area curves drawn together
+    (``pmb_barge_hydrostatic_sac.png``). An error is logged."""
+    hydro_plot = _batten_module(api, "hydro_plot")
+    path = _example_in_empty_scene(examples, "pmb_barge.json")
+    if path is None:
+        return
+    try:
+        coll = api.load_network(path)
+        coll[api.DESIGN_DRAFT_PROPERTY] = HYDRO_DRAFT
+        h = api.hydrostatics(coll, HYDRO_DRAFT)
+        t0 = time.perf_counter()
+        result = api.transform_hydrostatic(
+            coll, cb=h["cb"] + HYDRO_CB_CHANGE, lcb=h["lcb"] + HYDRO_LCB_CHANGE * h["lpp"]
+        )
+        seconds = time.perf_counter() - t0
+        r = result.report
+        comparison = api.compare(result, draft=HYDRO_DRAFT)
+        png, _ = hydro_plot.sac_comparison_png(comparison, out / "pmb_barge_hydrostatic_sac.png")
+        keep = ("target_volume", "target_lcb", "entrance_length", "run_length", "pmb_length")
+        solve = {k: r[k] for k in keep + ("evaluations", "stop", "limit", "description")}
+        solve["before"] = {k: r["before"][k] for k in ("volume", "cb", "cp", "lcb")}
+        solve["after"] = {k: r["after"][k] for k in ("volume", "cb", "cp", "lcb")}
+        table = {"solve": solve, "comparison": {k: v for k, v in comparison.items() if k != "sac"}}
+        (out / "pmb_barge_hydrostatic.json").write_text(json.dumps(table, indent=2) + "\n")
+        _log(
+            f"hydrostatic: PMB barge to {r['description']} in {r['evaluations']} hull evaluations, "
+            f"{seconds:.2f} s ({r['stop']}): Cb {r['before']['cb']:.4f} → {r['after']['cb']:.4f}, "
+            f"LCB {r['before']['lcb']:.3f} → {r['after']['lcb']:.3f} m, PMB "
+            f"{r['pmb_length'][0]:.2f} → {r['pmb_length'][1]:.2f} m; sectional areas in {png}"
+        )
+    except api.BattenError as e:
+        _log(f"hydrostatic: {type(e).__name__}: {e}")
+
+
 def main() -> None:
     args = _args()
     batten = _import_batten()
@@ -850,6 +895,7 @@ def main() -> None:
         run_example(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
     fairing_showcase(api, args.examples, args.out, args.engine, args.size)
     form_showcase(api, args.examples, args.out)
+    hydrostatic_showcase(api, args.examples, args.out)
     hierarchy_showcase(api, args.examples, args.out, args.engine, args.size)
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:

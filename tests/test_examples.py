@@ -6,7 +6,7 @@ import batten.api as api
 import pytest
 
 
-@pytest.mark.parametrize("name", ["wigley", "hard_chine"])
+@pytest.mark.parametrize("name", ["wigley", "hard_chine", "pmb_barge"])
 def test_example_json_matches_its_generator(examples_dir, name):
     spec = importlib.util.spec_from_file_location(name, examples_dir / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
@@ -84,3 +84,21 @@ def test_multi_chine_from_sections_only_builds_its_exact_hull(examples_dir):
         assert 50.0 < lo <= hi < 60.0 and hi - lo < 0.1, creases
     exact = json.loads(path.read_text())["exact_volume"]
     assert abs(report["enclosed_volume_half"] / exact - 1) < 1e-6, (report["enclosed_volume_half"], exact)
+
+
+def test_pmb_barge_has_its_parallel_middle_body_and_floats_at_its_draft(examples_dir):
+    coll = api.load_network(examples_dir / "pmb_barge.json")
+    p = api.form_topology(coll, draft=8.0)["parameters"]
+    assert (p["pmb_aft"], p["pmb_fwd"]) == pytest.approx((40.0, 60.0), abs=1e-9)
+    assert p["bilge_radius"] == pytest.approx(2.0, abs=1e-6)  # Blender's float32 points
+    assert (p["entrance_length"], p["run_length"]) == pytest.approx((40.0, 40.0), abs=1e-9)
+    h = api.hydrostatics(coll, 8.0)
+    # The midship section, exactly: 20 m × 8 m less the rise of floor's triangles (0.2 m over
+    # 10 m) and the two bilge fillets, r²(cot(θ/2) − (π − θ)/2) each at the corner angle θ
+    # between the bottom line and the side.
+    import math
+
+    theta = math.pi / 2 + math.atan(0.02)
+    fillet = 2.0**2 * (1 / math.tan(theta / 2) - (math.pi - theta) / 2)
+    assert h["midship_area"] == pytest.approx(2 * (10 * 8 - 10 * 0.2 / 2 - fillet), rel=1e-6)
+    assert h["bwl"] == pytest.approx(20.0, abs=1e-6)

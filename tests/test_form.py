@@ -3,107 +3,26 @@ parallel middle body) and a barge with a parallel middle body, flat of side and 
 floor and a circular bilge; the transformation stack leaves the original untouched until
 commit."""
 
-import math
+import importlib.util
+from pathlib import Path
 
 import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from batten_native import Curve, network_to_json
+from batten_native import network_to_json
 
-HB, D, T = 10.0, 12.0, 8.0
-
-
-def _pieces(name, pts, role, weights=None):
-    """A degree-2 curve of Bézier pieces (knots doubled between pieces)."""
-    n = (len(pts) - 1) // 2
-    knots = [0.0] * 3 + [float(k) for k in range(1, n) for _ in (0, 1)] + [float(n)] * 3
-    return Curve(name, 2, knots, np.array(pts, float), None if weights is None else np.array(weights), role)
+HB, D, T = 10.0, 12.0, 8.0  # as examples/pmb_barge.py
 
 
-def _barge_curves(r=2.0, rise=0.2):
-    k = np.array([HB, rise])
-    ub = -k / np.linalg.norm(k)
-    us = np.array([0.0, 1.0])
-    phi = 0.5 * math.acos(float(ub @ us))
-    length = r / math.tan(phi)
-    fob, fos, w = k + ub * length, k + us * length, math.sin(phi)
-
-    def section(name, x):
-        keel, deck = (x, 0.0, 0.0), (x, HB, D)
-        b, c, s = (x, *fob), (x, *k), (x, *fos)
-        mid = lambda p, q: tuple((np.array(p) + np.array(q)) / 2)  # noqa: E731
-        return _pieces(
-            name, [keel, mid(keel, b), b, c, s, mid(s, deck), deck], "midship", [1, 1, 1, w, 1, 1, 1]
-        )
-
-    deck_pts = [
-        (0, 0),
-        (8, HB),
-        (15, HB),
-        (27.5, HB),
-        (40, HB),
-        (50, HB),
-        (60, HB),
-        (72.5, HB),
-        (85, HB),
-        (92, HB),
-        (100, 0),
-    ]
-    deck = _pieces("deck", [(x, y, D) for x, y in deck_pts], "deck")
-
-    def station(name, x):
-        a, b = deck.domain
-        for _ in range(200):
-            m = 0.5 * (a + b)
-            a, b = (m, b) if deck.evaluate([m])[0][0] < x else (a, m)
-        top = deck.evaluate([0.5 * (a + b)])[0]
-        yd = float(top[1])
-        return Curve(
-            name,
-            3,
-            [0, 0, 0, 0, 0.5, 1, 1, 1, 1],
-            np.array(
-                [(x, 0, 0), (x, 0.7 * yd, 0.6), (x, 1.2 * yd, 0.45 * D), (x, 0.8 * yd, 0.75 * D), tuple(top)]
-            ),
-            None,
-            "free",
-        )
-
-    keel = Curve(
-        "keel",
-        1,
-        [0, 0, 1, 2, 3, 4, 5, 5],
-        np.array([(x, 0, 0) for x in (5, 20, 40, 60, 80, 95)], float),
-        None,
-        "keel",
-    )
-    zs = fos[1]
-    fos_c = _pieces(
-        "fos",
-        [(15, HB, D), (28, HB, zs), (40, HB, zs), (50, HB, zs), (60, HB, zs), (72, HB, zs), (85, HB, D)],
-        "fos",
-    )
-    yb, zb = fob
-    fob_c = _pieces(
-        "fob",
-        [(20, 0, 0), (30, yb, zb), (40, yb, zb), (50, yb, zb), (60, yb, zb), (70, yb, zb), (80, 0, 0)],
-        "fob",
-    )
-    stern = _pieces("stern", [(5, 0, 0), (0, 0, 2), (0, 0, D)], "transom")
-    stem = _pieces("stem", [(95, 0, 0), (100, 0, 2), (100, 0, D)], "stem")
-    return [
-        keel,
-        stern,
-        stem,
-        deck,
-        section("ms_aft", 40.0),
-        section("ms_fwd", 60.0),
-        fos_c,
-        fob_c,
-        station("st10", 10.0),
-        station("st90", 90.0),
-    ]
+def _barge_curves():
+    """The PMB barge of ``examples/pmb_barge.py`` (its generator, not the JSON, so both are
+    tested: ``test_examples`` checks that the JSON is what it writes)."""
+    path = Path(__file__).resolve().parent.parent / "examples" / "pmb_barge.py"
+    spec = importlib.util.spec_from_file_location("pmb_barge", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.barge_curves()
 
 
 @pytest.fixture
