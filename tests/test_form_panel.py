@@ -177,6 +177,7 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     before = api.hydrostatics(barge, T)
     settings.hydro_volume_target = "hold"
     settings.hydro_use_lcb = False
+    settings.hydro_keep_pmb = False
     status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
     assert status == {"CANCELLED"} and any("volume target" in text for _, text in reports), reports
     assert len(api.transform_stack(barge)) == 1, "nothing made"
@@ -197,7 +198,7 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     assert after["lcb"] == pytest.approx(before["lcb"] + 0.2, abs=2e-3)
     drawn = _draw()["labels"]
     assert f"{before['cb']:.4f} → {before['cb'] + 0.01:.4f}" in drawn
-    assert any("hull evaluations" in t for t in drawn)
+    assert any("hull evaluations" in t for t in drawn) and any(t.startswith("PMB ") for t in drawn)
     # A target beyond reach: the closest copy, and the panel says what stopped it.
     settings.source = barge
     settings.hydro_use_lcb = False
@@ -207,3 +208,12 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     assert status == {"FINISHED"}, reports
     assert any("out of range" in text for _, text in reports), reports
     assert any("parallel middle body" in t for t in _draw()["labels"])
+    # Hold PMB: the ends' faces bulge instead, and the panel says by how much.
+    settings.source = barge
+    settings.hydro_keep_pmb = True
+    settings.hydro_volume_target = "cb"
+    settings.hydro_volume_value = before["cb"] + 0.005
+    status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
+    assert status == {"FINISHED"}, reports
+    assert json.loads(settings.last_hydro_transform)["stop"] == "converged"
+    assert any(t.startswith("Bulge: entrance +") for t in _draw()["labels"])

@@ -79,9 +79,10 @@ def test_target_out_of_range_gives_the_closest_hull_and_says_why(barge):
 
 
 def test_what_it_refuses(barge, examples_dir):
-    frigate = api.load_network(examples_dir / "frigate_network.json")
-    with pytest.raises(api.InvalidArgumentError, match="parallel middle body"):
-        api.transform_hydrostatic(frigate, cb=0.5, draft=4.8)
+    wigley = api.load_network(examples_dir / "wigley.json")
+    with pytest.raises(api.InvalidArgumentError, match="role 'midship'"):
+        api.transform_hydrostatic(wigley, cb=0.5, draft=3.0)
+    assert len(api.transform_stack(wigley)) == 1
     with pytest.raises(api.InvalidArgumentError, match="one of volume"):
         api.transform_hydrostatic(barge, cb=0.8, volume=1000.0)
     with pytest.raises(api.InvalidArgumentError, match="give a volume"):
@@ -95,3 +96,30 @@ def test_what_it_refuses(barge, examples_dir):
         api.transform_hydrostatic(barge, cb=0.8)
     # Nothing was pushed by any refusal.
     assert len(api.transform_stack(barge)) == 1
+
+
+def test_frigate_without_a_pmb_bulges_its_ends(examples_dir):
+    frigate = api.load_network(examples_dir / "frigate_network.json")
+    before = api.hydrostatics(frigate, 4.8)
+    result = api.transform_hydrostatic(frigate, cb=before["cb"] - 0.005, draft=4.8)
+    r = result.report
+    assert (r["mode"], r["stop"]) == ("bulge", "converged")
+    assert r["pmb_length"] is None and "bulged ends" in r["description"]
+    entrance, run = r["bulge"]["offsets"]
+    assert entrance < 0 and run < 0, "finer: both ends flattened"
+    # Cb on the original's Lpp, Bwl and draft: a volume target (flattening the ends narrows
+    # the waterline a little, so the copy's own Cb is not the one asked for).
+    assert (r["target_figure"], r["target_value"]) == ("cb", pytest.approx(before["cb"] - 0.005))
+    assert r["target_volume"] == pytest.approx(before["volume"] * (1 - 0.005 / before["cb"]), rel=1e-9)
+    after = api.hydrostatics(result.collection, 4.8, lpp=r["x_fp"] - r["x_ap"], fp=r["x_fp"])
+    assert after["volume"] == pytest.approx(r["target_volume"], rel=2e-5)
+    assert abs(after["lcb"] - before["lcb"]) <= 2e-5 * before["lpp"]
+
+
+def test_barge_with_its_pmb_held_is_bulged_not_lengthened(barge):
+    before = api.hydrostatics(barge, T)
+    r = api.transform_hydrostatic(barge, cb=before["cb"] + 0.005, keep_pmb=True).report
+    assert (r["mode"], r["stop"]) == ("bulge", "converged")
+    assert r["pmb_length"][1] == pytest.approx(r["pmb_length"][0], abs=1e-9)
+    assert r["bulge"]["offsets"][0] == pytest.approx(r["bulge"]["offsets"][1], abs=1e-5)
+    assert r["bulge"]["offsets"][0] > 0

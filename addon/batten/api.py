@@ -2302,6 +2302,7 @@ def transform_hydrostatic(
     cb: float | None = None,
     cp: float | None = None,
     lcb: float | None = None,
+    keep_pmb: bool = False,
     draft: float | None = None,
     lpp: float | None = None,
     fp: float | None = None,
@@ -2310,33 +2311,43 @@ def transform_hydrostatic(
     resolution: int = CURVE_RESOLUTION,
 ) -> TransformResult:
     """Take the hull collection ``source`` (an original or a copy on its stack) to a target
-    displaced volume and LCB by moving the ends of its parallel middle body (seed 002 §8.1,
-    §8.3): the ends, the deck and the midship section keep their shape. Give one of
-    ``volume`` (m³), ``displacement`` (t), ``cb`` or ``cp`` (linked through Cm, which does not
-    change), and/or ``lcb`` (x of the centre of buoyancy, m, as :func:`hydrostatics` gives it);
-    a target not given is held at the hull's present value. The result is a new copy on the
-    stack, as :func:`transform` makes (undo with :func:`abandon`, keep with :func:`commit`).
+    displaced volume and LCB through its form topology (seed 002 §8). Give one of ``volume``
+    (m³), ``displacement`` (t), ``cb`` or ``cp`` (linked through Cm), and/or ``lcb`` (x of the
+    centre of buoyancy, m, as :func:`hydrostatics` gives it); a target not given is held at the
+    hull's present value. The result is a new copy on the stack, as :func:`transform` makes
+    (undo with :func:`abandon`, keep with :func:`commit`).
 
-    Lackenby's model (general case, with a parallel middle body) starts a quasi-Newton
-    iteration on batten's exact hydrostatics of each transformed and rebuilt hull, until ∇ is
-    within 1e-5 of its target and the LCB within 1e-5·Lpp. A target beyond the deformation's
-    limits (the PMB, entrance and run each at least 2 % of the length; every hull building with
-    the original's faces and no new warning) gives the closest hull, no exception.
+    Two deformations (§8.3's schedule: the first unless the PMB is held):
+
+    - a hull with a parallel middle body has its PMB's ends moved (§8.1): the ends, the deck
+      and the midship section keep their shape;
+    - a hull without one, or with ``keep_pmb``, has the form faces of its entrance and run
+      below the waterline bulged or flattened (§8.2): an offset along their normals, largest
+      in the middle of each face and zero on its edges; the form curves stay.
+
+    Lackenby's model (general case, with a PMB), or two trial bulges, start a quasi-Newton
+    iteration on batten's hydrostatics of each deformed and rebuilt hull, until ∇ is within
+    1e-5 of its target and the LCB within 1e-5·Lpp. A target beyond the deformation's limits
+    (the PMB, entrance and run each at least 2 % of the length, or a bulge at most a quarter of
+    the half breadth; every hull building with the original's faces and no new warning, and no
+    station gaining an inflection) gives the closest hull, no exception.
 
     ``draft``: the collection's design draft when not given. Perpendiculars as in
     :func:`hydrostatics`, held for every hull. ``report``: ``before`` and ``after`` (the
     hydrostatics dicts), ``target_volume``, ``target_lcb``, ``entrance_length``,
-    ``run_length``, ``pmb_length`` (each ``[before, after]``), ``evaluations`` (hulls
+    ``run_length``, ``pmb_length`` (each ``[before, after]``; None without a PMB), ``evaluations`` (hulls
     transformed, rebuilt and floated, the original's included), ``stop`` (``"converged"``,
     ``"out_of_range"`` or ``"evaluations_spent"``), ``limit`` (what stopped it), ``explored``
-    (``volume`` and ``lcb`` ``[min, max]`` over the hulls evaluated), ``sac`` (``x``,
+    (``volume`` and ``lcb`` ``[min, max]`` over the hulls evaluated), ``mode`` (``"pmb"`` or
+    ``"bulge"``), ``bulge`` (None, or the ``offsets`` of the entrance and the run, m, and their
+    form faces ``entrance_faces``, ``run_faces``), ``sac`` (``x``,
     ``before``, ``after``: the sectional areas at :data:`SAC_STATIONS` stations from AP to
     FP), ``x_ap``, ``x_fp`` and ``description``.
 
-    Raises InvalidArgumentError for a hull with no parallel middle body (the face-bulge mode of
-    §8.2, for such hulls, is not built yet), for no target, several volume targets, or a
-    target that is not a finite positive number; HydrostaticsError when the hull does not float
-    at the draft. Nothing is created then.
+    Raises InvalidArgumentError for a hull with neither a PMB nor a form face of its entrance
+    and run below the waterline, for no target, several volume targets, or a target that is not
+    a finite positive number; HydrostaticsError when the hull does not float at the draft.
+    Nothing is created then.
     """
     if not isinstance(source, bpy.types.Collection):
         kind = type(source).__name__
@@ -2358,6 +2369,7 @@ def transform_hydrostatic(
             cb=cb,
             cp=cp,
             lcb=lcb,
+            keep_pmb=keep_pmb,
             lpp=lpp,
             fp=fp,
             density=density,
@@ -2368,7 +2380,8 @@ def transform_hydrostatic(
         for name, value in (("∇", volume), ("Δ", displacement), ("Cb", cb), ("Cp", cp), ("LCB", lcb))
         if value is not None
     ]
-    report["description"] = "hydrostatic: " + ", ".join(asked)
+    how = "PMB ends" if report["mode"] == "pmb" else "bulged ends"
+    report["description"] = f"hydrostatic ({how}): " + ", ".join(asked)
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, report["description"], resolution=resolution)
     datums = {"lpp": report["x_fp"] - report["x_ap"], "fp": report["x_fp"]}

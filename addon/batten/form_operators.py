@@ -119,7 +119,8 @@ def hydro_summary(result) -> dict:
     r = result.report
     rows = []
     for key, label, fmt in HYDRO_ROWS:
-        aim = {"volume": r["target_volume"], "lcb": r["target_lcb"]}.get(key)
+        aims = {"volume": r["target_volume"], "lcb": r["target_lcb"], r["target_figure"]: r["target_value"]}
+        aim = aims.get(key)
         before, after = r["before"][key], r["after"][key]
         rows.append({"label": label, "format": fmt, "before": before, "after": after, "aim": aim})
     return {
@@ -130,13 +131,15 @@ def hydro_summary(result) -> dict:
         "stop": r["stop"],
         "limit": r["limit"],
         "pmb_length": r["pmb_length"],
+        "bulge": None if r["bulge"] is None else r["bulge"]["offsets"],
     }
 
 
 class BATTEN_OT_transform_hydrostatic(HullOperator, bpy.types.Operator):
-    """Move the ends of the parallel middle body until the hull has the volume (∇, Δ, Cb or Cp)
-    and LCB asked for, in a new copy on its transformation stack (a target beyond reach gives
-    the closest hull, and says what stopped it)"""
+    """Move the ends of the parallel middle body (or, without one or with Hold PMB, bulge the
+    ends' faces) until the hull has the volume (∇, Δ, Cb or Cp) and LCB asked for, in a new copy
+    on its transformation stack (a target beyond reach gives the closest hull, and says what
+    stopped it)"""
 
     bl_idname = "batten.transform_hydrostatic"
     bl_label = "Reach Targets"
@@ -152,7 +155,9 @@ class BATTEN_OT_transform_hydrostatic(HullOperator, bpy.types.Operator):
         if not targets:
             self.report({"ERROR"}, "Choose a volume target or tick LCB")
             return {"CANCELLED"}
-        result = api.transform_hydrostatic(settings.source, draft=draft_of(settings) or None, **targets)
+        result = api.transform_hydrostatic(
+            settings.source, keep_pmb=settings.hydro_keep_pmb, draft=draft_of(settings) or None, **targets
+        )
         summary = hydro_summary(result)
         settings.last_hydro_transform = json.dumps(summary)
         settings.source = result.collection

@@ -223,7 +223,7 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
         row.operator("batten.move_form_vertex", icon="EMPTY_ARROWS")
         row.operator("batten.drag_form_vertex", icon="RESTRICT_SELECT_OFF")
         box = layout.box()
-        box.label(text="Hydrostatic targets (PMB ends)", icon="MOD_FLUIDSIM")
+        box.label(text="Hydrostatic targets", icon="MOD_FLUIDSIM")
         row = box.row(align=True)
         row.prop(settings, "hydro_volume_target", text="")
         sub = row.row(align=True)
@@ -234,7 +234,9 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
         sub = row.row(align=True)
         sub.enabled = settings.hydro_use_lcb
         sub.prop(settings, "hydro_lcb", text="")
-        box.operator("batten.transform_hydrostatic", icon="DUPLICATE")
+        row = box.row(align=True)
+        row.prop(settings, "hydro_keep_pmb")
+        row.operator("batten.transform_hydrostatic", icon="DUPLICATE")
         _draw_hydro_change(layout, settings.last_hydro_transform, source)
         try:
             stack = api.transform_stack(source) if source is not None else []
@@ -399,8 +401,12 @@ def _draw_hydro_change(layout, text: str, source) -> None:
         split = split.split(factor=0.6, align=True)
         split.label(text=f"{fmt.format(row['before'])} → {fmt.format(row['after'])}")
         split.label(text="—" if row["aim"] is None else fmt.format(row["aim"]))
-    pmb = change["pmb_length"]
-    col.label(text=f"PMB {pmb[0]:.3f} → {pmb[1]:.3f} m; {change['evaluations']} hull evaluations")
+    pmb, bulge = change["pmb_length"], change.get("bulge")
+    if bulge is not None:
+        col.label(text=f"Bulge: entrance {bulge[0]:+.3f} m, run {bulge[1]:+.3f} m")
+    elif pmb is not None:
+        col.label(text=f"PMB {pmb[0]:.3f} → {pmb[1]:.3f} m")
+    col.label(text=f"{change['evaluations']} hull evaluations")
     if change["stop"] != "converged":
         text = f"{change['stop'].replace('_', ' ')}: {change['limit'] or 'targets not met'}"
         for i, line in enumerate(textwrap.wrap(text, ERROR_LINE_CHARS)):

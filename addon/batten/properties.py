@@ -218,6 +218,12 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         precision=3,
         unit="LENGTH",
     )
+    hydro_keep_pmb: BoolProperty(
+        name="Hold PMB",
+        description="Keep the parallel middle body's length and position: bulge or flatten the "
+        "entrance's and run's faces instead (seed 002 §8.2; hulls without a PMB always are)",
+        default=False,
+    )
     last_hydro_transform: StringProperty(
         name="Last hydrostatic transform",
         description="The last hydrostatic transformation's figures before, after and aimed at (JSON), "

@@ -48,11 +48,11 @@ pub use fair::{
     EXTREMUM_THRESHOLD, INFLECTION_THRESHOLD, MAX_FAIR_DEGREE, MIN_FLAT_RUN,
 };
 pub use form::{
-    form_topology, Bilge, EdgeKind, FormEdge, FormError, FormFace, FormOptions, FormParameters,
-    FormPlane, FormTopology, FormVertex, ParallelMiddleBody, Plan, PlaneKind, Target, Transformed,
-    VertexMove, BLEND_TANGENT_DEGREES,
+    form_topology, Bilge, EdgeKind, FaceBulge, FormEdge, FormError, FormFace, FormOptions,
+    FormParameters, FormPlane, FormTopology, FormVertex, ParallelMiddleBody, Plan, PlaneKind,
+    Target, Transformed, VertexMove, BLEND_TANGENT_DEGREES,
 };
-pub use form::{parametric_moves, transform, transform_to};
+pub use form::{parametric_moves, transform, transform_bulged, transform_to};
 pub use hull::{
     build_hull, FaceError, HullOptions, HullReport, HullSurface, KnuckleEdge, KnuckleSource,
     LiveHull, Rebuild, VertexCurvature, Warning, WarningKind, BOX_SLACK, FOLD_ANGLE_DEGREES,
@@ -67,7 +67,8 @@ pub use hydro::{
 };
 pub use hydro_transform::{
     transform_hydrostatic, Explored, HydroTargets, HydroTransformOptions, HydroTransformed, Stop,
-    VolumeTarget, LCB_TOLERANCE, MAX_EVALUATIONS, MIN_LENGTH_FRACTION, VOLUME_TOLERANCE,
+    VolumeTarget, LCB_TOLERANCE, MAX_BULGE_FRACTION, MAX_EVALUATIONS, MIN_LENGTH_FRACTION,
+    VOLUME_TOLERANCE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

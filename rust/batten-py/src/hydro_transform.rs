@@ -13,17 +13,21 @@ use crate::errors::{arg_err, core_err, form_err, guard};
 use crate::hydro::hydrostatics_dict;
 
 /// Take the network `curves` to a target volume (one of `volume` m³, `displacement` t, `cb`,
-/// `cp`) and/or `lcb` (x, m) by moving the ends of its parallel middle body (Lackenby's model,
-/// then quasi-Newton on the exact hydrostatics; a target not given is held), floating level at
-/// `draft`. Perpendiculars: `fp` with `lpp`, else FP at the fore end of the original's waterline at
+/// `cp`) and/or `lcb` (x, m) through its form topology, floating level at `draft`: by moving
+/// the ends of its parallel middle body, or (no PMB, or `keep_pmb`) by bulging its ends' faces
+/// below the waterline (a target not given is held). Perpendiculars: `fp` with `lpp`, else FP at the fore end of the original's waterline at
 /// `draft` and AP `lpp` aft of it (or at the waterline's aft end); held for every hull.
-/// Returns `(curves, report)`: `before`, `after` (hydrostatics dicts), `target_volume`,
-/// `target_lcb`, `entrance_length`, `run_length`, `pmb_length` (each `[before, after]`),
+/// Returns `(curves, report)`: `before`, `after` (hydrostatics dicts), `target_figure`
+/// (`"volume"`, a displacement as its volume, `"cb"` or `"cp"`) and `target_value`,
+/// `target_volume` (Cb and Cp on the original's Lpp, Bwl and midship section),
+/// `target_lcb`, `mode` (`"pmb"` or `"bulge"`), `entrance_length`, `run_length`, `pmb_length`
+/// (each `[before, after]`, None without a PMB), `bulge` (None, or `offsets` `[entrance, run]`
+/// in m and the form faces `entrance_faces`, `run_faces`),
 /// `evaluations`, `stop` (`"converged"`, `"out_of_range"`, `"evaluations_spent"`), `limit`
 /// (what stopped it, or None), `explored` (`volume`, `lcb`: `[min, max]` over the hulls evaluated), `x_ap`,
 /// `x_fp`.
 #[pyfunction]
-#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
+#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, keep_pmb=false, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn transform_hydrostatic<'py>(
     py: Python<'py>,
@@ -34,6 +38,7 @@ pub(crate) fn transform_hydrostatic<'py>(
     cb: Option<f64>,
     cp: Option<f64>,
     lcb: Option<f64>,
+    keep_pmb: bool,
     lpp: Option<f64>,
     fp: Option<f64>,
     density: f64,
@@ -88,6 +93,7 @@ pub(crate) fn transform_hydrostatic<'py>(
     let targets = HydroTargets {
         volume: given.first().copied(),
         lcb,
+        keep_pmb,
     };
     let out = py.detach(|| {
         guard("transforming the hull to its hydrostatic targets", || {
@@ -97,11 +103,24 @@ pub(crate) fn transform_hydrostatic<'py>(
     let report = PyDict::new(py);
     report.set_item("before", hydrostatics_dict(py, &out.before)?)?;
     report.set_item("after", hydrostatics_dict(py, &out.after)?)?;
+    report.set_item("target_figure", out.target.0)?;
+    report.set_item("target_value", out.target.1)?;
     report.set_item("target_volume", out.target_volume)?;
     report.set_item("target_lcb", out.target_lcb)?;
-    report.set_item("entrance_length", out.entrance_length.to_vec())?;
-    report.set_item("run_length", out.run_length.to_vec())?;
-    report.set_item("pmb_length", out.pmb_length.to_vec())?;
+    report.set_item("mode", out.mode)?;
+    report.set_item("entrance_length", out.entrance_length.map(|v| v.to_vec()))?;
+    report.set_item("run_length", out.run_length.map(|v| v.to_vec()))?;
+    report.set_item("pmb_length", out.pmb_length.map(|v| v.to_vec()))?;
+    match &out.bulge {
+        Some((offsets, [entrance, run])) => {
+            let bulge = PyDict::new(py);
+            bulge.set_item("offsets", offsets.to_vec())?;
+            bulge.set_item("entrance_faces", entrance.clone())?;
+            bulge.set_item("run_faces", run.clone())?;
+            report.set_item("bulge", bulge)?;
+        }
+        None => report.set_item("bulge", py.None())?,
+    }
     report.set_item("evaluations", out.evaluations)?;
     let (stop, limit) = match &out.stop {
         Stop::Converged => ("converged", None),

@@ -182,6 +182,29 @@ impl NurbsCurve {
             })
     }
 
+    /// The curve as a modeller that knows only knot layouts (Blender) holds it: itself when a
+    /// layout matches ([`NurbsCurve::matching_layout`]), else its Bézier pieces in the
+    /// `EndpointBezier` layout ([`NurbsCurve::bezier_control_points`]): the same shape, with
+    /// one unit of parameter per piece. What a surface built from the modeller's curves is
+    /// built from (its patches follow the curves' parameters).
+    pub fn as_layouts_hold(&self) -> NurbsCurve {
+        if self.matching_layout().is_some() {
+            return self.clone();
+        }
+        let hw = self.bezier_control_points();
+        let points: Vec<DVec3> = hw.iter().map(|h| h.truncate() / h.w).collect();
+        let weights: Vec<f64> = hw.iter().map(|h| h.w).collect();
+        let rational = weights.iter().any(|&w| w != 1.0);
+        NurbsCurve::from_layout(
+            &points,
+            rational.then_some(weights.as_slice()),
+            self.order(),
+            KnotLayout::EndpointBezier,
+            false,
+        )
+        .unwrap_or_else(|_| self.clone())
+    }
+
     /// Control points of the curve cut into Bézier pieces, consecutive pieces sharing their
     /// joint point (`1 + pieces·degree` homogeneous points). With the `EndpointBezier` layout
     /// and the same order they give back exactly this shape (parameterised per piece).

@@ -22,7 +22,7 @@ pub use identify::{
 pub use parameters::{Bilge, FormParameters, ParallelMiddleBody};
 pub use parametric::{parametric_moves, transform_to, Plan, Target};
 pub use planes::{FormPlane, PlaneKind};
-pub use transform::{transform, Transformed, VertexMove};
+pub use transform::{transform, transform_bulged, FaceBulge, Transformed, VertexMove};
 
 /// The form topology of `network` (Bole, seed 002, §6: form curves, vertices, edges, faces,
 /// planes) with its parameters measured (§7.2.5).

@@ -71,6 +71,17 @@ const FOOT_NOISE: f64 = 1e-9;
 /// A node whose curves lie farther apart than this fraction of the tolerance is re-attached.
 const REATTACH_FRACTION: f64 = 0.25;
 
+/// A bulge of one form face (seed 002 §8.2): the curves inside the face move along the
+/// face's surface normal, outward by `amount` (m) at the middle of the face and by nothing at
+/// its edges (inward, flattening the face, for a negative amount); the form curves stay.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FaceBulge {
+    /// The face (index into [`FormTopology::faces`]).
+    pub face: usize,
+    /// The offset at the middle of the face (m), outward from the hull.
+    pub amount: f64,
+}
+
 /// Transform `network` by moving form vertices (Bole, seed 002, §7.2; see the module docs).
 ///
 /// Errors: a move of a vertex that does not exist or is not finite ([`FormError::BadMove`]), a
@@ -82,6 +93,40 @@ pub fn transform(
     moves: &[VertexMove],
     tolerance: Tolerance,
 ) -> Result<Transformed, FormError> {
+    transform_bulged(network, form, moves, &[], tolerance)
+}
+
+/// [`transform`], with the faces of `bulges` bulged as well (seed 002 §8.2): each such face's
+/// surface after the change is the moved boundary's Gregory surface plus the bulge's offset
+/// `amount · b(x) · n(x)` along the unit normal `n` of the surface before, outward (away from
+/// the hull's centre line at mid-depth), where `b` is 1 at the middle of the face's domain and
+/// falls to 0 at its sides with a level tangent (the product of the squared distances to the
+/// domain's sides, normalised at its centre), so the face still meets its neighbours
+/// tangentially. The curves inside the face follow by step 5, stations and waterlines in their
+/// planes.
+///
+/// Errors: as [`transform`]; [`FormError::BadMove`] for a bulge of a face that does not exist
+/// or whose amount is not finite.
+pub fn transform_bulged(
+    network: &Network,
+    form: &FormTopology,
+    moves: &[VertexMove],
+    bulges: &[FaceBulge],
+    tolerance: Tolerance,
+) -> Result<Transformed, FormError> {
+    for b in bulges {
+        if b.face >= form.faces.len() || !b.amount.is_finite() {
+            return Err(FormError::BadMove {
+                vertex: b.face,
+                reason: format!(
+                    "a bulge of face {} by {} m: the form has {} faces and the amount must be finite",
+                    b.face,
+                    b.amount,
+                    form.faces.len()
+                ),
+            });
+        }
+    }
     for m in moves {
         if m.vertex >= form.vertices.len() {
             return Err(FormError::BadMove {
@@ -97,6 +142,7 @@ pub fn transform(
         }
     }
     let tv = distribute(form, moves);
+    let given = network;
     let refined = with_vertex_points(network, form)?;
     let network = &refined;
     let curves = network.curves();
@@ -122,7 +168,8 @@ pub fn transform(
         })
         .collect::<Result<_, _>>()?;
     // 5. Face interiors.
-    let faces = face_surfaces(network, form, &new_form_curves, tolerance)?;
+    let mut faces = face_surfaces(network, form, &new_form_curves, tolerance)?;
+    add_bulges(network, &mut faces, bulges);
     if !faces.is_empty() {
         points
             .par_iter_mut()
@@ -144,10 +191,18 @@ pub fn transform(
         .fold(0.0, f64::max);
     let mut new_curves: Vec<NetworkCurve> = Vec::with_capacity(curves.len());
     for (ci, c) in curves.iter().enumerate() {
+        // A form curve none of whose points moved is the curve given, without the knots its
+        // vertices had inserted (a modeller holding the curve by knot layouts would otherwise
+        // re-parameterise it, and the patches along it would change with nothing moved).
+        let unmoved = form.is_form_curve[ci] && c.curve.control_points() == points[ci];
         new_curves.push(NetworkCurve {
             name: c.name.clone(),
             role: c.role,
-            curve: with_points(ci, &points[ci])?,
+            curve: if unmoved {
+                given.curves()[ci].curve.clone()
+            } else {
+                with_points(ci, &points[ci])?
+            },
         });
     }
     // 6. Re-attach, form curves first.
@@ -362,11 +417,68 @@ fn blend_map(
 }
 
 /// The Gregory surface of one form face before and after the edges moved, with a grid of
-/// their mean's points for the first guess of a foot point.
+/// their mean's points for the first guess of a foot point, and the face's bulge (§8.2).
 struct FaceSurfaces {
     before: Patch,
     after: Patch,
     grid: Vec<(DVec2, DVec3)>,
+    bulge: Option<Bulge>,
+}
+
+/// A face's bulge: the offset at the middle along the outward normal (m, signed), and the
+/// product of the squared distances to the domain's sides at its centre (what normalises the
+/// bump to 1 there).
+#[derive(Clone, Copy, Debug)]
+struct Bulge {
+    amount: f64,
+    centre_product: f64,
+}
+
+/// The bulge's offset at domain point `x` of face `f` (zero without a bulge).
+fn bulge_offset(f: &FaceSurfaces, x: DVec2) -> DVec3 {
+    let Some(b) = f.bulge else {
+        return DVec3::ZERO;
+    };
+    let domain = f.before.domain();
+    let product: f64 = (0..domain.sides())
+        .map(|i| domain.distance(i, x).max(0.0).powi(2))
+        .product();
+    f.before.normal(x.to_array()) * (b.amount * product / b.centre_product)
+}
+
+/// Give the faces of `bulges` their bulge, its sign turned so that a positive amount moves
+/// the face away from the hull's centre line (y = 0 at the middle of the network's height).
+fn add_bulges(network: &Network, faces: &mut [FaceSurfaces], bulges: &[FaceBulge]) {
+    if bulges.is_empty() {
+        return;
+    }
+    let (lo, hi) =
+        network
+            .curves()
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                c.curve
+                    .control_points()
+                    .iter()
+                    .fold((lo, hi), |(lo, hi), p| (lo.min(p.z), hi.max(p.z)))
+            });
+    let mid = 0.5 * (lo + hi);
+    for b in bulges {
+        let f = &mut faces[b.face];
+        let domain = f.before.domain();
+        let c = domain.centre_v();
+        let centre_product: f64 = (0..domain.sides())
+            .map(|i| domain.distance(i, c).powi(2))
+            .product();
+        let p = f.before.eval(c.to_array());
+        let n = f.before.normal(c.to_array());
+        let away = DVec3::new(0.0, p.y, p.z - mid);
+        let sign = if n.dot(away) >= 0.0 { 1.0 } else { -1.0 };
+        f.bulge = Some(Bulge {
+            amount: sign * b.amount,
+            centre_product,
+        });
+    }
 }
 
 /// Step 5's surfaces: for every form face, the Gregory / Charrot–Gregory patch of its boundary
@@ -446,6 +558,7 @@ fn face_surfaces(
             before,
             after,
             grid,
+            bulge: None,
         });
     }
     Ok(out)
@@ -474,13 +587,19 @@ fn domain_grid(domain: &Domain) -> Vec<DVec2> {
 fn mean_surface(f: &FaceSurfaces, x: DVec2) -> (DVec3, DVec3, DVec3) {
     let (a, au, av) = f.before.derivatives(x.to_array());
     let (b, bu, bv) = f.after.derivatives(x.to_array());
+    // (A bulge is no part of the mean: the midpoint of a point's old and new place is found
+    // on the surfaces of the boundary alone, so the opposite bulge finds the same foot and
+    // moves the point back.)
     ((a + b) * 0.5, (au + bu) * 0.5, (av + bv) * 0.5)
 }
 
 /// The surfaces before and after at domain point `x` (inside the domain): the points of
 /// [`mean_surface`] without its derivatives.
 fn points_at(f: &FaceSurfaces, x: DVec2) -> (DVec3, DVec3) {
-    (f.before.eval(x.to_array()), f.after.eval(x.to_array()))
+    (
+        f.before.eval(x.to_array()),
+        f.after.eval(x.to_array()) + bulge_offset(f, x),
+    )
 }
 
 /// Step of the central differences for the mean surface's second derivatives (domain units):

@@ -46,6 +46,7 @@ __all__ = [
     "snap_to_nodes",
     "topology",
     "form_topology",
+    "transform_hydrostatic",
     "transform_network",
 ]
 __version__: Final[str]
@@ -218,6 +219,7 @@ def transform_hydrostatic(
     cb: float | None = None,
     cp: float | None = None,
     lcb: float | None = None,
+    keep_pmb: bool = False,
     lpp: float | None = None,
     fp: float | None = None,
     density: float = ...,  # SEA_WATER_DENSITY
