@@ -760,7 +760,13 @@ fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
     };
     let out = transform_hydrostatic(&n, targets, &o).unwrap();
     match &out.stop {
-        Stop::OutOfRange { limit } => assert!(limit.contains("parallel middle body"), "{limit}"),
+        Stop::OutOfRange { limit } => {
+            assert!(limit.contains("parallel middle body"), "{limit}");
+            assert!(
+                limit.contains("keep_pmb"),
+                "the other mode suggested: {limit}"
+            );
+        }
         s => panic!("out of range expected, got {s:?}"),
     }
     assert!(

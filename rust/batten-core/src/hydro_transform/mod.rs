@@ -249,8 +249,10 @@ pub fn transform_hydrostatic(
 
     let p = &form.parameters;
     let lengths = pmb_lengths(&form);
-    // Where the iteration starts when not from the original (the bulge mode's trial hulls).
+    // Where the iteration starts when not from the original (the bulge mode's trial hulls),
+    // and why it cannot start at all.
     let mut start: Option<(Evaluated, [f64; 2], [f64; 2])> = None;
+    let mut stuck: Option<String> = None;
     let (mode, mut jac) = match (&p.pmb, lengths) {
         (Some(pmb), Some([e0, r0, pmb0])) if !targets.keep_pmb => {
             let model = Lackenby::of(&cells, &flotation, &datums, pmb, p.x_range)?;
@@ -296,15 +298,20 @@ pub fn transform_hydrostatic(
             for k in 0..2 {
                 let mut h = sign * BULGE_DIFFERENCE * max;
                 let mut col = None;
+                let mut failed = None;
                 for _ in 0..=MAX_HALVINGS {
                     let at = |s: f64| {
                         let mut x = [0.0; 2];
                         x[k] = s;
                         x
                     };
-                    evaluations += 2;
-                    match (evaluate(at(h), &mode), evaluate(at(2.0 * h), &mode)) {
-                        (Ok(a), Ok(b)) => {
+                    evaluations += 1;
+                    let trial = evaluate(at(h), &mode).and_then(|a| {
+                        evaluations += 1;
+                        Ok((a, evaluate(at(2.0 * h), &mode)?))
+                    });
+                    match trial {
+                        Ok((a, b)) => {
                             let (fa, fb) = (miss(&a.hydro), miss(&b.hydro));
                             col = Some([(fb[0] - fa[0]) / h, (fb[1] - fa[1]) / h]);
                             for (x, ev, f) in [(at(h), a, fa), (at(2.0 * h), b, fb)] {
@@ -317,17 +324,20 @@ pub fn transform_hydrostatic(
                             }
                             break;
                         }
-                        _ => h *= 0.5,
+                        Err(why) => {
+                            h *= 0.5;
+                            failed = Some(why);
+                        }
                     }
                 }
                 let Some(col) = col else {
-                    return Err(FormError::NotMeasurable {
-                        parameter: "hydrostatic transformation",
-                        reason: format!(
-                            "no bulge of the {} passes the shape checks",
-                            ["entrance", "run"][k]
-                        ),
-                    });
+                    // Not even the smallest trial bulge passes: the original is the closest.
+                    stuck = Some(format!(
+                        "no bulge of the {} passes the shape checks: {}",
+                        ["entrance", "run"][k],
+                        failed.unwrap_or_default()
+                    ));
+                    break;
                 };
                 jac[0][k] = col[0];
                 jac[1][k] = col[1];
@@ -358,6 +368,9 @@ pub fn transform_hydrostatic(
     let stop = loop {
         if met(f) {
             break Stop::Converged;
+        }
+        if let Some(why) = stuck.take() {
+            break Stop::OutOfRange { limit: why };
         }
         if evaluations >= MAX_EVALUATIONS {
             break Stop::EvaluationsSpent;
@@ -429,6 +442,16 @@ pub fn transform_hydrostatic(
         if stalled && (limit_hit || radius.is_finite()) {
             break out_of_range(&blocked, "no step reduces the misses");
         }
+    };
+    // A target out of this mode's reach may be in the other's (§8.3: the designer is told).
+    let stop = match (stop, &mode, lengths.is_some()) {
+        (Stop::OutOfRange { limit }, Mode::Pmb { .. }, _) => Stop::OutOfRange {
+            limit: format!("{limit}; bulging the ends instead (keep_pmb) may reach it"),
+        },
+        (Stop::OutOfRange { limit }, Mode::Bulge { .. }, true) => Stop::OutOfRange {
+            limit: format!("{limit}; moving the PMB's ends instead (keep_pmb off) may reach it"),
+        },
+        (stop, _, _) => stop,
     };
     let (best, _, best_x) = best;
     let after = best.hydro;
