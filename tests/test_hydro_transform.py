@@ -123,3 +123,12 @@ def test_barge_with_its_pmb_held_is_bulged_not_lengthened(barge):
     assert r["pmb_length"][1] == pytest.approx(r["pmb_length"][0], abs=1e-9)
     assert r["bulge"]["offsets"][0] == pytest.approx(r["bulge"]["offsets"][1], abs=1e-5)
     assert r["bulge"]["offsets"][0] > 0
+
+
+def test_a_change_too_large_for_the_pmb_alone_bulges_the_ends_as_well(barge):
+    before = api.hydrostatics(barge, T)
+    r = api.transform_hydrostatic(barge, cb=before["cb"] + 0.2).report
+    assert r["mode"] == "pmb+bulge" and r["stop"] == "out_of_range"
+    assert "then, bulging the ends" in r["limit"] and "PMB ends and bulged ends" in r["description"]
+    assert r["pmb_length"][1] > r["pmb_length"][0] and min(r["bulge"]["offsets"]) > 0
+    assert r["after"]["volume"] > 1.03 * before["volume"]

@@ -2323,7 +2323,9 @@ def transform_hydrostatic(
       and the midship section keep their shape;
     - a hull without one, or with ``keep_pmb``, has the form faces of its entrance and run
       below the waterline bulged or flattened (§8.2): an offset along their normals, largest
-      in the middle of each face and zero on its edges; the form curves stay.
+      in the middle of each face and zero on its edges; the form curves stay;
+    - a change too large for the PMB's ends alone is combined: from the closest hull they
+      reach, the ends' faces are bulged as well (``mode`` ``"pmb+bulge"``).
 
     Lackenby's model (general case, with a PMB), or two trial bulges, start a quasi-Newton
     iteration on batten's hydrostatics of each deformed and rebuilt hull, until ∇ is within
@@ -2338,9 +2340,9 @@ def transform_hydrostatic(
     ``run_length``, ``pmb_length`` (each ``[before, after]``; None without a PMB), ``evaluations`` (hulls
     transformed, rebuilt and floated, the original's included), ``stop`` (``"converged"``,
     ``"out_of_range"`` or ``"evaluations_spent"``), ``limit`` (what stopped it), ``explored``
-    (``volume`` and ``lcb`` ``[min, max]`` over the hulls evaluated), ``mode`` (``"pmb"`` or
-    ``"bulge"``), ``bulge`` (None, or the ``offsets`` of the entrance and the run, m, and their
-    form faces ``entrance_faces``, ``run_faces``), ``sac`` (``x``,
+    (``volume`` and ``lcb`` ``[min, max]`` over the hulls evaluated), ``mode`` (``"pmb"``,
+    ``"bulge"`` or ``"pmb+bulge"``), ``bulge`` (None, or the ``offsets`` of the entrance and
+    the run, m, and their form faces ``entrance_faces``, ``run_faces``), ``sac`` (``x``,
     ``before``, ``after``: the sectional areas at :data:`SAC_STATIONS` stations from AP to
     FP), ``x_ap``, ``x_fp`` and ``description``.
 
@@ -2380,7 +2382,7 @@ def transform_hydrostatic(
         for name, value in (("∇", volume), ("Δ", displacement), ("Cb", cb), ("Cp", cp), ("LCB", lcb))
         if value is not None
     ]
-    how = "PMB ends" if report["mode"] == "pmb" else "bulged ends"
+    how = {"pmb": "PMB ends", "bulge": "bulged ends", "pmb+bulge": "PMB ends and bulged ends"}[report["mode"]]
     report["description"] = f"hydrostatic ({how}): " + ", ".join(asked)
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, report["description"], resolution=resolution)

@@ -736,7 +736,10 @@ fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
         panic!("out of range expected, got {:?}", out.stop)
     };
     assert!(!limit.is_empty());
-    assert!(out.evaluations <= batten_core::MAX_EVALUATIONS);
+    // Too large for the PMB's ends alone: the ends bulged as well, from where they stopped.
+    assert_eq!(out.mode, "pmb+bulge", "{limit}");
+    assert!(out.bulge.as_ref().unwrap().0.iter().all(|&b| b > 0.0));
+    assert!(out.evaluations < 2 * batten_core::MAX_EVALUATIONS);
     let h = recheck(&out);
     assert!(
         h.volume > base.before.volume * 1.02,
@@ -752,7 +755,8 @@ fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
     );
     assert!(out.explored.volume[1] >= h.volume);
     no_new_warnings(&n, &out.network, "closest hull");
-    // Smaller than the PMB allows: stopped by the PMB's minimum length, said so.
+    // Smaller than the PMB allows: stopped by the PMB's minimum length, then by the bulges'
+    // largest flattening, each said.
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Volume(base.before.volume * 0.9)),
         lcb: None,
@@ -763,8 +767,8 @@ fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
         Stop::OutOfRange { limit } => {
             assert!(limit.contains("parallel middle body"), "{limit}");
             assert!(
-                limit.contains("keep_pmb"),
-                "the other mode suggested: {limit}"
+                limit.contains("then, bulging the ends"),
+                "and the bulges' limit: {limit}"
             );
         }
         s => panic!("out of range expected, got {s:?}"),

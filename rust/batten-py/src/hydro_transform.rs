@@ -20,7 +20,7 @@ use crate::hydro::hydrostatics_dict;
 /// Returns `(curves, report)`: `before`, `after` (hydrostatics dicts), `target_figure`
 /// (`"volume"`, a displacement as its volume, `"cb"` or `"cp"`) and `target_value`,
 /// `target_volume` (Cb and Cp on the original's Lpp, Bwl and midship section),
-/// `target_lcb`, `mode` (`"pmb"` or `"bulge"`), `entrance_length`, `run_length`, `pmb_length`
+/// `target_lcb`, `mode` (`"pmb"`, `"bulge"` or `"pmb+bulge"`), `entrance_length`, `run_length`, `pmb_length`
 /// (each `[before, after]`, None without a PMB), `bulge` (None, or `offsets` `[entrance, run]`
 /// in m and the form faces `entrance_faces`, `run_faces`),
 /// `evaluations`, `stop` (`"converged"`, `"out_of_range"`, `"evaluations_spent"`), `limit`

@@ -127,6 +127,14 @@ impl Explored {
         }
     }
 
+    fn merge(&mut self, other: &Explored) {
+        self.volume = [
+            self.volume[0].min(other.volume[0]),
+            self.volume[1].max(other.volume[1]),
+        ];
+        self.lcb = [self.lcb[0].min(other.lcb[0]), self.lcb[1].max(other.lcb[1])];
+    }
+
     fn add(&mut self, h: &Hydrostatics) {
         self.volume = [self.volume[0].min(h.volume), self.volume[1].max(h.volume)];
         self.lcb = [self.lcb[0].min(h.lcb), self.lcb[1].max(h.lcb)];
@@ -150,7 +158,8 @@ pub struct HydroTransformed {
     pub target_volume: f64,
     /// The target LCB.
     pub target_lcb: f64,
-    /// The deformation used: `"pmb"` (the PMB's ends moved) or `"bulge"` (the ends' faces).
+    /// The deformation used: `"pmb"` (the PMB's ends moved), `"bulge"` (the ends' faces), or
+    /// `"pmb+bulge"` (both, for a change too large for the PMB's ends alone).
     pub mode: &'static str,
     /// Entrance length before and after (m), for a hull with a PMB.
     pub entrance_length: Option<[f64; 2]>,
@@ -184,13 +193,86 @@ fn pmb_lengths(form: &FormTopology) -> Option<[f64; 3]> {
 }
 
 /// Take `network` to `targets` (module docs): by the PMB's ends when it has a PMB and
-/// `targets.keep_pmb` is false, else by bulging its ends' faces below the waterline.
+/// `targets.keep_pmb` is false, else by bulging its ends' faces below the waterline. A change
+/// too large for the PMB's ends alone is combined (§8.3): from the closest hull they reach,
+/// the ends' faces are bulged as well (mode `"pmb+bulge"`; each stage spends at most
+/// [`MAX_EVALUATIONS`]).
 ///
 /// Errors: no PMB and no form face of the entrance or the run below the waterline
 /// ([`FormError::NotMeasurable`]), a target that is not a finite positive number (LCB: finite;
 /// [`FormError::BadTarget`]), the original does not build or float at the draft
 /// ([`FormError::Network`]).
 pub fn transform_hydrostatic(
+    network: &Network,
+    targets: HydroTargets,
+    options: &HydroTransformOptions,
+) -> Result<HydroTransformed, FormError> {
+    let first = solve(network, targets, options)?;
+    let Stop::OutOfRange { limit } = first.stop.clone() else {
+        return Ok(first);
+    };
+    let lpp = first.datums.x_fp - first.datums.x_ap;
+    let misses = |h: &Hydrostatics| {
+        norm([
+            (h.volume - first.target_volume) / first.target_volume,
+            (h.lcb - first.target_lcb) / lpp,
+        ])
+    };
+    if first.mode != "pmb" {
+        let other = if first.pmb_length.is_some() {
+            "; moving the PMB's ends instead (keep_pmb off) may reach it"
+        } else {
+            ""
+        };
+        return Ok(HydroTransformed {
+            stop: Stop::OutOfRange {
+                limit: format!("{limit}{other}"),
+            },
+            ..first
+        });
+    }
+    let second_targets = HydroTargets {
+        volume: Some(VolumeTarget::Volume(first.target_volume)),
+        lcb: Some(first.target_lcb),
+        keep_pmb: true,
+    };
+    let second_options = HydroTransformOptions {
+        datums: Some(first.datums),
+        ..*options
+    };
+    match solve(&first.network, second_targets, &second_options) {
+        Ok(second) if misses(&second.after) < misses(&first.after) => {
+            let mut explored = first.explored;
+            explored.merge(&second.explored);
+            Ok(HydroTransformed {
+                network: second.network,
+                after: second.after,
+                mode: "pmb+bulge",
+                bulge: second.bulge,
+                // The second stage's original is the first's result, already evaluated.
+                evaluations: first.evaluations + second.evaluations - 1,
+                stop: match second.stop {
+                    Stop::OutOfRange { limit: then } => Stop::OutOfRange {
+                        limit: format!("{limit}; then, bulging the ends: {then}"),
+                    },
+                    stop => stop,
+                },
+                explored,
+                ..first
+            })
+        }
+        _ => Ok(HydroTransformed {
+            stop: Stop::OutOfRange {
+                limit: format!("{limit}; bulging the ends as well came no closer"),
+            },
+            ..first
+        }),
+    }
+}
+
+/// One deformation's solve (module docs): the PMB's ends, or with `targets.keep_pmb` or no
+/// PMB the bulges.
+fn solve(
     network: &Network,
     targets: HydroTargets,
     options: &HydroTransformOptions,
@@ -442,16 +524,6 @@ pub fn transform_hydrostatic(
         if stalled && (limit_hit || radius.is_finite()) {
             break out_of_range(&blocked, "no step reduces the misses");
         }
-    };
-    // A target out of this mode's reach may be in the other's (§8.3: the designer is told).
-    let stop = match (stop, &mode, lengths.is_some()) {
-        (Stop::OutOfRange { limit }, Mode::Pmb { .. }, _) => Stop::OutOfRange {
-            limit: format!("{limit}; bulging the ends instead (keep_pmb) may reach it"),
-        },
-        (Stop::OutOfRange { limit }, Mode::Bulge { .. }, true) => Stop::OutOfRange {
-            limit: format!("{limit}; moving the PMB's ends instead (keep_pmb off) may reach it"),
-        },
-        (stop, _, _) => stop,
     };
     let (best, _, best_x) = best;
     let after = best.hydro;
