@@ -880,6 +880,46 @@ def hydrostatic_showcase(api, examples: Path, out: Path) -> None:
         _log(f"hydrostatic: {type(e).__name__}: {e}")
 
 
+#: The bulge showcase (seed 002 §8.2): the frigate (no parallel middle body) made finer by
+#: FRIGATE_CB_CHANGE of Cb, its LCB held, by flattening the faces of its ends.
+FRIGATE_CB_CHANGE = -0.005
+
+
+def bulge_showcase(api, examples: Path, out: Path) -> None:
+    """A hydrostatic transformation of a hull without a parallel middle body (seed 002 §8.2):
+    the frigate at T = 4.8 m made finer by flattening its entrance's and run's faces, beside
+    the original (``frigate_hydrostatic.json``, ``frigate_hydrostatic_sac.png``). An error is
+    logged."""
+    hydro_plot = _batten_module(api, "hydro_plot")
+    path = _example_in_empty_scene(examples, "frigate_network.json")
+    if path is None:
+        return
+    try:
+        coll = api.load_network(path)
+        h = api.hydrostatics(coll, FORM_DRAFT)
+        t0 = time.perf_counter()
+        result = api.transform_hydrostatic(coll, cb=h["cb"] + FRIGATE_CB_CHANGE, draft=FORM_DRAFT)
+        seconds = time.perf_counter() - t0
+        r = result.report
+        comparison = api.compare(result, draft=FORM_DRAFT)
+        png, _ = hydro_plot.sac_comparison_png(comparison, out / "frigate_hydrostatic_sac.png")
+        solve = {k: r[k] for k in ("mode", "target_figure", "target_value", "target_volume", "target_lcb")}
+        solve.update({k: r[k] for k in ("bulge", "evaluations", "stop", "limit", "description")})
+        solve["before"] = {k: r["before"][k] for k in ("volume", "cb", "lcb", "bwl")}
+        solve["after"] = {k: r["after"][k] for k in ("volume", "cb", "lcb", "bwl")}
+        table = {"solve": solve, "comparison": {k: v for k, v in comparison.items() if k != "sac"}}
+        (out / "frigate_hydrostatic.json").write_text(json.dumps(table, indent=2) + "\n")
+        offsets = r["bulge"]["offsets"] if r["bulge"] else [0.0, 0.0]
+        _log(
+            f"hydrostatic: frigate to {r['description']} in {r['evaluations']} hull evaluations, "
+            f"{seconds:.2f} s ({r['stop']}): ∇ {r['before']['volume']:.1f} → {r['after']['volume']:.1f} m³ "
+            f"(target {r['target_volume']:.1f}), bulges entrance {offsets[0]:+.3f} m, run "
+            f"{offsets[1]:+.3f} m; sectional areas in {png}"
+        )
+    except api.BattenError as e:
+        _log(f"hydrostatic: {type(e).__name__}: {e}")
+
+
 def main() -> None:
     args = _args()
     batten = _import_batten()
@@ -896,6 +936,7 @@ def main() -> None:
     fairing_showcase(api, args.examples, args.out, args.engine, args.size)
     form_showcase(api, args.examples, args.out)
     hydrostatic_showcase(api, args.examples, args.out)
+    bulge_showcase(api, args.examples, args.out)
     hierarchy_showcase(api, args.examples, args.out, args.engine, args.size)
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:
