@@ -2,7 +2,9 @@
 //! LCB through its form topology, by one of two deformations ([`mode`]): moving the ends of its
 //! parallel middle body (§8.1; the ends, the deck and the midship section keep their shape), or
 //! bulging / flattening the form faces of its entrance and run (§8.2; for a hull without a
-//! PMB, or with `keep_pmb`). §8.3's schedule: the PMB's ends unless the PMB is held.
+//! PMB, or with `keep_pmb`). §8.3's schedule: the PMB's ends unless the PMB is held, and
+//! both when a change is too large for the PMB's ends alone (the ends bulged from the closest
+//! hull the PMB's ends reach).
 //!
 //! - **The start**: for the PMB mode [`lackenby`]'s model (Lackenby 1950, the general case
 //!   with a PMB) gives the first Jacobian; for the bulge mode two hull evaluations give it by
@@ -43,7 +45,8 @@ use shape::Reference;
 pub const VOLUME_TOLERANCE: f64 = 1e-5;
 /// Converged when the LCB misses by at most this fraction of Lpp.
 pub const LCB_TOLERANCE: f64 = 1e-5;
-/// Hull evaluations (transform, rebuild, hydrostatics) at most, the original's included.
+/// Hull evaluations (transform, rebuild, hydrostatics) at most per deformation, the original's
+/// included.
 pub const MAX_EVALUATIONS: usize = 16;
 /// A step at a limit that takes less than this fraction off the (scaled) misses ends the
 /// iteration: the targets are out of range and the best hull so far is the closest.
