@@ -835,89 +835,60 @@ def form_showcase(api, examples: Path, out: Path) -> None:
         _log(f"form: {type(e).__name__}: {e}")
 
 
-#: The hydrostatic-transformation showcase (seed 002 §8): the PMB barge at its design draft,
-#: taken to Cb + HYDRO_CB_CHANGE with its LCB moved forward by HYDRO_LCB_CHANGE of Lpp.
-HYDRO_DRAFT = 8.0
-HYDRO_CB_CHANGE = 0.01
-HYDRO_LCB_CHANGE = 0.0025
+#: The hydrostatic-transformation showcases (seed 002 §8), each (example, name of the
+#: outputs, draft, targets from the original's hydrostatics): the PMB barge at its design
+#: draft taken to Cb + 0.01 with its LCB 0.25 % Lpp forward by moving its PMB's ends, and the
+#: frigate (no parallel middle body) made 0.005 finer in Cb, its LCB held, by flattening the
+#: faces of its ends.
+HYDRO_SHOWCASES = (
+    (
+        "pmb_barge.json",
+        "pmb_barge",
+        8.0,
+        lambda h: {"cb": h["cb"] + 0.01, "lcb": h["lcb"] + 0.0025 * h["lpp"]},
+    ),  # noqa: E501
+    ("frigate_network.json", "frigate", FORM_DRAFT, lambda h: {"cb": h["cb"] - 0.005}),
+)
 
 
 def hydrostatic_showcase(api, examples: Path, out: Path) -> None:
-    """A hydrostatic transformation (seed 002 §8) beside its original: the PMB barge taken to
-    Cb + 0.01 and LCB + 0.25 % Lpp by moving its PMB's ends into a copy on its stack, then both
-    measured side by side (``pmb_barge_hydrostatic.json``: the solve's report and the
-    comparison) with their sectional area curves drawn together
-    (``pmb_barge_hydrostatic_sac.png``). An error is logged."""
+    """Hydrostatic transformations (seed 002 §8) beside their originals, for each of
+    :data:`HYDRO_SHOWCASES`: the solve's report and the comparison
+    (``<name>_hydrostatic.json``) and both sectional area curves
+    (``<name>_hydrostatic_sac.png``). An error is logged."""
     hydro_plot = _batten_module(api, "hydro_plot")
-    path = _example_in_empty_scene(examples, "pmb_barge.json")
-    if path is None:
-        return
-    try:
-        coll = api.load_network(path)
-        coll[api.DESIGN_DRAFT_PROPERTY] = HYDRO_DRAFT
-        h = api.hydrostatics(coll, HYDRO_DRAFT)
-        t0 = time.perf_counter()
-        result = api.transform_hydrostatic(
-            coll, cb=h["cb"] + HYDRO_CB_CHANGE, lcb=h["lcb"] + HYDRO_LCB_CHANGE * h["lpp"]
-        )
-        seconds = time.perf_counter() - t0
-        r = result.report
-        comparison = api.compare(result, draft=HYDRO_DRAFT)
-        png, _ = hydro_plot.sac_comparison_png(comparison, out / "pmb_barge_hydrostatic_sac.png")
-        keep = ("target_volume", "target_lcb", "entrance_length", "run_length", "pmb_length")
-        solve = {k: r[k] for k in keep + ("evaluations", "stop", "limit", "description")}
-        solve["before"] = {k: r["before"][k] for k in ("volume", "cb", "cp", "lcb")}
-        solve["after"] = {k: r["after"][k] for k in ("volume", "cb", "cp", "lcb")}
-        table = {"solve": solve, "comparison": {k: v for k, v in comparison.items() if k != "sac"}}
-        (out / "pmb_barge_hydrostatic.json").write_text(json.dumps(table, indent=2) + "\n")
-        _log(
-            f"hydrostatic: PMB barge to {r['description']} in {r['evaluations']} hull evaluations, "
-            f"{seconds:.2f} s ({r['stop']}): Cb {r['before']['cb']:.4f} → {r['after']['cb']:.4f}, "
-            f"LCB {r['before']['lcb']:.3f} → {r['after']['lcb']:.3f} m, PMB "
-            f"{r['pmb_length'][0]:.2f} → {r['pmb_length'][1]:.2f} m; sectional areas in {png}"
-        )
-    except api.BattenError as e:
-        _log(f"hydrostatic: {type(e).__name__}: {e}")
-
-
-#: The bulge showcase (seed 002 §8.2): the frigate (no parallel middle body) made finer by
-#: FRIGATE_CB_CHANGE of Cb, its LCB held, by flattening the faces of its ends.
-FRIGATE_CB_CHANGE = -0.005
-
-
-def bulge_showcase(api, examples: Path, out: Path) -> None:
-    """A hydrostatic transformation of a hull without a parallel middle body (seed 002 §8.2):
-    the frigate at T = 4.8 m made finer by flattening its entrance's and run's faces, beside
-    the original (``frigate_hydrostatic.json``, ``frigate_hydrostatic_sac.png``). An error is
-    logged."""
-    hydro_plot = _batten_module(api, "hydro_plot")
-    path = _example_in_empty_scene(examples, "frigate_network.json")
-    if path is None:
-        return
-    try:
-        coll = api.load_network(path)
-        h = api.hydrostatics(coll, FORM_DRAFT)
-        t0 = time.perf_counter()
-        result = api.transform_hydrostatic(coll, cb=h["cb"] + FRIGATE_CB_CHANGE, draft=FORM_DRAFT)
-        seconds = time.perf_counter() - t0
-        r = result.report
-        comparison = api.compare(result, draft=FORM_DRAFT)
-        png, _ = hydro_plot.sac_comparison_png(comparison, out / "frigate_hydrostatic_sac.png")
-        solve = {k: r[k] for k in ("mode", "target_figure", "target_value", "target_volume", "target_lcb")}
-        solve.update({k: r[k] for k in ("bulge", "evaluations", "stop", "limit", "description")})
-        solve["before"] = {k: r["before"][k] for k in ("volume", "cb", "lcb", "bwl")}
-        solve["after"] = {k: r["after"][k] for k in ("volume", "cb", "lcb", "bwl")}
-        table = {"solve": solve, "comparison": {k: v for k, v in comparison.items() if k != "sac"}}
-        (out / "frigate_hydrostatic.json").write_text(json.dumps(table, indent=2) + "\n")
-        offsets = r["bulge"]["offsets"] if r["bulge"] else [0.0, 0.0]
-        _log(
-            f"hydrostatic: frigate to {r['description']} in {r['evaluations']} hull evaluations, "
-            f"{seconds:.2f} s ({r['stop']}): ∇ {r['before']['volume']:.1f} → {r['after']['volume']:.1f} m³ "
-            f"(target {r['target_volume']:.1f}), bulges entrance {offsets[0]:+.3f} m, run "
-            f"{offsets[1]:+.3f} m; sectional areas in {png}"
-        )
-    except api.BattenError as e:
-        _log(f"hydrostatic: {type(e).__name__}: {e}")
+    for example, name, draft, targets in HYDRO_SHOWCASES:
+        path = _example_in_empty_scene(examples, example)
+        if path is None:
+            continue
+        try:
+            coll = api.load_network(path)
+            coll[api.DESIGN_DRAFT_PROPERTY] = draft
+            t0 = time.perf_counter()
+            result = api.transform_hydrostatic(coll, **targets(api.hydrostatics(coll, draft)))
+            seconds = time.perf_counter() - t0
+            r = result.report
+            comparison = api.compare(result, draft=draft)
+            png, _ = hydro_plot.sac_comparison_png(comparison, out / f"{name}_hydrostatic_sac.png")
+            keys = ("mode", "target_figure", "target_value", "target_volume", "target_lcb", "pmb_length")
+            solve = {k: r[k] for k in keys + ("bulge", "evaluations", "stop", "limit", "description")}
+            for when in ("before", "after"):
+                solve[when] = {k: r[when][k] for k in ("volume", "cb", "cp", "lcb", "bwl")}
+            table = {"solve": solve, "comparison": {k: v for k, v in comparison.items() if k != "sac"}}
+            (out / f"{name}_hydrostatic.json").write_text(json.dumps(table, indent=2) + "\n")
+            how = (
+                f"PMB {r['pmb_length'][0]:.2f} → {r['pmb_length'][1]:.2f} m"
+                if r["mode"] == "pmb"
+                else f"bulges {', '.join(f'{b:+.3f} m' for b in r['bulge']['offsets'])}"
+            )
+            _log(
+                f"hydrostatic: {name} to {r['description']} in {r['evaluations']} hull evaluations, "
+                f"{seconds:.2f} s ({r['stop']}): ∇ {r['before']['volume']:.1f} → {r['after']['volume']:.1f} "
+                f"m³ (target {r['target_volume']:.1f}), LCB {r['before']['lcb']:.3f} → "
+                f"{r['after']['lcb']:.3f} m, {how}; sectional areas in {png}"
+            )
+        except api.BattenError as e:
+            _log(f"hydrostatic: {name}: {type(e).__name__}: {e}")
 
 
 def main() -> None:
@@ -936,7 +907,6 @@ def main() -> None:
     fairing_showcase(api, args.examples, args.out, args.engine, args.size)
     form_showcase(api, args.examples, args.out)
     hydrostatic_showcase(api, args.examples, args.out)
-    bulge_showcase(api, args.examples, args.out)
     hierarchy_showcase(api, args.examples, args.out, args.engine, args.size)
     ships = sorted(args.ships.glob("*/network.json")) if args.ships.is_dir() else []
     if not ships:

@@ -57,3 +57,22 @@ def examples_dir() -> Path:
 def hulls_dir() -> Path:
     """The real ships' sections (``../shared/hulls``, beside the project)."""
     return ROOT.parent / "shared" / "hulls"
+
+
+@pytest.fixture
+def barge(tmp_path):
+    """The barge with a parallel middle body of ``examples/pmb_barge.py`` (from its generator),
+    as the hull collection 'barge' with its design draft."""
+    import importlib.util
+
+    import batten.api as api
+    from batten_native import network_to_json
+
+    spec = importlib.util.spec_from_file_location("pmb_barge", ROOT / "examples" / "pmb_barge.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    path = tmp_path / "barge.json"
+    path.write_text(network_to_json("barge", module.barge_curves()))
+    coll = api.load_network(path)
+    coll[api.DESIGN_DRAFT_PROPERTY] = module.T
+    return coll

@@ -10,7 +10,6 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
-from batten_native import network_to_json
 
 HB, D, T = 10.0, 12.0, 8.0  # as examples/pmb_barge.py
 
@@ -23,15 +22,6 @@ def _barge_curves():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module.barge_curves()
-
-
-@pytest.fixture
-def barge(tmp_path):
-    path = tmp_path / "barge.json"
-    path.write_text(network_to_json("barge", _barge_curves()))
-    coll = api.load_network(path)
-    coll[api.DESIGN_DRAFT_PROPERTY] = T
-    return coll
 
 
 def _points(coll):

@@ -18,20 +18,16 @@ from batten.form_operators import (
     BATTEN_OT_select_transform,
     BATTEN_OT_transform,
 )
-from batten_native import network_to_json
 from operator_runs import execute
-from test_form import T, _barge_curves, _points
+from test_form import T, _points
 from test_hydro_panel import _Layout
 
 
 @pytest.fixture
-def barge(tmp_path):
-    path = tmp_path / "barge.json"
-    path.write_text(network_to_json("barge", _barge_curves()))
-    coll = api.load_network(path)
-    coll[api.DESIGN_DRAFT_PROPERTY] = T
-    bpy.context.scene.batten.source = coll
-    return coll
+def barge(barge):
+    """The conftest's barge, the panels' hull."""
+    bpy.context.scene.batten.source = barge
+    return barge
 
 
 def _same(a: dict, b: dict) -> bool:

@@ -5,17 +5,7 @@ of range, hulls without a parallel middle body and bad arguments."""
 import batten.api as api
 import numpy as np
 import pytest
-from batten_native import network_to_json
-from test_form import T, _barge_curves, _points
-
-
-@pytest.fixture
-def barge(tmp_path):
-    path = tmp_path / "barge.json"
-    path.write_text(network_to_json("barge", _barge_curves()))
-    coll = api.load_network(path)
-    coll[api.DESIGN_DRAFT_PROPERTY] = T
-    return coll
+from test_form import T, _points
 
 
 def test_cb_plus_one_hundredth_lcb_held_as_a_copy_on_the_stack(barge):
