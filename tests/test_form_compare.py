@@ -13,7 +13,7 @@ import pytest
 from batten import hydro_plot, overlay
 from batten.form_operators import GHOST_SAMPLES, BATTEN_OT_compare_transform, BATTEN_OT_select_transform
 from operator_runs import execute
-from test_form import T, _points, barge  # noqa: F401 (the fixture)
+from test_form import T, _points
 from test_form_panel import _draw
 
 

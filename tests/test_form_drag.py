@@ -14,7 +14,7 @@ from batten import form_drag, overlay
 from batten.form_drag import BATTEN_OT_drag_form_vertex, constrained, pick_vertex
 from batten.form_operators import BATTEN_OT_measure_form
 from operator_runs import execute, stand_in
-from test_form import _points, barge  # noqa: F401 (the fixture)
+from test_form import _points
 
 #: The stand-in view: looking at the port side (along −y), 10 pixels a metre, (0, 0) at (100, 100).
 SCALE, ORIGIN = 10.0, 100.0

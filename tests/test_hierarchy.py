@@ -20,7 +20,6 @@ from batten.form_operators import (
 from batten.scene_build import build_into_scene
 from helpers import new_curve
 from operator_runs import execute, new_collection
-from test_form import barge  # noqa: F401 (the fixture)
 
 
 def _co(obj) -> np.ndarray:

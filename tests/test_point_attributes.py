@@ -20,7 +20,6 @@ from batten.form_operators import (
 )
 from helpers import new_bezier, new_curve
 from operator_runs import execute, new_collection
-from test_form import barge  # noqa: F401 (the fixture)
 from test_form_panel import _draw
 
 CurveError, InvalidArgumentError = api.CurveError, api.InvalidArgumentError
