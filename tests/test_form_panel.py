@@ -173,7 +173,7 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     before = api.hydrostatics(barge, T)
     settings.hydro_volume_target = "hold"
     settings.hydro_use_lcb = False
-    settings.hydro_keep_pmb = False
+    settings.hydro_keep_pmb = "free"
     status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
     assert status == {"CANCELLED"} and any("volume target" in text for _, text in reports), reports
     assert len(api.transform_stack(barge)) == 1, "nothing made"
@@ -206,7 +206,7 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     assert any("parallel middle body" in t for t in _draw()["labels"])
     # Hold PMB: the ends' faces bulge instead, and the panel says by how much.
     settings.source = barge
-    settings.hydro_keep_pmb = True
+    settings.hydro_keep_pmb = "all"
     settings.hydro_volume_target = "cb"
     settings.hydro_volume_value = before["cb"] + 0.005
     status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)

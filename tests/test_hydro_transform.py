@@ -122,3 +122,15 @@ def test_a_change_too_large_for_the_pmb_alone_bulges_the_ends_as_well(barge):
     assert "then, bulging the ends" in r["limit"] and "PMB ends and bulged ends" in r["description"]
     assert r["pmb_length"][1] > r["pmb_length"][0] and min(r["bulge"]["offsets"]) > 0
     assert r["after"]["volume"] > 1.03 * before["volume"]
+
+
+def test_pmb_held_in_part_and_a_bad_hold(barge):
+    before = api.hydrostatics(barge, T)
+    r = api.transform_hydrostatic(
+        barge, cb=before["cb"] + 0.005, lcb=before["lcb"] + 0.002 * before["lpp"], keep_pmb="length"
+    ).report
+    assert (r["mode"], r["stop"]) == ("pmb_shift+bulge", "converged")
+    assert r["pmb_length"][1] == pytest.approx(r["pmb_length"][0], abs=1e-9)
+    assert "PMB shifted" in r["description"]
+    with pytest.raises(api.InvalidArgumentError, match="keep_pmb"):
+        api.transform_hydrostatic(barge, cb=0.8, keep_pmb="sideways")

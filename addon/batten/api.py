@@ -2302,7 +2302,7 @@ def transform_hydrostatic(
     cb: float | None = None,
     cp: float | None = None,
     lcb: float | None = None,
-    keep_pmb: bool = False,
+    keep_pmb: bool | str = False,
     draft: float | None = None,
     lpp: float | None = None,
     fp: float | None = None,
@@ -2321,9 +2321,12 @@ def transform_hydrostatic(
 
     - a hull with a parallel middle body has its PMB's ends moved (§8.1): the ends, the deck
       and the midship section keep their shape;
-    - a hull without one, or with ``keep_pmb``, has the form faces of its entrance and run
-      below the waterline bulged or flattened (§8.2): an offset along their normals, largest
-      in the middle of each face and zero on its edges; the form curves stay;
+    - a hull without one, or with ``keep_pmb`` True, has the form faces of its entrance and
+      run below the waterline bulged or flattened (§8.2): an offset along their normals,
+      largest in the middle of each face and zero on its edges; the form curves stay;
+    - ``keep_pmb="length"`` holds the PMB's length: it shifts for the LCB and both ends bulge
+      alike for the volume; ``keep_pmb="position"`` holds its position: it lengthens for the
+      volume and the ends bulge opposite ways for the LCB;
     - a change too large for the PMB's ends alone is combined: from the closest hull they
       reach, the ends' faces are bulged as well (``mode`` ``"pmb+bulge"``).
 
@@ -2341,8 +2344,9 @@ def transform_hydrostatic(
     transformed, rebuilt and floated, the original's included), ``stop`` (``"converged"``,
     ``"out_of_range"`` or ``"evaluations_spent"``), ``limit`` (what stopped it), ``explored``
     (``volume`` and ``lcb`` ``[min, max]`` over the hulls evaluated), ``mode`` (``"pmb"``,
-    ``"bulge"`` or ``"pmb+bulge"``), ``bulge`` (None, or the ``offsets`` of the entrance and
-    the run, m, and their form faces ``entrance_faces``, ``run_faces``), ``sac`` (``x``,
+    ``"bulge"``, ``"pmb+bulge"``, ``"pmb_shift+bulge"`` or ``"pmb_length+bulge"``),
+    ``bulge`` (None, or the ``offsets`` of the entrance and the run, m, and their form faces
+    ``entrance_faces``, ``run_faces``), ``sac`` (``x``,
     ``before``, ``after``: the sectional areas at :data:`SAC_STATIONS` stations from AP to
     FP), ``x_ap``, ``x_fp`` and ``description``.
 
@@ -2382,7 +2386,13 @@ def transform_hydrostatic(
         for name, value in (("∇", volume), ("Δ", displacement), ("Cb", cb), ("Cp", cp), ("LCB", lcb))
         if value is not None
     ]
-    how = {"pmb": "PMB ends", "bulge": "bulged ends", "pmb+bulge": "PMB ends and bulged ends"}[report["mode"]]
+    how = {
+        "pmb": "PMB ends",
+        "bulge": "bulged ends",
+        "pmb+bulge": "PMB ends and bulged ends",
+        "pmb_shift+bulge": "PMB shifted, ends bulged",
+        "pmb_length+bulge": "PMB lengthened, ends bulged",
+    }[report["mode"]]
     report["description"] = f"hydrostatic ({how}): " + ", ".join(asked)
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, report["description"], resolution=resolution)

@@ -155,8 +155,9 @@ class BATTEN_OT_transform_hydrostatic(HullOperator, bpy.types.Operator):
         if not targets:
             self.report({"ERROR"}, "Choose a volume target or tick LCB")
             return {"CANCELLED"}
+        keep = {"free": False, "all": True}.get(settings.hydro_keep_pmb, settings.hydro_keep_pmb)
         result = api.transform_hydrostatic(
-            settings.source, keep_pmb=settings.hydro_keep_pmb, draft=draft_of(settings) or None, **targets
+            settings.source, keep_pmb=keep, draft=draft_of(settings) or None, **targets
         )
         summary = hydro_summary(result)
         settings.last_hydro_transform = json.dumps(summary)

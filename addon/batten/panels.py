@@ -235,7 +235,7 @@ class VIEW3D_PT_batten_form(_SubPanel, bpy.types.Panel):
         sub.enabled = settings.hydro_use_lcb
         sub.prop(settings, "hydro_lcb", text="")
         row = box.row(align=True)
-        row.prop(settings, "hydro_keep_pmb")
+        row.prop(settings, "hydro_keep_pmb", text="")
         row.operator("batten.transform_hydrostatic", icon="DUPLICATE")
         _draw_hydro_change(layout, settings.last_hydro_transform, source)
         try:

@@ -218,11 +218,17 @@ class BattenSceneSettings(bpy.types.PropertyGroup):
         precision=3,
         unit="LENGTH",
     )
-    hydro_keep_pmb: BoolProperty(
+    hydro_keep_pmb: EnumProperty(
         name="Hold PMB",
-        description="Keep the parallel middle body's length and position: bulge or flatten the "
-        "entrance's and run's faces instead (seed 002 §8.2; hulls without a PMB always are)",
-        default=False,
+        description="What of the parallel middle body to keep; the entrance's and run's faces are "
+        "bulged or flattened for the rest (seed 002 §8.2–8.3; hulls without a PMB always are)",
+        items=[
+            ("free", "PMB free", "Move the PMB's ends (and bulge the ends when that is not enough)"),
+            ("length", "Hold length", "Shift the PMB for the LCB; bulge both ends alike for the volume"),
+            ("position", "Hold position", "Lengthen the PMB for the volume; bulge the ends opposite ways"),
+            ("all", "Hold PMB", "Bulge the ends' faces only"),
+        ],
+        default="free",
     )
     last_hydro_transform: StringProperty(
         name="Last hydrostatic transform",

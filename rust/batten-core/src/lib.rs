@@ -66,9 +66,9 @@ pub use hydro::{
     ENTRANCE_FIT_FRACTION, HALF_HULL_SLACK, SEA_WATER_DENSITY, SECTION_TOLERANCE_RELATIVE,
 };
 pub use hydro_transform::{
-    transform_hydrostatic, Explored, HydroTargets, HydroTransformOptions, HydroTransformed, Stop,
-    VolumeTarget, LCB_TOLERANCE, MAX_BULGE_FRACTION, MAX_EVALUATIONS, MIN_LENGTH_FRACTION,
-    VOLUME_TOLERANCE,
+    transform_hydrostatic, Explored, HydroTargets, HydroTransformOptions, HydroTransformed,
+    PmbHold, Stop, VolumeTarget, LCB_TOLERANCE, MAX_BULGE_FRACTION, MAX_EVALUATIONS,
+    MIN_LENGTH_FRACTION, VOLUME_TOLERANCE,
 };
 pub use network::{
     Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,

@@ -7,9 +7,9 @@ mod common;
 use batten_core::{
     build_hull, fairness_metrics, form_topology, hydrostatics, transform, transform_hydrostatic,
     transform_to, CellDensity, EdgeKind, Flotation, FormError, FormOptions, FormTopology,
-    HullOptions, HydroTargets, HydroTransformOptions, HydroTransformed, Network, NurbsCurve, Role,
-    Stop, Target, Tolerance, VertexMove, VolumeTarget, LCB_TOLERANCE, SEA_WATER_DENSITY,
-    VOLUME_TOLERANCE,
+    HullOptions, HydroTargets, HydroTransformOptions, HydroTransformed, Network, NurbsCurve,
+    PmbHold, Role, Stop, Target, Tolerance, VertexMove, VolumeTarget, LCB_TOLERANCE,
+    SEA_WATER_DENSITY, VOLUME_TOLERANCE,
 };
 use common::nc;
 use glam::DVec3;
@@ -645,7 +645,7 @@ fn barge_cb_plus_one_hundredth_with_lcb_held() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Cb(cb)),
         lcb: None,
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     let out = transform_hydrostatic(&n, targets, &o).unwrap();
     assert_hit(&n, &out, "Cb + 0.01");
@@ -669,7 +669,7 @@ fn barge_lcb_forward_and_aft_with_volume_held_mirror_each_other() {
         let targets = HydroTargets {
             volume: None,
             lcb: Some(base.before.lcb + sign * 0.0025 * lpp),
-            keep_pmb: false,
+            hold: PmbHold::Free,
         };
         let out = transform_hydrostatic(&n, targets, &o).unwrap();
         assert_hit(&n, &out, "LCB ± 0.25 % Lpp");
@@ -701,7 +701,7 @@ fn barge_volume_and_lcb_together() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Volume(base.before.volume * 1.005)),
         lcb: Some(base.before.lcb - 0.001 * lpp),
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     assert_hit(
         &n,
@@ -711,7 +711,7 @@ fn barge_volume_and_lcb_together() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Displacement(base.before.displacement * 1.01)),
         lcb: None,
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     assert_hit(
         &n,
@@ -729,7 +729,7 @@ fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Cb(base.before.cb + 0.2)),
         lcb: None,
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     let out = transform_hydrostatic(&n, targets, &o).unwrap();
     let Stop::OutOfRange { limit } = &out.stop else {
@@ -760,7 +760,7 @@ fn barge_target_out_of_range_gives_the_closest_hull_and_the_limit() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Volume(base.before.volume * 0.9)),
         lcb: None,
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     let out = transform_hydrostatic(&n, targets, &o).unwrap();
     match &out.stop {
@@ -787,17 +787,17 @@ fn hydrostatic_transformation_refuses_what_it_cannot_do() {
         HydroTargets {
             volume: Some(VolumeTarget::Volume(f64::NAN)),
             lcb: None,
-            keep_pmb: false,
+            hold: PmbHold::Free,
         },
         HydroTargets {
             volume: Some(VolumeTarget::Cb(-0.5)),
             lcb: None,
-            keep_pmb: false,
+            hold: PmbHold::Free,
         },
         HydroTargets {
             volume: None,
             lcb: Some(f64::INFINITY),
-            keep_pmb: false,
+            hold: PmbHold::Free,
         },
     ] {
         assert!(
@@ -833,7 +833,7 @@ fn frigate_without_a_pmb_is_made_finer_by_flattening_its_ends() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Cb(base.before.cb - 0.005)),
         lcb: None,
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     let out = transform_hydrostatic(&n, targets, &o).unwrap();
     assert_eq!(out.mode, "bulge");
@@ -898,7 +898,7 @@ fn frigate_without_a_pmb_is_made_finer_by_flattening_its_ends() {
     let targets = HydroTargets {
         volume: Some(VolumeTarget::Cb(base.before.cb + 0.05)),
         lcb: None,
-        keep_pmb: false,
+        hold: PmbHold::Free,
     };
     let out = transform_hydrostatic(&n, targets, &o).unwrap();
     let Stop::OutOfRange { limit } = &out.stop else {
@@ -921,7 +921,7 @@ fn barge_with_its_pmb_held_bulges_its_ends_alike_fore_and_aft() {
         let targets = HydroTargets {
             volume: Some(VolumeTarget::Cb(base.before.cb + dcb)),
             lcb: None,
-            keep_pmb: true,
+            hold: PmbHold::Whole,
         };
         let out = transform_hydrostatic(&n, targets, &o).unwrap();
         assert_eq!((out.mode, &out.stop), ("bulge", &Stop::Converged));
@@ -945,4 +945,56 @@ fn barge_with_its_pmb_held_bulges_its_ends_alike_fore_and_aft() {
         offsets[0] > 0.0 && offsets[1] < 0.0,
         "fuller out, finer in: {offsets:?}"
     );
+}
+
+#[test]
+fn barge_with_its_pmb_held_in_part_balances_the_ends() {
+    let n = barge(2.0, 0.2);
+    let o = hydro_options();
+    let base = transform_hydrostatic(&n, HydroTargets::default(), &o).unwrap();
+    let lpp = base.datums.x_fp - base.datums.x_ap;
+    let position = |net: &Network| {
+        let p = form_topology(net, &options(T)).unwrap().parameters;
+        let pmb = p.pmb.unwrap();
+        (pmb.length, pmb.position)
+    };
+    let (l0, x0) = position(&n);
+    // Length held: the PMB shifts forward for the LCB, the ends bulge alike for the volume.
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Cb(base.before.cb + 0.005)),
+        lcb: Some(base.before.lcb + 0.002 * lpp),
+        hold: PmbHold::Length,
+    };
+    let out = transform_hydrostatic(&n, targets, &o).unwrap();
+    assert_eq!((out.mode, &out.stop), ("pmb_shift+bulge", &Stop::Converged));
+    assert!(out.evaluations <= 12, "{} evaluations", out.evaluations);
+    let (l, x) = position(&out.network);
+    assert_near!(l, l0, 1e-9, "the PMB's length is held");
+    assert!(x > x0, "the PMB moved forward: {x0} → {x}");
+    let (b, _) = out.bulge.clone().unwrap();
+    assert_near!(b[0], b[1], 1e-12, "both ends bulge alike");
+    assert!(b[0] > 0.0);
+    no_new_warnings(&n, &out.network, "length held");
+    // Position held: the PMB lengthens for the volume, the ends bulge opposite ways for the LCB.
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Cb(base.before.cb + 0.01)),
+        lcb: Some(base.before.lcb + 0.001 * lpp),
+        hold: PmbHold::Position,
+    };
+    let out = transform_hydrostatic(&n, targets, &o).unwrap();
+    assert_eq!(
+        (out.mode, &out.stop),
+        ("pmb_length+bulge", &Stop::Converged)
+    );
+    assert!(out.evaluations <= 12, "{} evaluations", out.evaluations);
+    let (l, x) = position(&out.network);
+    assert_near!(x, x0, 1e-9, "the PMB's position is held");
+    assert!(l > l0 + 5.0, "the PMB lengthened: {l0} → {l}");
+    let (b, _) = out.bulge.unwrap();
+    assert_near!(b[0], -b[1], 1e-12, "the ends bulge opposite ways");
+    assert!(
+        b[0] > 0.0,
+        "LCB forward: the entrance fuller, the run finer"
+    );
+    no_new_warnings(&n, &out.network, "position held");
 }

@@ -2,7 +2,7 @@
 
 use batten_core::{
     transform_hydrostatic as core_transform_hydrostatic, Datums, HullOptions, HydroTargets,
-    HydroTransformOptions, Stop, VolumeTarget, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
+    HydroTransformOptions, PmbHold, Stop, VolumeTarget, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
     SEA_WATER_DENSITY,
 };
 use pyo3::prelude::*;
@@ -14,20 +14,22 @@ use crate::hydro::hydrostatics_dict;
 
 /// Take the network `curves` to a target volume (one of `volume` m³, `displacement` t, `cb`,
 /// `cp`) and/or `lcb` (x, m) through its form topology, floating level at `draft`: by moving
-/// the ends of its parallel middle body, or (no PMB, or `keep_pmb`) by bulging its ends' faces
-/// below the waterline (a target not given is held). Perpendiculars: `fp` with `lpp`, else FP at the fore end of the original's waterline at
+/// the ends of its parallel middle body, or (no PMB, or `keep_pmb` True) by bulging its ends'
+/// faces below the waterline; `keep_pmb` `"length"` or `"position"` holds that of the PMB and
+/// bulges the ends for the rest (a target not given is held). Perpendiculars: `fp` with `lpp`, else FP at the fore end of the original's waterline at
 /// `draft` and AP `lpp` aft of it (or at the waterline's aft end); held for every hull.
 /// Returns `(curves, report)`: `before`, `after` (hydrostatics dicts), `target_figure`
 /// (`"volume"`, a displacement as its volume, `"cb"` or `"cp"`) and `target_value`,
 /// `target_volume` (Cb and Cp on the original's Lpp, Bwl and midship section),
-/// `target_lcb`, `mode` (`"pmb"`, `"bulge"` or `"pmb+bulge"`), `entrance_length`, `run_length`, `pmb_length`
+/// `target_lcb`, `mode` (`"pmb"`, `"bulge"`, `"pmb+bulge"`, `"pmb_shift+bulge"`,
+/// `"pmb_length+bulge"`), `entrance_length`, `run_length`, `pmb_length`
 /// (each `[before, after]`, None without a PMB), `bulge` (None, or `offsets` `[entrance, run]`
 /// in m and the form faces `entrance_faces`, `run_faces`),
 /// `evaluations`, `stop` (`"converged"`, `"out_of_range"`, `"evaluations_spent"`), `limit`
 /// (what stopped it, or None), `explored` (`volume`, `lcb`: `[min, max]` over the hulls evaluated), `x_ap`,
 /// `x_fp`.
 #[pyfunction]
-#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, keep_pmb=false, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
+#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, keep_pmb=None, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn transform_hydrostatic<'py>(
     py: Python<'py>,
@@ -38,7 +40,7 @@ pub(crate) fn transform_hydrostatic<'py>(
     cb: Option<f64>,
     cp: Option<f64>,
     lcb: Option<f64>,
-    keep_pmb: bool,
+    keep_pmb: Option<&Bound<'py, PyAny>>,
     lpp: Option<f64>,
     fp: Option<f64>,
     density: f64,
@@ -81,6 +83,21 @@ pub(crate) fn transform_hydrostatic<'py>(
             ))
         }
     };
+    let hold = match keep_pmb {
+        None => PmbHold::Free,
+        Some(k) => match (k.extract::<bool>(), k.extract::<String>()) {
+            (Ok(false), _) => PmbHold::Free,
+            (Ok(true), _) => PmbHold::Whole,
+            (_, Ok(s)) if s == "length" => PmbHold::Length,
+            (_, Ok(s)) if s == "position" => PmbHold::Position,
+            _ => {
+                return Err(arg_err(format!(
+                    "transform_hydrostatic: keep_pmb must be False, True, 'length' or 'position', not {}",
+                    k.repr()?
+                )))
+            }
+        },
+    };
     let hull = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
     let network = network_of("", &curves)?;
     let options = HydroTransformOptions {
@@ -93,7 +110,7 @@ pub(crate) fn transform_hydrostatic<'py>(
     let targets = HydroTargets {
         volume: given.first().copied(),
         lcb,
-        keep_pmb,
+        hold,
     };
     let out = py.detach(|| {
         guard("transforming the hull to its hydrostatic targets", || {

@@ -38,7 +38,7 @@ use crate::hull::{build_hull, HullOptions};
 use crate::hydro::{default_datums, hydrostatics, CellDensity, Datums, Flotation, Hydrostatics};
 use crate::network::Network;
 use lackenby::Lackenby;
-use mode::{end_faces, Mode};
+use mode::{end_faces, Kind, Mode};
 use shape::Reference;
 
 /// Converged when the volume misses by at most this fraction of the target volume.
@@ -78,8 +78,26 @@ pub struct HydroTargets {
     pub volume: Option<VolumeTarget>,
     /// The LCB target (x of the centre of buoyancy, m).
     pub lcb: Option<f64>,
-    /// Hold the parallel middle body (length and position): bulge the ends' faces instead.
-    pub keep_pmb: bool,
+    /// What of the parallel middle body to hold (§8.3): the ends' faces are bulged for what
+    /// the PMB may not do.
+    pub hold: PmbHold,
+}
+
+/// What of the parallel middle body a hydrostatic transformation must keep (§8.3's schedule:
+/// the PMB's ends move unless it is held; when it is held in part, the ends' faces are
+/// balanced against it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PmbHold {
+    /// Nothing: its ends move (and the ends' faces bulge as well when that is not enough).
+    #[default]
+    Free,
+    /// Its length: it shifts along x for the LCB, and the ends bulge alike for the volume.
+    Length,
+    /// Its position: it lengthens (half at each end) for the volume, and the ends bulge
+    /// opposite ways for the LCB.
+    Position,
+    /// All of it: the ends' faces bulge, each its own way.
+    Whole,
 }
 
 /// How the hull floats and is built while it is transformed.
@@ -161,8 +179,9 @@ pub struct HydroTransformed {
     pub target_volume: f64,
     /// The target LCB.
     pub target_lcb: f64,
-    /// The deformation used: `"pmb"` (the PMB's ends moved), `"bulge"` (the ends' faces), or
-    /// `"pmb+bulge"` (both, for a change too large for the PMB's ends alone).
+    /// The deformation used: `"pmb"` (the PMB's ends moved), `"bulge"` (the ends' faces),
+    /// `"pmb+bulge"` (both, for a change too large for the PMB's ends alone),
+    /// `"pmb_shift+bulge"` (its length held) or `"pmb_length+bulge"` (its position held).
     pub mode: &'static str,
     /// Entrance length before and after (m), for a hull with a PMB.
     pub entrance_length: Option<[f64; 2]>,
@@ -170,8 +189,8 @@ pub struct HydroTransformed {
     pub run_length: Option<[f64; 2]>,
     /// PMB length before and after (m), for a hull with a PMB.
     pub pmb_length: Option<[f64; 2]>,
-    /// The bulge mode's offsets at the middle of the entrance's and the run's faces (m,
-    /// outward fuller), and those faces (form-topology face indices).
+    /// The offsets at the middle of the entrance's and the run's faces (m, outward fuller) and
+    /// those faces (form-topology face indices), when the ends were bulged.
     pub bulge: Option<([f64; 2], [Vec<usize>; 2])>,
     /// Hull evaluations spent (the original's included).
     pub evaluations: usize,
@@ -196,7 +215,8 @@ fn pmb_lengths(form: &FormTopology) -> Option<[f64; 3]> {
 }
 
 /// Take `network` to `targets` (module docs): by the PMB's ends when it has a PMB and
-/// `targets.keep_pmb` is false, else by bulging its ends' faces below the waterline. A change
+/// `targets.hold` is [`PmbHold::Free`], else by bulging its ends' faces below the waterline
+/// (with the PMB's shift or length for what it may still do). A change
 /// too large for the PMB's ends alone is combined (§8.3): from the closest hull they reach,
 /// the ends' faces are bulged as well (mode `"pmb+bulge"`; each stage spends at most
 /// [`MAX_EVALUATIONS`]).
@@ -237,7 +257,7 @@ pub fn transform_hydrostatic(
     let second_targets = HydroTargets {
         volume: Some(VolumeTarget::Volume(first.target_volume)),
         lcb: Some(first.target_lcb),
-        keep_pmb: true,
+        hold: PmbHold::Whole,
     };
     let second_options = HydroTransformOptions {
         datums: Some(first.datums),
@@ -273,8 +293,8 @@ pub fn transform_hydrostatic(
     }
 }
 
-/// One deformation's solve (module docs): the PMB's ends, or with `targets.keep_pmb` or no
-/// PMB the bulges.
+/// One deformation's solve (module docs): the PMB's ends, or with `targets.hold` or no PMB
+/// the bulges (with the PMB's free part).
 fn solve(
     network: &Network,
     targets: HydroTargets,
@@ -338,14 +358,18 @@ fn solve(
     // and why it cannot start at all.
     let mut start: Option<(Evaluated, [f64; 2], [f64; 2])> = None;
     let mut stuck: Option<String> = None;
+    let length = p.x_range[1] - p.x_range[0];
     let (mode, mut jac) = match (&p.pmb, lengths) {
-        (Some(pmb), Some([e0, r0, pmb0])) if !targets.keep_pmb => {
+        (Some(pmb), Some([e0, r0, pmb0])) if targets.hold == PmbHold::Free => {
             let model = Lackenby::of(&cells, &flotation, &datums, pmb, p.x_range)?;
-            let mode = Mode::Pmb {
-                start: [e0, r0],
-                min_len: MIN_LENGTH_FRACTION * (p.x_range[1] - p.x_range[0]),
-                total: e0 + r0 + pmb0,
-            };
+            let mode = Mode::new(
+                Kind::Pmb,
+                Some([e0, r0]),
+                pmb0,
+                length,
+                [vec![], vec![]],
+                0.0,
+            );
             (mode, model.jacobian(e0, r0, target_volume, lpp))
         }
         _ => {
@@ -372,7 +396,16 @@ fn solve(
                 });
             }
             let max = MAX_BULGE_FRACTION * 0.5 * p.breadth;
-            let mode = Mode::Bulge { entrance, run, max };
+            let kind = match (targets.hold, lengths.is_some()) {
+                (PmbHold::Length, true) => Kind::ShiftAndBulge,
+                (PmbHold::Position, true) => Kind::LengthAndBulge,
+                _ => Kind::Bulge,
+            };
+            let (ends, pmb0) = match lengths {
+                Some([e0, r0, pmb0]) => (Some([e0, r0]), pmb0),
+                None => (None, 0.0),
+            };
+            let mode = Mode::new(kind, ends, pmb0, length, [entrance, run], max);
             // The Jacobian by differences, two hulls per unknown (a bulge of h and of 2h, h
             // fuller or finer as the volume must go): the first bulge already re-attaches the
             // curves inside the face, which inserts knots and so re-parameterises them as
@@ -532,12 +565,13 @@ fn solve(
     let after = best.hydro;
     let after_lengths = pmb_lengths(&form_topology(&best.network, &form_options)?);
     let pair = |k: usize| lengths.zip(after_lengths).map(|(a, b)| [a[k], b[k]]);
-    let (mode_name, bulge) = match &mode {
-        Mode::Pmb { .. } => ("pmb", None),
-        Mode::Bulge { entrance, run, .. } => {
-            ("bulge", Some((best_x, [entrance.clone(), run.clone()])))
-        }
+    let mode_name = match mode.kind {
+        Kind::Pmb => "pmb",
+        Kind::Bulge => "bulge",
+        Kind::ShiftAndBulge => "pmb_shift+bulge",
+        Kind::LengthAndBulge => "pmb_length+bulge",
     };
+    let bulge = (mode.kind != Kind::Pmb).then(|| (mode.bulges(best_x), mode.faces.clone()));
     Ok(HydroTransformed {
         network: best.network,
         before,

@@ -22,28 +22,43 @@ pub const MAX_BULGE_FRACTION: f64 = 0.25;
 /// Points per form edge for the place of a face (its centre in x, its lowest point).
 const EDGE_SAMPLES: usize = 9;
 
-/// Which deformation, and its limits.
+/// What the two unknowns of a [`Mode`] move.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    /// (entrance length, run length): the PMB's ends.
+    Pmb,
+    /// (entrance bulge, run bulge), m.
+    Bulge,
+    /// The PMB's length held: (the PMB's shift forward, m; both ends' bulge, m). The shift
+    /// moves the LCB, the bulge the volume.
+    ShiftAndBulge,
+    /// The PMB's position held: (the PMB's lengthening, m, half at each end; the entrance's
+    /// bulge, m, the run's the opposite). The length moves the volume, the opposite bulges the
+    /// LCB.
+    LengthAndBulge,
+}
+
+/// A deformation with its two unknowns and its limits.
 #[derive(Clone, Debug)]
-pub(super) enum Mode {
-    /// The PMB's ends: unknowns (entrance length, run length).
-    Pmb {
-        /// The entrance and run lengths of the original.
-        start: [f64; 2],
-        /// Shortest PMB, entrance and run (m).
-        min_len: f64,
-        /// Entrance + PMB + run (m): what the two ends share.
-        total: f64,
-    },
-    /// Bulges of the entrance's and the run's faces below the waterline: unknowns (entrance
-    /// offset, run offset), m.
-    Bulge {
-        /// Form faces of the entrance.
-        entrance: Vec<usize>,
-        /// Form faces of the run.
-        run: Vec<usize>,
-        /// Largest offset either way (m).
-        max: f64,
-    },
+pub(super) struct Mode {
+    pub(super) kind: Kind,
+    /// The original's entrance and run lengths (m), when it has a PMB.
+    lengths: Option<[f64; 2]>,
+    /// Shortest PMB, entrance and run (m).
+    min_len: f64,
+    /// Entrance + PMB + run (m): what the two ends share.
+    total: f64,
+    /// Form faces of the entrance and of the run below the waterline.
+    pub(super) faces: [Vec<usize>; 2],
+    /// Largest bulge either way (m).
+    max: f64,
+}
+
+/// A limit of a mode, linear in its unknowns: `a·x + c ≥ 0`.
+struct Limit {
+    a: [f64; 2],
+    c: f64,
+    name: &'static str,
 }
 
 /// The entrance's and the run's form faces below the waterline at `draft`: faces reaching below
@@ -91,72 +106,131 @@ pub(super) fn end_faces(
 }
 
 impl Mode {
+    /// A mode of `kind`: the original's entrance and run lengths when it has a PMB (`lengths`,
+    /// with the PMB's length `pmb`, over a hull `length` long), and the ends' faces with the
+    /// largest bulge `max`.
+    pub(super) fn new(
+        kind: Kind,
+        lengths: Option<[f64; 2]>,
+        pmb: f64,
+        length: f64,
+        faces: [Vec<usize>; 2],
+        max: f64,
+    ) -> Mode {
+        let total = lengths.map_or(0.0, |[e, r]| e + r + pmb);
+        Mode {
+            kind,
+            lengths,
+            min_len: MIN_LENGTH_FRACTION * length,
+            total,
+            faces,
+            max,
+        }
+    }
+
     /// The unknowns of the original.
     pub(super) fn start(&self) -> [f64; 2] {
-        match self {
-            Mode::Pmb { start, .. } => *start,
-            Mode::Bulge { .. } => [0.0, 0.0],
+        match (self.kind, self.lengths) {
+            (Kind::Pmb, Some(l)) => l,
+            _ => [0.0, 0.0],
         }
     }
 
     /// A length for "no step left" (m).
     pub(super) fn scale(&self) -> f64 {
-        match self {
-            Mode::Pmb { total, .. } => *total,
-            Mode::Bulge { max, .. } => *max,
+        if self.kind == Kind::Bulge {
+            self.max
+        } else {
+            self.total
         }
+    }
+
+    /// The entrance and run lengths (m; the original's when they do not move) and the
+    /// entrance's and run's bulges (m) at the unknowns `x`.
+    fn map(&self, x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+        let [e0, r0] = self.lengths.unwrap_or([0.0; 2]);
+        match self.kind {
+            Kind::Pmb => (x, [0.0; 2]),
+            Kind::Bulge => ([e0, r0], x),
+            Kind::ShiftAndBulge => ([e0 - x[0], r0 + x[0]], [x[1]; 2]),
+            Kind::LengthAndBulge => ([e0 - 0.5 * x[0], r0 - 0.5 * x[0]], [x[1], -x[1]]),
+        }
+    }
+
+    /// The mode's limits, each linear in the unknowns (read off [`Mode::map`], which is
+    /// affine); a quantity the mode does not move has none.
+    fn limits(&self) -> Vec<Limit> {
+        let flat = |x: [f64; 2]| {
+            let (l, b) = self.map(x);
+            [l[0], l[1], b[0], b[1]]
+        };
+        let c0 = flat([0.0; 2]);
+        let (c1, c2) = (flat([1.0, 0.0]), flat([0.0, 1.0]));
+        let linear = |k: usize, sign: f64, offset: f64| Limit {
+            a: [sign * (c1[k] - c0[k]), sign * (c2[k] - c0[k])],
+            c: sign * c0[k] + offset,
+            name: "",
+        };
+        let mut out = Vec::new();
+        let mut add = |l: Limit, name: &'static str| {
+            if l.a != [0.0, 0.0] {
+                out.push(Limit { name, ..l });
+            }
+        };
+        if self.lengths.is_some() {
+            add(
+                linear(0, 1.0, -self.min_len),
+                "the entrance would be shorter than 2 % of the hull",
+            );
+            add(
+                linear(1, 1.0, -self.min_len),
+                "the run would be shorter than 2 % of the hull",
+            );
+            let (e, r) = (linear(0, -1.0, 0.0), linear(1, -1.0, 0.0));
+            add(
+                Limit {
+                    a: [e.a[0] + r.a[0], e.a[1] + r.a[1]],
+                    c: self.total + e.c + r.c - self.min_len,
+                    name: "",
+                },
+                "the parallel middle body would be shorter than 2 % of the hull",
+            );
+        }
+        const ENTRANCE: &str = "the entrance's bulge would exceed a quarter of the half breadth";
+        const RUN: &str = "the run's bulge would exceed a quarter of the half breadth";
+        add(linear(2, -1.0, self.max), ENTRANCE);
+        add(linear(2, 1.0, self.max), ENTRANCE);
+        add(linear(3, -1.0, self.max), RUN);
+        add(linear(3, 1.0, self.max), RUN);
+        out
     }
 
     /// How far `x` may go along `d` (a fraction in [0, 1]) and the limit met first.
     pub(super) fn room(&self, x: [f64; 2], d: [f64; 2]) -> (f64, Option<&'static str>) {
         let mut t = 1.0f64;
         let mut which = None;
-        let mut cap = |slack: f64, rate: f64, name: &'static str| {
+        for l in self.limits() {
+            let slack = l.a[0] * x[0] + l.a[1] * x[1] + l.c;
+            let rate = l.a[0] * d[0] + l.a[1] * d[1];
             if rate < 0.0 && slack + rate * t < 0.0 {
                 t = (slack / -rate).max(0.0);
-                which = Some(name);
-            }
-        };
-        match self {
-            Mode::Pmb { min_len, total, .. } => {
-                cap(
-                    x[0] - min_len,
-                    d[0],
-                    "the entrance would be shorter than 2 % of the hull",
-                );
-                cap(
-                    x[1] - min_len,
-                    d[1],
-                    "the run would be shorter than 2 % of the hull",
-                );
-                cap(
-                    total - x[0] - x[1] - min_len,
-                    -(d[0] + d[1]),
-                    "the parallel middle body would be shorter than 2 % of the hull",
-                );
-            }
-            Mode::Bulge { max, .. } => {
-                const ENTRANCE: &str =
-                    "the entrance's bulge would exceed a quarter of the half breadth";
-                const RUN: &str = "the run's bulge would exceed a quarter of the half breadth";
-                cap(max - x[0], -d[0], ENTRANCE);
-                cap(max + x[0], d[0], ENTRANCE);
-                cap(max - x[1], -d[1], RUN);
-                cap(max + x[1], d[1], RUN);
+                which = Some(l.name);
             }
         }
         (t, which)
     }
 
+    /// The entrance's and run's bulges (m) at the unknowns `x`.
+    pub(super) fn bulges(&self, x: [f64; 2]) -> [f64; 2] {
+        self.map(x).1
+    }
+
     /// The direction along the limit `which` (as [`Mode::room`] names it).
     pub(super) fn along(&self, which: &str) -> [f64; 2] {
-        if which.contains("parallel") {
-            [1.0, -1.0]
-        } else if which.contains("entrance") {
-            [0.0, 1.0]
-        } else {
-            [1.0, 0.0]
-        }
+        self.limits()
+            .into_iter()
+            .find(|l| l.name == which)
+            .map_or([1.0, 0.0], |l| [l.a[1], -l.a[0]])
     }
 
     /// `network` (of form topology `form`) deformed to the unknowns `x`, or why not.
@@ -167,33 +241,26 @@ impl Mode {
         x: [f64; 2],
         tolerance: Tolerance,
     ) -> Result<Network, String> {
-        let (moves, bulges) = match self {
-            // Both PMB ends in one deformation of the original (their moves touch different
-            // sections), so the result does not depend on an order of steps.
-            Mode::Pmb { .. } => {
-                let mut moves = Vec::new();
-                for target in [Target::EntranceLength(x[0]), Target::RunLength(x[1])] {
-                    match parametric_moves(network, form, target).map_err(|e| e.to_string())? {
-                        Plan::Moves(m) => moves.extend(m),
-                        Plan::TransverseScale(_) => {
-                            return Err(format!("{} is no PMB move", target.name()))
-                        }
+        let ([e, r], [b_e, b_r]) = self.map(x);
+        // Both PMB ends in one deformation of the original (their moves touch different
+        // sections), so the result does not depend on an order of steps.
+        let mut moves = Vec::new();
+        if self.lengths.is_some() && self.kind != Kind::Bulge {
+            for target in [Target::EntranceLength(e), Target::RunLength(r)] {
+                match parametric_moves(network, form, target).map_err(|e| e.to_string())? {
+                    Plan::Moves(m) => moves.extend(m),
+                    Plan::TransverseScale(_) => {
+                        return Err(format!("{} is no PMB move", target.name()))
                     }
                 }
-                (moves, Vec::new())
             }
-            Mode::Bulge { entrance, run, .. } => {
-                let bulge = |faces: &[usize], amount: f64| {
-                    faces
-                        .iter()
-                        .map(move |&face| FaceBulge { face, amount })
-                        .collect::<Vec<_>>()
-                };
-                let mut bulges = bulge(entrance, x[0]);
-                bulges.extend(bulge(run, x[1]));
-                (Vec::new(), bulges)
+        }
+        let mut bulges = Vec::new();
+        if self.kind != Kind::Pmb {
+            for (faces, amount) in self.faces.iter().zip([b_e, b_r]) {
+                bulges.extend(faces.iter().map(|&face| FaceBulge { face, amount }));
             }
-        };
+        }
         let deformed = transform_bulged(network, form, &moves, &bulges, tolerance)
             .map_err(|e| e.to_string())?
             .network;

@@ -219,7 +219,7 @@ def transform_hydrostatic(
     cb: float | None = None,
     cp: float | None = None,
     lcb: float | None = None,
-    keep_pmb: bool = False,
+    keep_pmb: bool | str | None = None,
     lpp: float | None = None,
     fp: float | None = None,
     density: float = ...,  # SEA_WATER_DENSITY
