@@ -406,11 +406,11 @@ fn solve(
                 None => (None, 0.0),
             };
             let mode = Mode::new(kind, ends, pmb0, length, [entrance, run], max);
-            // The Jacobian by differences, two hulls per unknown (a bulge of h and of 2h, h
-            // fuller or finer as the volume must go): the first bulge already re-attaches the
-            // curves inside the face, which inserts knots and so re-parameterises them as
-            // Blender holds them, a step in ∇ (0.1 % on the frigate) that the slope between
-            // two bulges leaves out. The iteration starts from the best of these hulls.
+            // The Jacobian by differences, two hulls per unknown (a step of h and of 2h, fuller
+            // or finer as the volume must go): the first bulge already re-attaches the curves
+            // inside the face, which inserts knots and so re-parameterises them as Blender
+            // holds them, a jump in ∇ (0.1 % on the frigate) that the slope between two steps
+            // leaves out. The iteration starts from the best of these hulls.
             let sign = if miss(&before)[0] < 0.0 { 1.0 } else { -1.0 };
             let mut jac = [[0.0; 2]; 2];
             for k in 0..2 {
@@ -418,6 +418,9 @@ fn solve(
                 let mut col = None;
                 let mut failed = None;
                 for _ in 0..=MAX_HALVINGS {
+                    if evaluations + 2 > MAX_EVALUATIONS {
+                        break;
+                    }
                     let at = |s: f64| {
                         let mut x = [0.0; 2];
                         x[k] = s;
