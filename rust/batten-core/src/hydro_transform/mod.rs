@@ -517,15 +517,7 @@ fn solve(
             }
             let trial = [x[0] + dx[0], x[1] + dx[1]];
             evaluations += 1;
-            let r = evaluate(trial, &mode);
-            if std::env::var_os("ZDBG").is_some() {
-                eprintln!(
-                    "ZDBG x {trial:?} f {:?} jac {jac:?} -> {:?}",
-                    f,
-                    r.as_ref().map(|e| miss(&e.hydro))
-                );
-            }
-            match r {
+            match evaluate(trial, &mode) {
                 Ok(ev) => {
                     explored.add(&ev.hydro);
                     accepted = Some((trial, ev));
