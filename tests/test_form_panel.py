@@ -190,6 +190,7 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     rows = {row["label"]: row for row in summary["rows"]}
     assert rows["Cb"]["after"] == pytest.approx(before["cb"] + 0.01, abs=2e-5)
     assert rows["LCB (m)"]["aim"] == pytest.approx(before["lcb"] + 0.2, abs=1e-6)
+    assert rows["Δ (t)"]["aim"] == pytest.approx(rows["∇ (m³)"]["aim"] * before["density"], rel=1e-12)
     after = api.hydrostatics(copy, T, lpp=before["lpp"], fp=before["x_fp"])
     assert after["lcb"] == pytest.approx(before["lcb"] + 0.2, abs=2e-3)
     drawn = _draw()["labels"]
@@ -212,4 +213,6 @@ def test_hydrostatic_targets_make_a_copy_and_the_panel_shows_before_after_and_ai
     status, reports = execute(BATTEN_OT_transform_hydrostatic, bpy.context)
     assert status == {"FINISHED"}, reports
     assert json.loads(settings.last_hydro_transform)["stop"] == "converged"
-    assert any(t.startswith("Bulge: entrance +") for t in _draw()["labels"])
+    drawn = _draw()["labels"]
+    assert any(t.startswith("Bulge: entrance +") for t in drawn)
+    assert "PMB 20.000 → 20.000 m" in drawn, "the PMB held, and said so"

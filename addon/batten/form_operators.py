@@ -119,7 +119,12 @@ def hydro_summary(result) -> dict:
     r = result.report
     rows = []
     for key, label, fmt in HYDRO_ROWS:
-        aims = {"volume": r["target_volume"], "lcb": r["target_lcb"], r["target_figure"]: r["target_value"]}
+        aims = {
+            "volume": r["target_volume"],
+            "displacement": r["target_volume"] * r["before"]["density"],
+            "lcb": r["target_lcb"],
+            r["target_figure"]: r["target_value"],
+        }
         aim = aims.get(key)
         before, after = r["before"][key], r["after"][key]
         rows.append({"label": label, "format": fmt, "before": before, "after": after, "aim": aim})

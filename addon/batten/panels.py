@@ -402,10 +402,10 @@ def _draw_hydro_change(layout, text: str, source) -> None:
         split.label(text=f"{fmt.format(row['before'])} → {fmt.format(row['after'])}")
         split.label(text="—" if row["aim"] is None else fmt.format(row["aim"]))
     pmb, bulge = change["pmb_length"], change.get("bulge")
+    if pmb is not None:
+        col.label(text=f"PMB {pmb[0]:.3f} → {pmb[1]:.3f} m")
     if bulge is not None:
         col.label(text=f"Bulge: entrance {bulge[0]:+.3f} m, run {bulge[1]:+.3f} m")
-    elif pmb is not None:
-        col.label(text=f"PMB {pmb[0]:.3f} → {pmb[1]:.3f} m")
     col.label(text=f"{change['evaluations']} hull evaluations")
     if change["stop"] != "converged":
         text = f"{change['stop'].replace('_', ' ')}: {change['limit'] or 'targets not met'}"
