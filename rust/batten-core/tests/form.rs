@@ -577,11 +577,16 @@ fn hydro_options() -> HydroTransformOptions {
 
 /// The result's hydrostatics recomputed from its network alone (not the solver's figures).
 fn recheck(out: &HydroTransformed) -> batten_core::Hydrostatics {
+    recheck_at(out, T)
+}
+
+/// [`recheck`] floating at `draft`.
+fn recheck_at(out: &HydroTransformed, draft: f64) -> batten_core::Hydrostatics {
     let o = hydro_options();
     let hull = build_hull(&out.network, &o.hull).unwrap();
     let cells = hull.hydro_model(CellDensity::DEFAULT);
     let f = Flotation {
-        draft: T,
+        draft,
         trim: 0.0,
         heel_deg: 0.0,
         density: SEA_WATER_DENSITY,
@@ -847,14 +852,7 @@ fn frigate_without_a_pmb_is_made_finer_by_flattening_its_ends() {
         "finer: both ends flattened {offsets:?}"
     );
     // Re-measured on the exact cells from the network alone.
-    let hull = build_hull(&out.network, &o.hull).unwrap();
-    let f = Flotation {
-        draft: 4.8,
-        trim: 0.0,
-        heel_deg: 0.0,
-        density: SEA_WATER_DENSITY,
-    };
-    let h = hydrostatics(&hull.hydro_model(CellDensity::DEFAULT), &f, &out.datums).unwrap();
+    let h = recheck_at(&out, 4.8);
     let lpp = out.datums.x_fp - out.datums.x_ap;
     assert_eq!(out.target, ("cb", base.before.cb - 0.005));
     assert_near!(

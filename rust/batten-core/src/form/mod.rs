@@ -21,6 +21,7 @@ pub use identify::{
 };
 pub use parameters::{Bilge, FormParameters, ParallelMiddleBody};
 pub use parametric::{parametric_moves, transform_to, Plan, Target};
+pub(crate) use planes::curve_planes;
 pub use planes::{FormPlane, PlaneKind};
 pub use transform::{transform, transform_bulged, FaceBulge, Transformed, VertexMove};
 

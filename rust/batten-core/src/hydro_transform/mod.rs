@@ -235,12 +235,8 @@ pub fn transform_hydrostatic(
         return Ok(first);
     };
     let lpp = first.datums.x_fp - first.datums.x_ap;
-    let misses = |h: &Hydrostatics| {
-        norm([
-            (h.volume - first.target_volume) / first.target_volume,
-            (h.lcb - first.target_lcb) / lpp,
-        ])
-    };
+    let misses =
+        |h: &Hydrostatics| norm(scaled_misses(h, first.target_volume, first.target_lcb, lpp));
     if first.mode != "pmb" {
         let other = if first.pmb_length.is_some() {
             "; moving the PMB's ends instead (keep_pmb off) may reach it"
@@ -328,13 +324,7 @@ fn solve(
         _ => target.1,
     };
 
-    // Scaled misses: volume as a fraction of the target, LCB as a fraction of Lpp.
-    let miss = |h: &Hydrostatics| -> [f64; 2] {
-        [
-            (h.volume - target_volume) / target_volume,
-            (h.lcb - target_lcb) / lpp,
-        ]
-    };
+    let miss = |h: &Hydrostatics| scaled_misses(h, target_volume, target_lcb, lpp);
     let met = |f: [f64; 2]| f[0].abs() <= VOLUME_TOLERANCE && f[1].abs() <= LCB_TOLERANCE;
     let mut explored = Explored::of(&before);
     let mut evaluations = 1;
@@ -627,6 +617,12 @@ fn target_figures(
         }
     };
     Ok((figure, lcb))
+}
+
+/// How far `h` misses the targets, scaled: the volume as a fraction of `volume`, the LCB as a
+/// fraction of `lpp`.
+fn scaled_misses(h: &Hydrostatics, volume: f64, lcb: f64, lpp: f64) -> [f64; 2] {
+    [(h.volume - volume) / volume, (h.lcb - lcb) / lpp]
 }
 
 fn norm(f: [f64; 2]) -> f64 {

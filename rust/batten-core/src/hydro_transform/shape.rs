@@ -3,6 +3,7 @@
 //! lost, no new fold or gap), and no station gains an inflection.
 
 use crate::fair::fairness_metrics;
+use crate::form::{curve_planes, PlaneKind};
 use crate::hull::HullSurface;
 use crate::network::Network;
 use crate::tolerance::Tolerance;
@@ -15,15 +16,16 @@ pub(super) struct Reference {
     inflections: Vec<Option<usize>>,
 }
 
-/// The inflections of each station of `network` (None for other curves).
+/// The inflections of each station of `network` (a curve in a transverse plane, as the form
+/// topology finds its planes; None for other curves).
 fn station_inflections(network: &Network, tolerance: Tolerance) -> Vec<Option<usize>> {
     network
         .curves()
         .iter()
         .map(|c| {
-            let pts = c.curve.control_points();
-            let x0 = pts.first()?.x;
-            let transverse = pts.iter().all(|p| (p.x - x0).abs() <= tolerance.get());
+            let transverse = curve_planes(&c.curve, tolerance.get())
+                .iter()
+                .any(|(kind, _, _)| *kind == PlaneKind::Transverse);
             (transverse && c.curve.degree() >= 2).then(|| fairness_metrics(&c.curve).inflections)
         })
         .collect()
