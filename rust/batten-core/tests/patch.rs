@@ -121,9 +121,13 @@ fn planar_boundaries_and_ribbons_give_a_planar_patch() {
             })
             .collect();
         let kinds: &[PatchKind] = if n == 4 {
-            &[PatchKind::Gregory, PatchKind::CharrotGregory]
+            &[
+                PatchKind::Gregory,
+                PatchKind::CharrotGregory,
+                PatchKind::SideBlend,
+            ]
         } else {
-            &[PatchKind::CharrotGregory]
+            &[PatchKind::CharrotGregory, PatchKind::SideBlend]
         };
         for &kind in kinds {
             for rib in [&ribbons[..], &[][..]] {
@@ -186,9 +190,13 @@ fn patch_interpolates_boundary_curves_and_ribbon_planes() {
         let curves = saddle_face(n);
         let boundary = single_sides(&curves);
         let kinds: &[PatchKind] = if n == 4 {
-            &[PatchKind::Gregory, PatchKind::CharrotGregory]
+            &[
+                PatchKind::Gregory,
+                PatchKind::CharrotGregory,
+                PatchKind::SideBlend,
+            ]
         } else {
-            &[PatchKind::CharrotGregory]
+            &[PatchKind::CharrotGregory, PatchKind::SideBlend]
         };
         for &kind in kinds {
             let opts = PatchOptions {
@@ -1057,5 +1065,98 @@ fn a_gregory_patch_meshes_its_inside_as_the_points_of_its_grid() {
         mesh.positions.len(),
         4 * r + inside,
         "boundary and grid, nothing else"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// A narrow face whose side hooks into a corner
+
+/// A sliver triangle in the plane z = 0, 5.2 long and 0.9 wide at its base, whose long upper
+/// side runs nearly parallel to the lower one and then hooks into the apex at 47°: the shape
+/// of a waterline meeting the keel at the stern (KCS's face of profile, st1.50 and wl_z0.30).
+fn hooked_sliver() -> Vec<NurbsCurve> {
+    let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    vec![
+        // The keel, apex to base (lower side).
+        bezier(&[p(0.0, 0.0), p(2.6, 0.0), p(5.2, 0.0)]),
+        // The base (station), up.
+        bezier(&[p(5.2, 0.0), p(5.2, 0.45), p(5.2, 0.9)]),
+        // The waterline back to the apex: nearly parallel to the keel, then the hook.
+        NurbsCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 0.6, 0.85, 1.0, 1.0, 1.0, 1.0],
+            vec![
+                p(5.2, 0.9),
+                p(3.5, 0.75),
+                p(1.5, 0.55),
+                p(0.45, 0.42),
+                p(0.12, 0.13),
+                p(0.0, 0.0),
+            ],
+            None,
+        )
+        .expect("valid curve"),
+    ]
+}
+
+/// The largest angle between the normals of neighbouring polygons of a patch's mesh, and how
+/// far the mesh leaves the boundary's box sideways (y beyond [0, 0.9]).
+fn fold_figures(p: &Patch) -> (f64, f64) {
+    let mesh = p.tessellate(16).expect("mesh");
+    let pos = |v: u32| DVec3::from(mesh.positions[v as usize]);
+    let faces: Vec<&[u32]> = mesh.faces().collect();
+    let normal = |f: &[u32]| {
+        let mut n = DVec3::ZERO;
+        for (i, &v) in f.iter().enumerate() {
+            n += pos(v).cross(pos(f[(i + 1) % f.len()]));
+        }
+        n.normalize_or_zero()
+    };
+    let mut sides = std::collections::HashMap::new();
+    let mut worst: f64 = 0.0;
+    for (k, f) in faces.iter().enumerate() {
+        for (i, &a) in f.iter().enumerate() {
+            let b = f[(i + 1) % f.len()];
+            if let Some(other) = sides.insert((a.min(b), a.max(b)), k) {
+                let (na, nb): (DVec3, DVec3) = (normal(f), normal(faces[other]));
+                worst = worst.max(na.angle_between(nb).to_degrees());
+            }
+        }
+    }
+    let outside = mesh
+        .positions
+        .iter()
+        .map(|q| (-q[1]).max(q[1] - 0.9).max(0.0))
+        .fold(0.0, f64::max);
+    (worst, outside)
+}
+
+#[test]
+fn a_side_blended_patch_stays_inside_a_hooked_sliver_where_charrot_gregory_folds() {
+    let boundary = single_sides(&hooked_sliver());
+    let patch = |kind| {
+        let opts = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        Patch::try_new(&boundary, &[], &opts).expect("patch")
+    };
+    let (cg_angle, cg_out) = fold_figures(&patch(PatchKind::CharrotGregory));
+    let (sb_angle, sb_out) = fold_figures(&patch(PatchKind::SideBlend));
+    println!("hooked sliver: Charrot–Gregory {cg_angle:.1}° and {cg_out:.2e} m outside; side-blended {sb_angle:.1}° and {sb_out:.2e} m outside");
+    // The corner interpolant at the apex adds the two sides' displacements with the hook's
+    // tangent: the Charrot–Gregory sheet doubles back on itself (in its plane here).
+    assert!(
+        cg_angle > 90.0,
+        "the fold this test is about: {cg_angle}°, {cg_out} m out"
+    );
+    // The side-blended patch of the same boundary is a sheet inside it.
+    assert!(
+        sb_angle < 30.0,
+        "side-blended: neighbours turn by {sb_angle}°"
+    );
+    assert!(
+        sb_out < 1e-9,
+        "side-blended: {sb_out} m outside its boundary"
     );
 }

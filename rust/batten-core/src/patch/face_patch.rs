@@ -1,6 +1,6 @@
 //! One surface patch over a face (H-rep paper §3.2.1–3.2.2): its options, construction from
 //! the face's boundary and ribbons, and evaluation by the Gregory (4 sides) or Charrot–Gregory
-//! (N sides) scheme.
+//! (N sides) scheme, or by the side-blended fallback for a face where those fold.
 
 use std::sync::Arc;
 
@@ -13,6 +13,7 @@ use super::domain::{Domain, MAX_SIDES};
 use super::error::{PatchError, PatchWarning};
 use super::gregory4;
 use super::ribbon::{prepare_ribbons, PreparedRibbon, SideRibbon};
+use super::side_blend;
 use crate::tolerance::Tolerance;
 
 /// Which surface scheme interpolates a face.
@@ -25,6 +26,9 @@ pub enum PatchKind {
     Gregory,
     /// The N-sided Charrot–Gregory patch (also for 4 sides).
     CharrotGregory,
+    /// Kato's side-blended patch with ribbons limited by the face's width: the fallback for a
+    /// face whose corner-based patch folds (see the `side_blend` module).
+    SideBlend,
 }
 
 /// Options of [`Patch::try_new`].
@@ -61,6 +65,8 @@ const DERIV_STEP: f64 = 1e-6;
 pub struct Patch {
     kind: PatchKind,
     domain: Domain,
+    /// The domain's depth behind each side (side-blended patches only).
+    depth: Arc<[f64]>,
     sides: Arc<[PreparedSide]>,
     ribbons: Arc<[PreparedRibbon]>,
     corners: Arc<[CornerData]>,
@@ -84,6 +90,7 @@ impl Patch {
         let kind = match (options.kind, n) {
             (PatchKind::Auto, 4) | (PatchKind::Gregory, 4) => PatchKind::Gregory,
             (PatchKind::Gregory, _) => return Err(PatchError::GregoryNeedsFourSides { sides: n }),
+            (PatchKind::SideBlend, _) => PatchKind::SideBlend,
             _ => PatchKind::CharrotGregory,
         };
         if !ribbons.is_empty() && ribbons.len() != n {
@@ -102,11 +109,18 @@ impl Patch {
             }
         }
         let mut warnings = Vec::new();
-        let ribs = prepare_ribbons(&sides, ribbons, &mut warnings);
+        let blend = kind == PatchKind::SideBlend;
+        let ribs = prepare_ribbons(&sides, ribbons, blend, &mut warnings);
         let corners = corner_data(&sides, &ribs);
+        let domain = Domain::new(n);
         Ok(Patch {
             kind,
-            domain: Domain::new(n),
+            depth: if blend {
+                side_blend::depths(&domain).into()
+            } else {
+                Arc::from([])
+            },
+            domain,
             sides: sides.into(),
             ribbons: ribs.into(),
             corners: corners.into(),
@@ -124,7 +138,8 @@ impl Patch {
         &self.sides
     }
 
-    /// The scheme in use ([`PatchKind::Gregory`] or [`PatchKind::CharrotGregory`]).
+    /// The scheme in use ([`PatchKind::Gregory`], [`PatchKind::CharrotGregory`] or
+    /// [`PatchKind::SideBlend`]).
     pub fn kind(&self) -> PatchKind {
         self.kind
     }
@@ -149,6 +164,9 @@ impl Patch {
     pub(crate) fn eval_v(&self, x: DVec2) -> DVec3 {
         match self.kind {
             PatchKind::Gregory => gregory4::eval(&self.sides, &self.ribbons, &self.corners, x),
+            PatchKind::SideBlend => {
+                side_blend::eval(&self.domain, &self.depth, &self.sides, &self.ribbons, x)
+            }
             _ => charrot_gregory::eval(&self.domain, &self.sides, &self.ribbons, &self.corners, x),
         }
     }

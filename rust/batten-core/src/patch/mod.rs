@@ -14,6 +14,10 @@
 //! Choices the paper leaves open, made here as a naval architect would expect:
 //! - The cross-derivative magnitude follows the neighbouring sides at the corners (linear in
 //!   between): a long, narrow patch is not bulged by unit-length ribbons.
+//! - A face whose corner-based patch folds can be given Kato's side-blended patch instead
+//!   ([`PatchKind::SideBlend`], `side_blend`): the same boundary and ribbon planes, no corner
+//!   interpolants, ribbons cut to the face's width. The hull build does so where it folds
+//!   clearly less.
 //! - Corners whose angle is within [`MIN_CORNER_ANGLE_DEGREES`] of 0° or 180° are repaired
 //!   (the ribbon is turned to that angle) and reported as a [`PatchWarning`], not refused.
 //! - A side of (nearly) zero length, a gap between sides larger than 10× the model tolerance,
@@ -28,6 +32,7 @@ mod error;
 mod face_patch;
 mod gregory4;
 mod ribbon;
+mod side_blend;
 mod tessellate;
 
 pub use boundary::{FaceBoundary, Side, SideParam, SideSegment};

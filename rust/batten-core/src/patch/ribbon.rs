@@ -23,7 +23,7 @@
 //! corner is `ĉ × a` with `a` the neighbouring side's tangent there (the face's own corner),
 //! blended linearly and normalised along the side.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::boundary::{PreparedSide, SideSegment};
 use super::error::{PatchError, PatchWarning};
@@ -457,6 +457,11 @@ pub(crate) struct PreparedRibbon {
     face_normal: DVec3,
     alpha: [f64; 2],
     beta: [f64; 2],
+    /// The ribbon's scale at [`WIDTH_SAMPLES`] + 1 even steps of `s`, with its Hermite slopes
+    /// and its smallest value, where a side-blended patch's narrow face shortens it
+    /// ([`width_scale`]); `None` where it is 1 throughout (always, for the corner-based
+    /// patches).
+    scale: Option<WidthScale>,
 }
 
 /// Position, unit tangent and unit inward cross tangent of a side at `s`.
@@ -501,8 +506,145 @@ impl PreparedRibbon {
         let s = s.clamp(0.0, 1.0);
         let a = self.alpha[0] + (self.alpha[1] - self.alpha[0]) * s;
         let b = self.beta[0] + (self.beta[1] - self.beta[0]) * s;
-        (f.p, f.c * a + f.cross * b)
+        let r = f.c * a + f.cross * b;
+        match &self.scale {
+            None => (f.p, r),
+            Some(w) => (f.p, r * w.at(s)),
+        }
     }
+
+    /// |R(s)| before any width scale: the corner magnitudes' linear blend.
+    fn linear_length(&self, s: f64) -> f64 {
+        let a = self.alpha[0] + (self.alpha[1] - self.alpha[0]) * s;
+        let b = self.beta[0] + (self.beta[1] - self.beta[0]) * s;
+        a.hypot(b)
+    }
+}
+
+/// A ribbon's scale along its side ([`PreparedRibbon::scale`]).
+#[derive(Clone, Debug)]
+struct WidthScale {
+    values: Vec<f64>,
+    slopes: Vec<f64>,
+    least: f64,
+}
+
+impl WidthScale {
+    /// The Hermite blend of the samples at `s`, kept within their range (never 0 or less:
+    /// the ribbon keeps its direction).
+    #[inline]
+    fn at(&self, s: f64) -> f64 {
+        hermite_scalar(&self.values, &self.slopes, s).clamp(self.least, 1.0)
+    }
+}
+
+/// Samples along each side at which a face's width is measured for [`width_scale`].
+const WIDTH_SAMPLES: usize = 16;
+
+/// Samples per side of the boundary whose distances give the width.
+const WIDTH_BOUNDARY_SAMPLES: usize = 32;
+
+/// A ribbon may reach this many times the face's width across from its side before it is
+/// shortened ([`width_scale`]).
+pub(crate) const RIBBON_WIDTH_RATIO: f64 = 1.0;
+
+/// How much a ribbon of linear length `length` is shortened where the face is `width` wide,
+/// for a side-blended patch ([`crate::PatchKind::SideBlend`]): 1 while
+/// `length ≤ RIBBON_WIDTH_RATIO·width`; `RIBBON_WIDTH_RATIO·width / length` once the ribbon
+/// is three times that long, so it then reaches the face's width; a C¹ cubic between.
+///
+/// The corner magnitudes (the neighbouring sides' derivatives, which the Gregory and
+/// Charrot–Gregory corner interpolants need) are blended linearly along a side (module docs).
+/// Where a boundary curve hooks into a corner of a narrow face (a waterline turning into the
+/// keel), that blend reaches ten widths across the face, and a patch extrapolating its sides
+/// by it crosses its own boundary. A side-blended patch needs no corner conditions, so its
+/// ribbons are cut to the width. Scaling a ribbon keeps its direction, so the tangent plane
+/// along the edge, and with it G1, is unchanged.
+fn width_scale(length: f64, width: f64) -> f64 {
+    let (lo, hi) = (1.0 / 3.0, 1.0);
+    let r = RIBBON_WIDTH_RATIO * width / length;
+    if r.is_nan() || r >= hi {
+        1.0
+    } else if r <= lo {
+        r.max(0.0)
+    } else {
+        // Hermite from (lo, lo, slope 1) to (hi, 1, slope 0).
+        let h = hi - lo;
+        let x = (r - lo) / h;
+        let (x2, x3) = (x * x, x * x * x);
+        (2.0 * x3 - 3.0 * x2 + 1.0) * lo + (x3 - 2.0 * x2 + x) * h + (-2.0 * x3 + 3.0 * x2)
+    }
+}
+
+/// The ribbon scales of side `i` of a face (see [`width_scale`]). The face's width at a side
+/// point is how far the ray from it along the cross tangent runs before it meets the rest of
+/// the boundary, all projected on the tangent plane there (no meeting: no limit).
+fn side_scales(sides: &[PreparedSide], i: usize, rib: &PreparedRibbon) -> Option<WidthScale> {
+    let n = sides.len();
+    // The rest of the boundary as one polyline, from the end of side i round to its start.
+    let others: Vec<DVec3> = (1..n)
+        .map(|k| &sides[(i + k) % n])
+        .flat_map(|side| {
+            (0..=WIDTH_BOUNDARY_SAMPLES)
+                .map(|j| side.point(j as f64 / WIDTH_BOUNDARY_SAMPLES as f64))
+        })
+        .collect();
+    let mut any = false;
+    let values: Vec<f64> = (0..=WIDTH_SAMPLES)
+        .map(|j| {
+            let s = j as f64 / WIDTH_SAMPLES as f64;
+            let f = rib.frame(&sides[i], s);
+            let flat = |q: DVec3| DVec2::new((q - f.p).dot(f.c), (q - f.p).dot(f.cross));
+            let mut width = f64::INFINITY;
+            for w in others.windows(2) {
+                let (a, b) = (flat(w[0]), flat(w[1]));
+                if (a.x <= 0.0) != (b.x <= 0.0) {
+                    let y = a.y + (b.y - a.y) * (a.x / (a.x - b.x));
+                    if y > 0.0 {
+                        width = width.min(y);
+                    }
+                }
+            }
+            let v = width_scale(rib.linear_length(s), width);
+            let v = if v.is_finite() && v > 0.0 { v } else { 1.0 };
+            any |= v < 1.0;
+            v
+        })
+        .collect();
+    if !any {
+        return None;
+    }
+    let ts: Vec<f64> = (0..=WIDTH_SAMPLES)
+        .map(|j| j as f64 / WIDTH_SAMPLES as f64)
+        .collect();
+    let slopes = hermite_slopes_scalar(&ts, &values);
+    let least = values.iter().copied().fold(1.0, f64::min);
+    Some(WidthScale {
+        values,
+        slopes,
+        least,
+    })
+}
+
+/// [`hermite_slopes`] of scalars.
+fn hermite_slopes_scalar(ts: &[f64], values: &[f64]) -> Vec<f64> {
+    let v: Vec<DVec3> = values.iter().map(|&x| DVec3::new(x, 0.0, 0.0)).collect();
+    hermite_slopes(ts, &v).into_iter().map(|d| d.x).collect()
+}
+
+/// The cubic Hermite blend at `s ∈ [0, 1]` of `values` at even steps with `slopes`.
+#[inline]
+fn hermite_scalar(values: &[f64], slopes: &[f64], s: f64) -> f64 {
+    let m = values.len() - 1;
+    let x = s.clamp(0.0, 1.0) * m as f64;
+    let i = (x.floor() as usize).min(m - 1);
+    let h = 1.0 / m as f64;
+    let u = x - i as f64;
+    let (u2, u3) = (u * u, u * u * u);
+    (2.0 * u3 - 3.0 * u2 + 1.0) * values[i]
+        + (u3 - 2.0 * u2 + u) * h * slopes[i]
+        + (-2.0 * u3 + 3.0 * u2) * values[i + 1]
+        + (u3 - u2) * h * slopes[i + 1]
 }
 
 /// `T̂ = n̂⊥ × ĉ`: the unit vector perpendicular to `c` in the plane perpendicular to `n`
@@ -521,10 +663,12 @@ struct SideEnds {
     end: DVec3,
 }
 
-/// Build the prepared ribbons of a face from its prepared sides and ribbon specifications.
+/// Build the prepared ribbons of a face from its prepared sides and ribbon specifications;
+/// `width_limited` (for a side-blended patch) cuts each to the face's width ([`width_scale`]).
 pub(crate) fn prepare_ribbons(
     sides: &[PreparedSide],
     specs: &[SideRibbon],
+    width_limited: bool,
     warnings: &mut Vec<PatchWarning>,
 ) -> Vec<PreparedRibbon> {
     let n = sides.len();
@@ -580,6 +724,7 @@ pub(crate) fn prepare_ribbons(
             face_normal,
             alpha: [0.0; 2],
             beta: [0.0; 2],
+            scale: None,
         };
         let side = &sides[i];
         let spec = specs.get(i);
@@ -643,6 +788,9 @@ pub(crate) fn prepare_ribbons(
             // direction at s = 1, same as at the start: R = α ĉ + β T̂ in both cases.
             rib.alpha[end] = mag * phi.cos();
             rib.beta[end] = mag * phi.sin();
+        }
+        if width_limited {
+            rib.scale = side_scales(sides, i, &rib);
         }
         out.push(rib);
     }
