@@ -96,17 +96,13 @@ def test_3dm_reads_back_with_rhino3dm_within_the_tolerance(example, tmp_path):
     assert deviation.max() <= TOL, f"{deviation.max():.2e} m"
 
 
-def test_kcs_fold_is_refused_by_name(tmp_path):
-    """KCS at the default settings: batten's own surface folds (the build's fold warnings,
-    a triangle at the forefoot turning 180°) or bends too sharply for the most spans in
-    places, which no face within 0.1 mm follows. The export names the faces it found, with
-    their curves, and what to do, instead of writing a wrong file."""
+def test_kcs_faces_that_cannot_be_fitted_are_refused_by_name(tmp_path):
+    """KCS at the default settings: where batten's own surface folds or bends too sharply for
+    the most spans, no face within 0.1 mm follows it. The export names the faces it found,
+    each with its curves and what its fit reached, and what to do, instead of writing a wrong
+    file."""
     coll, _ = api.import_sections(HULLS / "kcs" / "network.json")
     report = api.build(coll).report
-    forefoot = sorted(["profile_centreline", "st19.75", "wl_z0.30"])
-    folded = [w for w in report["warnings"] if w["kind"] == "fold" and w["curves"] == forefoot]
-    assert folded, "the build reports the forefoot's triangle folding"
-    face = int(folded[0]["message"].split()[1])
     path = tmp_path / "kcs.stp"
     with pytest.raises(
         api.ExportError, match=rf"of {report['faces']} patches could not be approximated"
@@ -114,14 +110,12 @@ def test_kcs_fold_is_refused_by_name(tmp_path):
         api.export_step(coll, path)
     message = str(err.value)
     assert "fair or move the curves around it" in message, "what the user can do"
-    # The fold's spokes cannot be fitted: always found, before any face is fitted.
-    assert face in err.value.faces and f"face {face} (reached 1.6" in message, message
+    assert err.value.faces, "the faces it could not fit"
     faces = api.topology(coll)["faces"]
-    assert sorted(faces[face]["curves"]) == forefoot, "the topology numbers faces as the build"
     around = dict(part.split(": ", 1) for part in message.split("the curves around them: ")[1].split("; "))
     assert sorted(around) == sorted(f"face {f}" for f in err.value.faces), "every face's curves"
     for f in err.value.faces:
-        assert f"face {f} (" in message, f"face {f} with what its fit reached"
+        assert f"face {f} (reached " in message, f"face {f} with what its fit reached"
         assert around[f"face {f}"] == ", ".join(f"'{c}'" for c in faces[f]["curves"]), f"face {f}'s curves"
     assert not any(tmp_path.iterdir()), "nothing written"
     print(f"KCS: {message}")

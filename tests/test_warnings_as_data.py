@@ -224,3 +224,24 @@ def test_a_degenerate_corner_names_its_face_curves_and_place():
     centre = (np.array([0, 0, 0]) + np.array([10, 0, 0]) + np.array(tip)) / 3
     assert np.allclose(w["location"], centre, atol=1e-5), w  # float32 curve data
     assert w["error"] is None, w
+
+
+def test_a_side_blended_face_names_its_curves_and_both_fold_figures():
+    """A narrow triangle whose long side hooks into its apex (a waterline meeting the keel):
+    its Charrot–Gregory patch folds, the side-blended patch that replaces it does not, and the
+    report says so as a ``side_blended`` dict naming the face's curves, with no fold left."""
+    coll = new_collection("hook")
+    _line("keel", (0, 0, 0), (5.2, 0, 0), coll)
+    _line("station", (5.2, 0, 0), (5.2, 0.9, 0), coll)
+    hook = [(5.2, 0.9, 0), (3.5, 0.75, 0), (1.5, 0.55, 0), (0.45, 0.42, 0), (0.12, 0.13, 0), (0, 0, 0)]
+    new_curve("waterline", "NURBS", np.array(hook, dtype=float), endpoint=True, collection=coll)
+    report = api.build(coll, mirror=False).report
+    assert report["faces"] == 1, report["warnings"]
+    found = _of_kind(report["warnings"], "side_blended")
+    assert len(found) == 1, report["warnings"]
+    w = found[0]
+    assert sorted(w["curves"]) == ["keel", "station", "waterline"], w
+    assert sorted(w["objects"]) == ["keel", "station", "waterline"], w
+    assert "Charrot–Gregory patch folds" in w["message"] and "(0 pair(s)" in w["message"], w
+    assert w["location"] is not None and w["error"] is None, w
+    assert report["folds"] == 0, report["warnings"]

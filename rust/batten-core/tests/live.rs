@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use batten_core::{
     build_hull, tessellate_patches, HullOptions, LiveHull, Network, NetworkCurve, NurbsCurve,
-    Rebuild,
+    PatchKind, Rebuild,
 };
 use glam::DVec3;
 
@@ -305,4 +305,33 @@ fn recomputed_fields_that_did_not_change_patch_no_face_again() {
         faces > 0 && faces <= 10,
         "{faces} of {of} faces patched again"
     );
+}
+
+/// A drag next to side-blended faces (patches that replaced folding corner-based ones) ends
+/// in a full build's surface, and the faces it rebuilds choose their patch again as a full
+/// build does.
+#[test]
+fn a_drag_beside_side_blended_faces_matches_a_full_build() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/kcs_faired_apart.json");
+    let net = Network::from_json(&std::fs::read_to_string(path).expect("fixture")).expect("reads");
+    let options = HullOptions::try_new(0.01, 8).expect("options");
+    let mut live = LiveHull::new(&net, &options).expect("builds");
+    let blended = |live: &LiveHull| {
+        live.surface()
+            .patches
+            .iter()
+            .filter(|p| p.kind() == PatchKind::SideBlend)
+            .count()
+    };
+    assert!(blended(&live) > 0, "the fixture has side-blended faces");
+    let station = curve(&net, "st01");
+    let middle = net.curves()[station].curve.control_points().len() / 2;
+    let next = moved(&net, station, middle, DVec3::new(0.0, 2e-3, 0.0));
+    let did = live.rebuild(&next).expect("rebuilds").clone();
+    assert!(
+        matches!(did, Rebuild::Incremental { .. }),
+        "an incremental rebuild: {did:?}"
+    );
+    assert!(blended(&live) > 0, "still side-blended faces");
+    assert_same_as_full(&mut live, &next);
 }

@@ -7,6 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
+use super::folds::face_mesh_folds;
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings, MeshShares};
@@ -142,6 +143,7 @@ fn face_warning(
 fn patch_warning(topology: &Topology, fi: usize, label: &str, w: &PatchWarning) -> Warning {
     let kind = match w {
         PatchWarning::CornerAngle { .. } => WarningKind::DegenerateCorner,
+        PatchWarning::SideBlended { .. } => WarningKind::SideBlended,
     };
     face_warning(topology, fi, kind, format!("{label}: {w}"), None)
 }
@@ -243,6 +245,56 @@ fn patch_options(options: &HullOptions) -> PatchOptions {
     }
 }
 
+/// Faces of more mesh vertices than this are not meshed to look for folds before the whole
+/// mesh is known to be indexable (see [`face_outcomes`]).
+const FOLD_CHECK_VERTICES: usize = 1 << 20;
+
+/// A side-blended patch replaces a folded corner-based one when its folds
+/// ([`MeshFolds::excess`](super::folds::MeshFolds)) are at most this fraction of the other's:
+/// where both fold about as badly, the paper's patch stays.
+const FALLBACK_GAIN: f64 = 0.5;
+
+/// A face's patch, and its mesh at `resolution` when it was made to look for folds: the
+/// corner-based patch, or — where its mesh folds ([`face_mesh_folds`]) and the side-blended
+/// patch of the same boundary and ribbons folds clearly less ([`FALLBACK_GAIN`]) — that one
+/// ([`PatchKind::SideBlend`]).
+fn unfolded(
+    plan: &FacePlan,
+    patch: Patch,
+    opts: &PatchOptions,
+    resolution: usize,
+) -> (Patch, Option<FaceMesh>) {
+    if patch.mesh_vertex_count(resolution) > FOLD_CHECK_VERTICES {
+        return (patch, None);
+    }
+    let mesh = patch.face_mesh(resolution);
+    let folds = face_mesh_folds(&mesh);
+    if folds.pairs == 0 || !mesh.is_finite() {
+        return (patch, Some(mesh));
+    }
+    let blend_opts = PatchOptions {
+        kind: PatchKind::SideBlend,
+        ..*opts
+    };
+    let Ok(blended) = Patch::try_new(&plan.boundary, &plan.ribbons, &blend_opts) else {
+        return (patch, Some(mesh));
+    };
+    let other = blended.face_mesh(resolution);
+    let other_folds = face_mesh_folds(&other);
+    if other.is_finite() && other_folds.excess <= FALLBACK_GAIN * folds.excess {
+        let note = PatchWarning::SideBlended {
+            replaced: patch.kind(),
+            replaced_pairs: folds.pairs,
+            replaced_degrees: folds.worst,
+            pairs: other_folds.pairs,
+            degrees: other_folds.worst,
+        };
+        (blended.with_warning(note), Some(other))
+    } else {
+        (patch, Some(mesh))
+    }
+}
+
 /// The outcomes of the faces flagged in `dirty` (in parallel), the others taken from `kept`
 /// (all faces when `kept` is `None`): patch, then — once the whole mesh is known to be
 /// indexable ([`PatchError::MeshTooLarge`](crate::PatchError::MeshTooLarge) otherwise) —
@@ -254,7 +306,8 @@ fn face_outcomes(
     options: &HullOptions,
 ) -> Result<Vec<Arc<FaceOutcome>>, Error> {
     let opts = patch_options(options);
-    let built: Vec<Option<Result<(Patch, PatchLayout), FaceError>>> = stages
+    type Built = (Patch, PatchLayout, Option<FaceMesh>);
+    let built: Vec<Option<Result<Built, FaceError>>> = stages
         .topology
         .faces
         .par_iter()
@@ -269,14 +322,15 @@ fn face_outcomes(
                     &stages.shared,
                 )?;
                 let patch = Patch::try_new(&plan.boundary, &plan.ribbons, &opts)?;
-                Ok((patch, plan.layout))
+                let (patch, mesh) = unfolded(&plan, patch, &opts, options.resolution);
+                Ok((patch, plan.layout, mesh))
             })
         })
         .collect();
     // Counted before anything is meshed: a mesh too large to index is refused up front.
     let total = built.iter().enumerate().fold(0usize, |acc, (fi, b)| {
         let n = match (b, kept) {
-            (Some(Ok((patch, _))), _) => patch.mesh_vertex_count(options.resolution),
+            (Some(Ok((patch, _, _))), _) => patch.mesh_vertex_count(options.resolution),
             (None, Some(kept)) => match kept[fi].as_ref() {
                 FaceOutcome::Built { mesh, .. } => mesh.vertex_count(),
                 _ => 0,
@@ -294,8 +348,8 @@ fn face_outcomes(
         .map(|(fi, b)| match b {
             None => Arc::clone(&kept.expect("kept outcomes for the clean faces")[fi]),
             Some(Err(error)) => Arc::new(FaceOutcome::Failed(error)),
-            Some(Ok((patch, layout))) => {
-                let mesh = patch.face_mesh(options.resolution);
+            Some(Ok((patch, layout, mesh))) => {
+                let mesh = mesh.unwrap_or_else(|| patch.face_mesh(options.resolution));
                 Arc::new(if mesh.is_finite() {
                     FaceOutcome::Built {
                         patch,

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use super::knuckles::Knuckle;
 use super::patched::PatchedFace;
 use super::warning::{Warning, WarningKind};
-use crate::patch::SurfaceMesh;
+use crate::patch::{FaceMesh, SurfaceMesh};
 use crate::tolerance::Tolerance;
 use crate::topo::Topology;
 
@@ -38,6 +38,64 @@ fn polygon_normal(mesh: &SurfaceMesh, face: &[u32]) -> DVec3 {
         n += a.cross(b);
     }
     n.normalize_or_zero()
+}
+
+/// How badly a patch's own mesh folds ([`MeshFolds`]), measured between its neighbouring
+/// polygons.
+pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
+    let positions = mesh.positions();
+    let normal = |face: &[u32]| {
+        let mut n = DVec3::ZERO;
+        for (i, &v) in face.iter().enumerate() {
+            let (a, b) = (
+                positions[v as usize],
+                positions[face[(i + 1) % face.len()] as usize],
+            );
+            n += a.cross(b);
+        }
+        n.normalize_or_zero()
+    };
+    let faces: Vec<&[u32]> = mesh.polygons().collect();
+    let normals: Vec<DVec3> = faces.iter().map(|f| normal(f)).collect();
+    let mut sides: Vec<(u32, u32, usize)> = Vec::with_capacity(4 * faces.len());
+    for (fi, f) in faces.iter().enumerate() {
+        for (i, &a) in f.iter().enumerate() {
+            let b = f[(i + 1) % f.len()];
+            sides.push((a.min(b), a.max(b), fi));
+        }
+    }
+    sides.sort_unstable();
+    let mut out = MeshFolds::default();
+    for run in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        let [(_, _, f), (_, _, g)] = run[..] else {
+            continue;
+        };
+        let (nf, ng) = (normals[f], normals[g]);
+        if nf == DVec3::ZERO || ng == DVec3::ZERO {
+            continue;
+        }
+        let angle = nf.angle_between(ng).to_degrees();
+        out.worst = out.worst.max(angle);
+        if angle > FOLD_ANGLE_DEGREES {
+            out.pairs += 1;
+            out.excess += angle - FOLD_ANGLE_DEGREES;
+        }
+    }
+    out
+}
+
+/// How badly one patch's mesh folds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct MeshFolds {
+    /// Pairs of neighbouring polygons whose normals differ by more than
+    /// [`FOLD_ANGLE_DEGREES`].
+    pub(crate) pairs: usize,
+    /// The largest angle between neighbouring polygons, degrees.
+    pub(crate) worst: f64,
+    /// The sum over those pairs of their angle beyond [`FOLD_ANGLE_DEGREES`]: what the build
+    /// compares when it weighs a fallback patch (a sheet doubling back over a few polygons
+    /// outweighs a crease along many).
+    pub(crate) excess: f64,
 }
 
 /// The worst fold found for one patch (inside) or one pair of patches (across).

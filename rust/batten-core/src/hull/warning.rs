@@ -24,6 +24,8 @@ pub enum WarningKind {
     FaceNotPatched,
     /// A patch turned the ribbon at a degenerate corner (sides meeting at nearly 0° or 180°).
     DegenerateCorner,
+    /// A face's corner-based patch folded and its side-blended patch is used instead.
+    SideBlended,
     /// A patch produced non-finite points and was left out of the mesh.
     NonFiniteSurface,
     /// Free edges off the hull's boundary (not profile, deck or transom): the surface has a
@@ -42,6 +44,7 @@ impl WarningKind {
             WarningKind::NoRibbon => "no_ribbon",
             WarningKind::FaceNotPatched => "face_not_patched",
             WarningKind::DegenerateCorner => "degenerate_corner",
+            WarningKind::SideBlended => "side_blended",
             WarningKind::NonFiniteSurface => "non_finite_surface",
             WarningKind::Hole => "hole",
             WarningKind::Fold => "fold",

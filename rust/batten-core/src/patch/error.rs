@@ -188,6 +188,21 @@ pub enum PatchWarning {
         /// The angle the ribbon uses instead, degrees.
         used_degrees: f64,
     },
+    /// The face's corner-based patch (Gregory or Charrot–Gregory) folded in its own mesh, and
+    /// the side-blended patch ([`crate::PatchKind::SideBlend`]) of the same boundary and
+    /// ribbons, which folds less, is used instead.
+    SideBlended {
+        /// The corner-based patch that folded.
+        replaced: crate::PatchKind,
+        /// Its pairs of neighbouring mesh polygons more than the fold angle apart.
+        replaced_pairs: usize,
+        /// Its largest angle between neighbouring mesh polygons, degrees.
+        replaced_degrees: f64,
+        /// The same figures of the side-blended patch.
+        pairs: usize,
+        /// Its largest angle between neighbouring mesh polygons, degrees.
+        degrees: f64,
+    },
 }
 
 impl std::fmt::Display for PatchWarning {
@@ -201,6 +216,24 @@ impl std::fmt::Display for PatchWarning {
                 f,
                 "corner {corner}: angle {degrees:.2}° is degenerate; ribbon uses {used_degrees:.2}°"
             ),
+            PatchWarning::SideBlended {
+                replaced,
+                replaced_pairs,
+                replaced_degrees,
+                pairs,
+                degrees,
+            } => {
+                let name = match replaced {
+                    crate::PatchKind::Gregory => "Gregory",
+                    _ => "Charrot–Gregory",
+                };
+                write!(
+                    f,
+                    "its {name} patch folds ({replaced_pairs} pair(s) of neighbouring mesh faces \
+                     at up to {replaced_degrees:.1}°); the side-blended patch is used \
+                     ({pairs} pair(s), up to {degrees:.1}°)"
+                )
+            }
         }
     }
 }

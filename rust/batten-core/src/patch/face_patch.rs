@@ -154,6 +154,14 @@ impl Patch {
         &self.warnings
     }
 
+    /// The same patch with one more warning.
+    pub(crate) fn with_warning(mut self, warning: PatchWarning) -> Patch {
+        let mut all = self.warnings.to_vec();
+        all.push(warning);
+        self.warnings = all.into();
+        self
+    }
+
     /// The surface point at domain point `x` (points outside the domain are clamped onto it).
     #[inline]
     pub fn eval(&self, x: [f64; 2]) -> DVec3 {
