@@ -29,34 +29,19 @@ pub const BOX_SLACK: f64 = 0.25;
 /// Samples per boundary edge for the box of a patch's boundary (ends included).
 const BOX_SAMPLES: usize = 8;
 
-/// The unit normal of a polygon (Newell's method), zero for a degenerate one.
-fn polygon_normal(mesh: &SurfaceMesh, face: &[u32]) -> DVec3 {
-    let p = |v: u32| DVec3::from(mesh.positions[v as usize]);
+/// The unit normal of a polygon (Newell's method) with vertex positions from `at`, zero for a
+/// degenerate one.
+fn polygon_normal(at: impl Fn(u32) -> DVec3, face: &[u32]) -> DVec3 {
     let mut n = DVec3::ZERO;
     for (i, &v) in face.iter().enumerate() {
-        let (a, b) = (p(v), p(face[(i + 1) % face.len()]));
-        n += a.cross(b);
+        n += at(v).cross(at(face[(i + 1) % face.len()]));
     }
     n.normalize_or_zero()
 }
 
-/// How badly a patch's own mesh folds ([`MeshFolds`]), measured between its neighbouring
-/// polygons.
-pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
-    let positions = mesh.positions();
-    let normal = |face: &[u32]| {
-        let mut n = DVec3::ZERO;
-        for (i, &v) in face.iter().enumerate() {
-            let (a, b) = (
-                positions[v as usize],
-                positions[face[(i + 1) % face.len()] as usize],
-            );
-            n += a.cross(b);
-        }
-        n.normalize_or_zero()
-    };
-    let faces: Vec<&[u32]> = mesh.polygons().collect();
-    let normals: Vec<DVec3> = faces.iter().map(|f| normal(f)).collect();
+/// Every polygon side as (lower vertex, upper vertex, polygon), sorted: the two polygons of
+/// an interior mesh edge are then neighbours in the list (`chunk_by` on the vertex pair).
+fn sorted_sides(faces: &[&[u32]]) -> Vec<(u32, u32, usize)> {
     let mut sides: Vec<(u32, u32, usize)> = Vec::with_capacity(4 * faces.len());
     for (fi, f) in faces.iter().enumerate() {
         for (i, &a) in f.iter().enumerate() {
@@ -64,9 +49,21 @@ pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
             sides.push((a.min(b), a.max(b), fi));
         }
     }
-    sides.sort_unstable();
+    sides.par_sort_unstable();
+    sides
+}
+
+/// How badly a patch's own mesh folds ([`MeshFolds`]), measured between its neighbouring
+/// polygons as [`fold_findings`] measures the welded mesh.
+pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
+    let positions = mesh.positions();
+    let faces: Vec<&[u32]> = mesh.polygons().collect();
+    let normals: Vec<DVec3> = faces
+        .iter()
+        .map(|f| polygon_normal(|v| positions[v as usize], f))
+        .collect();
     let mut out = MeshFolds::default();
-    for run in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+    for run in sorted_sides(&faces).chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
         let [(_, _, f), (_, _, g)] = run[..] else {
             continue;
         };
@@ -149,17 +146,9 @@ pub(crate) fn fold_findings(
     tolerance: Tolerance,
 ) -> FoldFindings {
     let faces: Vec<&[u32]> = mesh.faces().collect();
-    let normals: Vec<DVec3> = faces.par_iter().map(|f| polygon_normal(mesh, f)).collect();
-    // Every polygon side as (lower vertex, upper vertex, polygon), sorted: the two polygons of
-    // an interior mesh edge are then neighbours in the list.
-    let mut sides: Vec<(u32, u32, usize)> = Vec::with_capacity(mesh.face_vertices.len());
-    for (fi, f) in faces.iter().enumerate() {
-        for (i, &a) in f.iter().enumerate() {
-            let b = f[(i + 1) % f.len()];
-            sides.push((a.min(b), a.max(b), fi));
-        }
-    }
-    sides.par_sort_unstable();
+    let at = |v: u32| DVec3::from(mesh.positions[v as usize]);
+    let normals: Vec<DVec3> = faces.par_iter().map(|f| polygon_normal(at, f)).collect();
+    let sides = sorted_sides(&faces);
     let pairs = sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1));
     let edge_sets: Vec<Vec<usize>> = patched
         .iter()
