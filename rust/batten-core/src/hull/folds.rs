@@ -49,12 +49,12 @@ fn sorted_sides(faces: &[&[u32]]) -> Vec<(u32, u32, usize)> {
             sides.push((a.min(b), a.max(b), fi));
         }
     }
-    sides.par_sort_unstable();
     sides
 }
 
 /// How badly a patch's own mesh folds ([`MeshFolds`]), measured between its neighbouring
-/// polygons as [`fold_findings`] measures the welded mesh.
+/// polygons as [`fold_findings`] measures the welded mesh (one arc cosine per folded pair: the
+/// build measures every face it makes).
 pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
     let positions = mesh.positions();
     let faces: Vec<&[u32]> = mesh.polygons().collect();
@@ -62,8 +62,11 @@ pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
         .iter()
         .map(|f| polygon_normal(|v| positions[v as usize], f))
         .collect();
-    let mut out = MeshFolds::default();
-    for run in sorted_sides(&faces).chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+    let mut sides = sorted_sides(&faces);
+    sides.sort_unstable();
+    let fold_cos = FOLD_ANGLE_DEGREES.to_radians().cos();
+    let (mut out, mut least_cos) = (MeshFolds::default(), 1.0f64);
+    for run in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
         let [(_, _, f), (_, _, g)] = run[..] else {
             continue;
         };
@@ -71,13 +74,14 @@ pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
         if nf == DVec3::ZERO || ng == DVec3::ZERO {
             continue;
         }
-        let angle = nf.angle_between(ng).to_degrees();
-        out.worst = out.worst.max(angle);
-        if angle > FOLD_ANGLE_DEGREES {
+        let cos = nf.dot(ng).clamp(-1.0, 1.0);
+        least_cos = least_cos.min(cos);
+        if cos < fold_cos {
             out.pairs += 1;
-            out.excess += angle - FOLD_ANGLE_DEGREES;
+            out.excess += cos.acos().to_degrees() - FOLD_ANGLE_DEGREES;
         }
     }
+    out.worst = least_cos.acos().to_degrees();
     out
 }
 
@@ -148,7 +152,8 @@ pub(crate) fn fold_findings(
     let faces: Vec<&[u32]> = mesh.faces().collect();
     let at = |v: u32| DVec3::from(mesh.positions[v as usize]);
     let normals: Vec<DVec3> = faces.par_iter().map(|f| polygon_normal(at, f)).collect();
-    let sides = sorted_sides(&faces);
+    let mut sides = sorted_sides(&faces);
+    sides.par_sort_unstable();
     let pairs = sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1));
     let edge_sets: Vec<Vec<usize>> = patched
         .iter()
