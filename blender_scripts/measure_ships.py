@@ -204,6 +204,7 @@ def measure(api, ship: Path, resolution: int) -> dict:
         "faces": r["faces"],
         "holes": r["holes"],
         "folds": r["folds"],
+        "side_blended": warnings.get("side_blended", 0),
         "near_misses": warnings.get("near_miss", 0),
         "warnings": warnings,
         "max_normal_angle_deg": r["max_normal_angle_deg"],

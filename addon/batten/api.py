@@ -1321,7 +1321,9 @@ def build(
     the half), mesh_vertices, mesh_faces, and warnings: each a dict with ``kind``
     (``dangling_end``, ``near_miss``, ``unclosed_region``, ``face_not_patched``, ``hole`` — free
     edges off the profile, deck and transom —, ``fold`` — neighbouring mesh faces more than 30°
-    apart off the knuckles, or a patch out of its boundary's box —, …),
+    apart off the knuckles, or a patch out of its boundary's box —, ``side_blended`` — a face
+    whose Gregory or Charrot–Gregory patch folded, given the side-blended patch of the same
+    curves and ribbon planes, which folds clearly less —, …),
     ``message``, ``curves`` (curve names),
     ``objects`` (the names of the curve objects they came from, for selecting them),
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the
