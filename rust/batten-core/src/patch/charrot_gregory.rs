@@ -37,10 +37,9 @@ pub(crate) fn eval(
 ) -> DVec3 {
     let n = sides.len();
     let x = domain.clamp(x);
+    let d = domain.distances(x);
     let mut d2 = [0.0; MAX_SIDES];
-    let mut d = [0.0; MAX_SIDES];
     for i in 0..n {
-        d[i] = domain.distance(i, x).max(0.0);
         d2[i] = d[i] * d[i];
     }
     // Eq. 6 numerators: the product of all squared distances except the corner's two sides.
@@ -60,12 +59,7 @@ pub(crate) fn eval(
     // Eq. 1a side parameters; a side is evaluated only when one of its corners has weight.
     let mut s = [0.0; MAX_SIDES];
     for (i, si) in s[..n].iter_mut().enumerate() {
-        let (a, b) = (d[(i + n - 1) % n], d[(i + 1) % n]);
-        *si = if a + b > 0.0 {
-            (a / (a + b)).clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
+        *si = domain.side_parameter(&d, i);
     }
     let mut f = [DVec3::ZERO; MAX_SIDES];
     let mut r = [DVec3::ZERO; MAX_SIDES];

@@ -106,6 +106,31 @@ impl Domain {
         (x - self.vertices[i]).dot(self.normals[i])
     }
 
+    /// The distances of `x` to every side (negative ones taken as 0), in the first
+    /// [`Domain::sides`] entries: the `d_i` of eq. 1.
+    #[inline]
+    pub(crate) fn distances(&self, x: DVec2) -> [f64; MAX_SIDES] {
+        let mut d = [0.0; MAX_SIDES];
+        for (i, di) in d[..self.n].iter_mut().enumerate() {
+            *di = self.distance(i, x).max(0.0);
+        }
+        d
+    }
+
+    /// The side parameter of side `i` from the distances `d` ([`Domain::distances`]): eq. 1a,
+    /// `s_i = d_{i−1} / (d_{i−1} + d_{i+1})`, guarded where it is 0/0 (only at the corner
+    /// opposite a side of a triangle, where the patches give that side no weight).
+    #[inline]
+    pub(crate) fn side_parameter(&self, d: &[f64; MAX_SIDES], i: usize) -> f64 {
+        let n = self.n;
+        let (a, b) = (d[(i + n - 1) % n], d[(i + 1) % n]);
+        if a + b > 0.0 {
+            (a / (a + b)).clamp(0.0, 1.0)
+        } else {
+            0.5
+        }
+    }
+
     /// Whether `x` lies inside or on the polygon.
     pub fn contains(&self, x: [f64; 2]) -> bool {
         let x = DVec2::from(x);

@@ -366,6 +366,19 @@ fn hermite_slopes(ts: &[f64], values: &[DVec3]) -> Vec<DVec3> {
         .collect()
 }
 
+/// The cubic Hermite basis at `x ∈ [0, 1]`: the weights of the start value, start slope (per
+/// unit `x`), end value and end slope.
+#[inline]
+fn hermite_basis(x: f64) -> [f64; 4] {
+    let (x2, x3) = (x * x, x * x * x);
+    [
+        2.0 * x3 - 3.0 * x2 + 1.0,
+        x3 - 2.0 * x2 + x,
+        -2.0 * x3 + 3.0 * x2,
+        x3 - x2,
+    ]
+}
+
 /// The cubic Hermite blend of unit vectors `values` (with `slopes`) at `t`, normalised; the end
 /// values are held outside the nodes.
 #[inline]
@@ -381,11 +394,7 @@ fn hermite_unit(ts: &[f64], values: &[DVec3], slopes: &[DVec3], t: f64) -> DVec3
     let (t0, t1) = (ts[i], ts[i + 1]);
     let h = t1 - t0;
     let x = (t - t0) / h;
-    let (x2, x3) = (x * x, x * x * x);
-    let h00 = 2.0 * x3 - 3.0 * x2 + 1.0;
-    let h10 = x3 - 2.0 * x2 + x;
-    let h01 = -2.0 * x3 + 3.0 * x2;
-    let h11 = x3 - x2;
+    let [h00, h10, h01, h11] = hermite_basis(x);
     let v =
         values[i] * h00 + slopes[i] * (h10 * h) + values[i + 1] * h01 + slopes[i + 1] * (h11 * h);
     // Aligned unit vectors never blend to zero unless opposite; fall back to the nearer.
@@ -570,9 +579,8 @@ fn width_scale(length: f64, width: f64) -> f64 {
     } else {
         // Hermite from (lo, lo, slope 1) to (hi, 1, slope 0).
         let h = hi - lo;
-        let x = (r - lo) / h;
-        let (x2, x3) = (x * x, x * x * x);
-        (2.0 * x3 - 3.0 * x2 + 1.0) * lo + (x3 - 2.0 * x2 + x) * h + (-2.0 * x3 + 3.0 * x2)
+        let [h00, h10, h01, _] = hermite_basis((r - lo) / h);
+        h00 * lo + h10 * h + h01
     }
 }
 
@@ -639,12 +647,8 @@ fn hermite_scalar(values: &[f64], slopes: &[f64], s: f64) -> f64 {
     let x = s.clamp(0.0, 1.0) * m as f64;
     let i = (x.floor() as usize).min(m - 1);
     let h = 1.0 / m as f64;
-    let u = x - i as f64;
-    let (u2, u3) = (u * u, u * u * u);
-    (2.0 * u3 - 3.0 * u2 + 1.0) * values[i]
-        + (u3 - 2.0 * u2 + u) * h * slopes[i]
-        + (-2.0 * u3 + 3.0 * u2) * values[i + 1]
-        + (u3 - u2) * h * slopes[i + 1]
+    let [h00, h10, h01, h11] = hermite_basis(x - i as f64);
+    h00 * values[i] + h10 * h * slopes[i] + h01 * values[i + 1] + h11 * h * slopes[i + 1]
 }
 
 /// `T̂ = n̂⊥ × ĉ`: the unit vector perpendicular to `c` in the plane perpendicular to `n`

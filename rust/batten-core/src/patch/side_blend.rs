@@ -23,7 +23,7 @@
 use glam::{DVec2, DVec3};
 
 use super::boundary::PreparedSide;
-use super::domain::{Domain, MAX_SIDES};
+use super::domain::Domain;
 use super::ribbon::PreparedRibbon;
 
 /// The depth of the domain behind each side: the largest distance of a domain vertex from it
@@ -51,10 +51,7 @@ pub(crate) fn eval(
 ) -> DVec3 {
     let n = sides.len();
     let x = domain.clamp(x);
-    let mut d = [0.0; MAX_SIDES];
-    for (i, di) in d[..n].iter_mut().enumerate() {
-        *di = domain.distance(i, x).max(0.0);
-    }
+    let d = domain.distances(x);
     let mut acc = DVec3::ZERO;
     let mut wsum = 0.0;
     for i in 0..n {
@@ -67,13 +64,7 @@ pub(crate) fn eval(
         if w == 0.0 {
             continue;
         }
-        let (a, b) = (d[(i + n - 1) % n], d[(i + 1) % n]);
-        let s = if a + b > 0.0 {
-            (a / (a + b)).clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
-        let (f, r) = ribbons[i].eval(&sides[i], s);
+        let (f, r) = ribbons[i].eval(&sides[i], domain.side_parameter(&d, i));
         acc += (f + r * (d[i] / depth[i])) * w;
         wsum += w;
     }
