@@ -231,10 +231,14 @@ fn polyline(
     for (k, run) in runs.iter().enumerate() {
         let pts = &pieces[run.piece].points;
         let skip = usize::from(k > 0);
-        if run.reversed {
-            line.points.extend(pts.iter().rev().skip(skip));
+        let kept = line.corners.last().map_or(0, |&c| c + 1);
+        let ordered: Box<dyn Iterator<Item = &DVec3>> = if run.reversed {
+            Box::new(pts.iter().rev().skip(skip))
         } else {
-            line.points.extend(pts.iter().skip(skip));
+            Box::new(pts.iter().skip(skip))
+        };
+        for &p in ordered {
+            push_in_order(&mut line.points, p, kept);
         }
         if let Some(next) = runs.get(k + 1) {
             if is_corner(*run, *next, pieces, patches, m, corner_angle) {
@@ -260,6 +264,27 @@ fn polyline(
     line
 }
 
+/// A section's polyline turns back on itself by more than this (cosine of the turn between
+/// consecutive chords, 120°) only where its points are out of order along the curve: within a
+/// piece every chord is within the cut tolerance of the curve, and corners are kept apart.
+const REVERSAL_COS: f64 = -0.5;
+
+/// Push `p` after the points of `line`, first dropping the last points (not before index
+/// `kept`, the one after the last corner) that `p` shows out of order: where the polyline would
+/// turn back on itself (every point is on the curve, so dropping one keeps the polyline on it).
+fn push_in_order(line: &mut Vec<DVec3>, p: DVec3, kept: usize) {
+    while line.len() >= 2 && line.len() > kept {
+        let (a, b) = (line[line.len() - 2], line[line.len() - 1]);
+        let (u, v) = (b - a, p - b);
+        if u.dot(v) < REVERSAL_COS * u.length() * v.length() {
+            line.pop();
+        } else {
+            break;
+        }
+    }
+    line.push(p);
+}
+
 /// Rotate a closed polyline with corners so it starts at its first corner.
 fn start_at_corner(line: &mut SectionPolyline) {
     line.corners.sort_unstable();
@@ -270,4 +295,49 @@ fn start_at_corner(line: &mut SectionPolyline) {
     line.points.rotate_left(first);
     line.corners = line.corners.iter().map(|&c| (c + n - first) % n).collect();
     line.corners.sort_unstable();
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pushed(points: &[[f64; 3]], kept: usize) -> Vec<[f64; 3]> {
+        let mut line = Vec::new();
+        for &p in points {
+            push_in_order(&mut line, DVec3::from(p), kept);
+        }
+        line.iter().map(|p| p.to_array()).collect()
+    }
+
+    #[test]
+    fn points_out_of_order_are_dropped_so_the_section_never_doubles_back() {
+        // Up a station: a polish overshot to z 4.40, then the points come back down to 4.39
+        // and on: the overshoot and the points it passed go, the order along the curve stays.
+        let z = [4.30, 4.35, 4.40, 4.39, 4.385, 4.45, 4.50];
+        let line = pushed(&z.map(|z| [0.0, z * 0.1, z]), 0);
+        let zs: Vec<f64> = line.iter().map(|p| p[2]).collect();
+        assert_eq!(zs, vec![4.30, 4.35, 4.385, 4.45, 4.50]);
+        assert!(zs.windows(2).all(|w| w[0] < w[1]));
+    }
+
+    #[test]
+    fn a_corner_and_an_ordinary_turn_are_kept() {
+        // A turn back by 148° off a point that is no corner: taken for points out of order.
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [1.2, 0.5, 0.0],
+        ];
+        assert_eq!(
+            pushed(&pts, 0).len(),
+            3,
+            "a turn back by more than 120° drops the point"
+        );
+        // At a corner the line keeps (points before `kept`), the same turn stays.
+        assert_eq!(pushed(&pts, 3).len(), 4);
+        // A turn of 58° is an ordinary bend.
+        let gentle = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.5, 0.8, 0.0]];
+        assert_eq!(pushed(&gentle, 0).len(), 3);
+    }
 }
