@@ -89,7 +89,7 @@ from . import (
     spline_joints,
 )
 from .atomic_write import write_atomically
-from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors
+from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors, thinned
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
 from .fit_data import fit_data
@@ -1912,7 +1912,8 @@ def export_sections(
     """Write the hull in ``source`` as a section file in the neutral format that
     :func:`import_sections` reads (``shared/hulls``' JSON): its stations (``stations`` as in
     :func:`offsets_table`) and waterlines (as in :func:`sections`) cut from the exact surface
-    within ``tolerance`` (m), every piece a curve of dense points, and the hull's boundary
+    within ``tolerance`` (m), every piece a curve of dense points (none closer than
+    :func:`import_sections`' default tolerance to the last, ends and corners kept), and the hull's boundary
     curves (keel/profile, stem, transom, deck, chines: the curves with those roles), with
     ``Lpp`` and ``T`` when the collection carries them (AP at x = 0 is then assumed, as the
     format has it). The file is a consistent network (:mod:`batten.boundary_samples`): a
@@ -1949,6 +1950,7 @@ def _write_section_file(source, path, cut) -> Path:
                 ):
                     continue
                 name = s.name if k == 0 else f"{s.name} ({k + 1})"
+                pts, _ = thinned(pts, s.corners[k], DEFAULT_SECTION_TOLERANCE)
                 curves.append({"name": name, "kind": kind, "points": np.round(pts, 6).tolist()})
     anchors = section_anchors(
         [p for f in ("stations", "waterlines") for s in cut[f] for p in s.polylines],
