@@ -1062,7 +1062,9 @@ def import_sections(
     (``nodes_from_data``: within twice ``tolerance`` plus what their chords may miss the true
     curve by) and give each such node one point that every curve through it takes among its
     points, fair every curve within ``tolerance`` (m) keeping its end points and corners, join
-    the corners (knuckles) of consecutive sections into chines (role ``knuckle``), then move the
+    the corners (knuckles) of consecutive sections into chines (role ``knuckle``; a chine in one
+    plane, a transom's edge, is carried on in that plane to the profile's and the deck edge's
+    corners there, shaped like the nearest station), then move the
     curves, as little as possible, through the nodes where they meet (where two curves come
     within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each other they are one node, and both
     pass exactly through it), and draw them as NURBS curve objects in a new collection, with

@@ -7,6 +7,7 @@
 use glam::DVec3;
 
 use super::data_nodes::axis_planes;
+use super::transom::{self, Chain};
 use crate::curve::NurbsCurve;
 use crate::error::Error;
 use crate::network::{Network, NetworkCurve, Role};
@@ -24,15 +25,13 @@ fn plane_of(curve: &NurbsCurve, tolerance: f64) -> Option<(usize, f64)> {
         .find_map(|(axis, v)| v.map(|v| (axis, v)))
 }
 
-/// A chain of knuckle points: the curve index and the point, in order along the axis.
-type Chain = Vec<(usize, DVec3)>;
-
 /// The knuckle curves joining the knuckles of consecutive sections of `network` (module doc).
 /// `knuckles[i]` are the knuckle points of curve `i` (its interior corners); a curve lies in an
 /// axis plane when its control points do within `tolerance` (curves in one plane are one
-/// section); curves in no axis plane take part in no chine. Each
-/// chine is named `chine<k> <first>–<last>` (k from 1) after the curves it starts and ends on,
-/// and passes through its knuckle points.
+/// section); curves in no axis plane take part in no chine. A chain lying in one axis plane
+/// (a transom's edge) is carried on in that plane to the knuckles beyond its ends
+/// (module `transom`). Each chine is named `chine<k> <first>–<last>` (k from 1) after the curves it
+/// starts and ends on, and passes through its knuckle points.
 ///
 /// Errors: knuckles given for a different number of curves ([`Error::InvalidInput`]), and a
 /// chine the curve kernel refuses (named).
@@ -53,7 +52,7 @@ pub fn chines_from_knuckles(
         .iter()
         .map(|c| plane_of(&c.curve, tolerance.get()))
         .collect();
-    let mut chines = Vec::new();
+    let mut chains: Vec<(usize, Chain)> = Vec::new();
     for axis in 0..3 {
         let mut family: Vec<(f64, usize)> = planes
             .iter()
@@ -73,11 +72,15 @@ pub fn chines_from_knuckles(
                 }),
             }
         }
-        for chain in chains(&sections) {
-            chines.push(chine_curve(network, &chain, chines.len() + 1)?);
-        }
+        chains.extend(chains_of(&sections).into_iter().map(|c| (axis, c)));
     }
-    Ok(chines)
+    let carried = transom::carried_on_in_plane(curves, &planes, knuckles, &chains, tolerance.get());
+    chains
+        .iter()
+        .zip(&carried)
+        .enumerate()
+        .map(|(k, ((_, chain), (head, tail)))| chine_curve(network, chain, head, tail, k + 1))
+        .collect()
 }
 
 /// One section of a family: its plane's value along the axis, and its knuckles (curve index,
@@ -89,7 +92,7 @@ struct Section {
 
 /// The chains of mutually nearest knuckles of consecutive sections of one family (sorted by
 /// plane value), each of two or more points.
-fn chains(sections: &[Section]) -> Vec<Chain> {
+fn chains_of(sections: &[Section]) -> Vec<Chain> {
     let mut open: Vec<Chain> = Vec::new();
     let mut done: Vec<Chain> = Vec::new();
     for pair in sections.windows(2) {
@@ -123,40 +126,76 @@ fn chains(sections: &[Section]) -> Vec<Chain> {
     done
 }
 
-/// The `number`-th knuckle curve, through a chain's points: a line through two, else the
-/// clamped B-spline of degree up to 3 on the points as control polygon, moved through them at
-/// their chord-length parameters ([`NurbsCurve::through`]).
-fn chine_curve(network: &Network, chain: &Chain, number: usize) -> Result<NetworkCurve, Error> {
+/// The `number`-th knuckle curve, through a chain's points ([`through_points`]); where the
+/// chain is carried on at its ends (`head` before its first point, `tail` after its last, from
+/// [`transom::carried_on_in_plane`]), through those pieces' points and through dense samples
+/// of the chain's own curve, so that it keeps its shape between its knuckles.
+fn chine_curve(
+    network: &Network,
+    chain: &Chain,
+    head: &Chain,
+    tail: &Chain,
+    number: usize,
+) -> Result<NetworkCurve, Error> {
     let curves = network.curves();
-    let name = format!(
-        "chine{number} {}–{}",
-        curves[chain[0].0].name,
-        curves[chain[chain.len() - 1].0].name
-    );
+    let first = head.first().unwrap_or(&chain[0]).0;
+    let last = tail.last().unwrap_or(&chain[chain.len() - 1]).0;
+    let name = format!("chine{number} {}–{}", curves[first].name, curves[last].name);
+    let named = |e: crate::curve::CurveError| e.named(&name);
     let pts: Vec<DVec3> = chain.iter().map(|c| c.1).collect();
-    let n = pts.len();
-    let degree = (n - 1).min(3);
+    let mut curve = through_points(&pts).map_err(named)?;
+    if !(head.is_empty() && tail.is_empty()) {
+        // Every knuckle itself, and samples between, at the parameters it was fitted at.
+        let params = chord_parameters(&pts);
+        let mut all: Vec<DVec3> = head.iter().map(|c| c.1).collect();
+        all.push(pts[0]);
+        for (w, span) in params.windows(2).zip(pts.windows(2)) {
+            all.extend((1..CORE_SAMPLES_PER_SPAN).map(|j| {
+                let f = j as f64 / CORE_SAMPLES_PER_SPAN as f64;
+                curve.point(w[0] + (w[1] - w[0]) * f)
+            }));
+            all.push(span[1]);
+        }
+        all.extend(tail.iter().map(|c| c.1));
+        curve = through_points(&all).map_err(named)?;
+    }
+    Ok(NetworkCurve {
+        name,
+        role: Role::Knuckle,
+        curve,
+    })
+}
+
+/// Chord-length parameters of points, from 0 to 1.
+fn chord_parameters(pts: &[DVec3]) -> Vec<f64> {
     let mut s = vec![0.0];
     for w in pts.windows(2) {
         s.push(s[s.len() - 1] + w[0].distance(w[1]));
     }
-    let total = s[n - 1];
-    let params: Vec<f64> = s.iter().map(|d| d / total).collect();
+    let total = s[s.len() - 1];
+    s.iter().map(|d| d / total).collect()
+}
+
+/// Samples per span between knuckles of a chain's own curve that a chine carried on at its
+/// ends passes through.
+const CORE_SAMPLES_PER_SPAN: usize = 8;
+
+/// A line through two points, else the clamped B-spline of degree up to 3 on the points as
+/// control polygon, moved through them at their chord-length parameters
+/// ([`NurbsCurve::through`]).
+fn through_points(pts: &[DVec3]) -> Result<NurbsCurve, crate::curve::CurveError> {
+    let n = pts.len();
+    let degree = (n - 1).min(3);
+    let params = chord_parameters(pts);
     let mut knots = vec![0.0; degree + 1];
     // Averaged knots (Piegl & Tiller eq. 9.8) on the chord-length parameters.
     for j in 1..n - degree {
         knots.push(params[j..j + degree].iter().sum::<f64>() / degree as f64);
     }
     knots.extend(std::iter::repeat_n(1.0, degree + 1));
-    let named = |e: crate::curve::CurveError| e.named(&name);
-    let polygon = NurbsCurve::try_new(degree, knots, pts.clone(), None).map_err(named)?;
-    let targets: Vec<(f64, DVec3)> = params.iter().copied().zip(pts).collect();
-    let curve = polygon.through(&targets).map_err(named)?;
-    Ok(NetworkCurve {
-        name,
-        role: Role::Knuckle,
-        curve,
-    })
+    let polygon = NurbsCurve::try_new(degree, knots, pts.to_vec(), None)?;
+    let targets: Vec<(f64, DVec3)> = params.iter().copied().zip(pts.iter().copied()).collect();
+    polygon.through(&targets)
 }
 
 #[cfg(test)]

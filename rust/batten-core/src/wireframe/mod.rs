@@ -4,13 +4,15 @@
 //!
 //! - [`data_nodes`]: where the point curves meet, found on the data before the fit, one point
 //!   per node that every curve through it takes among its points.
-//! - [`chines`]: knuckle curves joining the knuckles of consecutive sections.
+//! - [`chines`]: knuckle curves joining the knuckles of consecutive sections; [`transom`]
+//!   carries a chain lying in one plane (a transom's edge) on to that plane's other knuckles.
 //! - [`snap`]: find the nodes of the network at the data's capture distance and move every
 //!   curve, as little as possible, through the nodes its data allow.
 
 mod chines;
 mod data_nodes;
 mod snap;
+mod transom;
 
 pub use chines::chines_from_knuckles;
 pub use data_nodes::{nodes_from_data, DataNode, NodedPoints};
