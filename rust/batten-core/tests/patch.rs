@@ -1160,3 +1160,43 @@ fn a_side_blended_patch_stays_inside_a_hooked_sliver_where_charrot_gregory_folds
         "side-blended: {sb_out} m outside its boundary"
     );
 }
+
+/// A boss's section (a cylinder along x) from its bottom round 100° to its side: the nodes'
+/// normals are 100° apart, so their dot product picks the wrong sign for the second. The
+/// crossing generators are given pointing aft at one node and forward at the other (any
+/// orientation is allowed), and the normal field must still turn with the arc, outwards —
+/// not swing through the inside of the boss.
+#[test]
+fn a_normal_field_turning_100_degrees_between_its_nodes_turns_with_its_curve() {
+    let turn = 100f64.to_radians();
+    let side = DVec3::new(0.0, turn.sin(), -turn.cos());
+    let seg = SideSegment::whole(arc(DVec3::NEG_Z, side)).named("boss");
+    let nodes = [
+        RibbonNode {
+            t: 0.0,
+            tangents: vec![DVec3::X],
+        },
+        RibbonNode {
+            t: 1.0,
+            tangents: vec![DVec3::NEG_X],
+        },
+    ];
+    let en = EdgeNormal::from_crossings(&seg, &nodes, MIN_CROSSING_ANGLE_DEGREES)
+        .expect("valid")
+        .expect("crossings");
+    let start = en.normal(0.0);
+    for j in 0..=8 {
+        let t = j as f64 / 8.0;
+        let p = seg.curve.point(t);
+        // The radial direction, signed like the field's start (the sign is free, but one).
+        let radial = p.normalize() * start.dot(DVec3::NEG_Z).signum();
+        let n = en.normal(t);
+        // The blend of two nodes is straight in t (the arc's parameter is not its angle):
+        // within 10° of the radial. With the signs left to the dot product the field turned
+        // the other way round, through the inside (90° off half way).
+        assert!(
+            n.dot(radial) > 10f64.to_radians().cos(),
+            "t {t}: normal {n} against the radial {radial}"
+        );
+    }
+}

@@ -207,28 +207,28 @@ impl EdgeNormal {
                 }
             }
             if let Some(n) = acc.try_normalize() {
-                pairs.push((node.t, n));
+                pairs.push((node.t, n, Some(c_hat)));
             }
         }
         let (lo, hi, slack) = node_range(segment);
         let inside = |t: f64| t >= lo - slack && t <= hi + slack;
         // A node beyond an end counts only beside a normal at that end.
-        let has_end = |end: f64| pairs.iter().any(|&(t, _)| (t - end).abs() <= slack);
+        let has_end = |end: f64| pairs.iter().any(|&(t, _, _)| (t - end).abs() <= slack);
         let (at_lo, at_hi) = (has_end(lo), has_end(hi));
-        let (inner, outer): (Vec<_>, Vec<_>) = pairs.into_iter().partition(|&(t, _)| inside(t));
+        let (inner, outer): (Vec<_>, Vec<_>) = pairs.into_iter().partition(|&(t, _, _)| inside(t));
         let outer: Vec<_> = outer
             .into_iter()
-            .filter(|&(t, _)| if t < lo { at_lo } else { at_hi })
+            .filter(|&(t, _, _)| if t < lo { at_lo } else { at_hi })
             .collect();
         if inner.is_empty() {
             return Ok(None);
         }
-        let near = EdgeNormal::from_pairs(inner);
+        let near = EdgeNormal::from_pairs(inner.clone());
         if outer.is_empty() || near.ts.len() < 2 {
             return Ok(Some(near));
         }
         let mut all = outer;
-        all.extend(near.ts.iter().copied().zip(near.normals.iter().copied()));
+        all.extend(inner);
         let far = EdgeNormal::from_pairs(all);
         // How far the nodes beyond turn the field from the straight blend of the segment's
         // own nodes. A gentle turn is the surface's curvature along the curve, which the
@@ -281,7 +281,7 @@ impl EdgeNormal {
                     reason: format!("normal {n} is zero or not finite"),
                 });
             };
-            pairs.push((t, n));
+            pairs.push((t, n, None));
         }
         if pairs.is_empty() {
             return Err(PatchError::BadRibbonNode {
@@ -293,17 +293,20 @@ impl EdgeNormal {
         Ok(EdgeNormal::from_pairs(pairs))
     }
 
-    fn from_pairs(mut pairs: Vec<(f64, DVec3)>) -> EdgeNormal {
-        pairs.sort_by(|(ta, _), (tb, _)| ta.total_cmp(tb));
+    /// From node parameters, unit normals and (where known) the curve's unit tangents there.
+    fn from_pairs(mut pairs: Vec<(f64, DVec3, Option<DVec3>)>) -> EdgeNormal {
+        pairs.sort_by(|(ta, _, _), (tb, _, _)| ta.total_cmp(tb));
         // Merge nodes at the same parameter; align signs along the curve.
         let mut ts: Vec<f64> = Vec::with_capacity(pairs.len());
         let mut normals: Vec<DVec3> = Vec::with_capacity(pairs.len());
-        for (t, mut n) in pairs {
-            if let Some(prev) = normals.last() {
-                if prev.dot(n) < 0.0 {
+        let mut last_tangent: Option<DVec3> = None;
+        for (t, mut n, tangent) in pairs {
+            if let Some(&prev) = normals.last() {
+                if aligned_reference(prev, last_tangent, n, tangent).dot(n) < 0.0 {
                     n = -n;
                 }
             }
+            last_tangent = tangent.or(last_tangent);
             if ts.last() == Some(&t) {
                 let last = normals.last_mut().expect("same length as ts");
                 *last = (*last + n).try_normalize().unwrap_or(*last);
@@ -331,6 +334,37 @@ impl EdgeNormal {
     pub fn parameters(&self) -> &[f64] {
         &self.ts
     }
+}
+
+/// Node normals further apart than this (cosine, 60°) leave the sign of the next one to the
+/// curve's turn between them: the previous normal turned with the tangent (by the least
+/// rotation taking one tangent to the other) is the reference. Closer normals are their own
+/// reference.
+const TURNED_SIGN_COS: f64 = 0.5;
+
+/// What node normal `n` (tangent `tangent`) takes its sign from after the node normal `prev`
+/// (tangent `prev_tangent`): `prev` itself, or where the two are more than 60° apart and
+/// both tangents are known, `prev` turned with the curve (a boss's section turns its normal
+/// by 90° between two nodes, and the bare dot product would then pick either sign).
+fn aligned_reference(
+    prev: DVec3,
+    prev_tangent: Option<DVec3>,
+    n: DVec3,
+    tangent: Option<DVec3>,
+) -> DVec3 {
+    let (Some(a), Some(b)) = (prev_tangent, tangent) else {
+        return prev;
+    };
+    if prev.dot(n).abs() >= TURNED_SIGN_COS {
+        return prev;
+    }
+    let axis = a.cross(b);
+    let (sin, cos) = (axis.length(), a.dot(b));
+    let Some(k) = axis.try_normalize() else {
+        return prev;
+    };
+    // Rodrigues: `prev` turned about `k` by the angle from `a` to `b`.
+    prev * cos + k.cross(prev) * sin + k * (k.dot(prev) * (1.0 - cos))
 }
 
 /// Three-point slopes of `values` at the parameters `ts`: at an inner node the chord slopes of
