@@ -1269,6 +1269,61 @@ fn a_closed_box_network_has_six_faces_and_no_boundary() {
     assert_eq!(t.brep.shells[0].genus, 0, "a sphere");
 }
 
+/// Sheets round a spine from x 0 to 2, one per direction in `dirs` (each a rectangle: ribs at
+/// both spine ends, a far edge, and a line from the spine's middle node across the sheet),
+/// the spine with `role`.
+fn sheets_round_a_spine(dirs: &[DVec3], role: Role) -> Vec<NetworkCurve> {
+    let line = |name: String, a: DVec3, b: DVec3| NetworkCurve {
+        name,
+        role: Role::Free,
+        curve: NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![a, b], None).expect("line"),
+    };
+    let (p0, pm, p1) = (DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0));
+    let mut spine = line("spine".into(), p0, p1);
+    spine.role = role;
+    let mut curves = vec![spine];
+    for (k, &d) in dirs.iter().enumerate() {
+        curves.push(line(format!("rib{k}a"), p0, p0 + d));
+        curves.push(line(format!("rib{k}b"), p1, p1 + d));
+        curves.push(line(format!("fin{k}"), p0 + d, p1 + d));
+        curves.push(line(format!("across{k}"), pm, pm + d));
+    }
+    curves
+}
+
+#[test]
+fn two_faces_creased_along_a_knuckle_are_one_surface_where_lines_cross_it() {
+    // A boss's flat end meeting its side: along the crease, a line across the end and a line
+    // along the side meet it at one node, whose four tangents lie in no one plane.
+    let creased = [DVec3::Y, DVec3::Z];
+    let t = build(&network(sheets_round_a_spine(&creased, Role::Knuckle)));
+    assert!(
+        t.diagnostics_of("non_manifold_node").is_empty(),
+        "{:?}",
+        t.diagnostics
+    );
+    assert_eq!(t.faces.len(), 4, "two faces each side of the middle line");
+    // The same tangents without the crease are taken for a branching…
+    let t = build(&network(sheets_round_a_spine(&creased, Role::Free)));
+    assert_eq!(
+        t.diagnostics_of("non_manifold_node").len(),
+        1,
+        "{:?}",
+        t.diagnostics
+    );
+    // …and a third sheet off a knuckle still is one.
+    let third = DVec3::new(0.0, -1.0, -1.0).normalize();
+    let t = build(&network(sheets_round_a_spine(
+        &[DVec3::Y, DVec3::Z, third],
+        Role::Knuckle,
+    )));
+    assert!(
+        !t.diagnostics_of("non_manifold_node").is_empty(),
+        "three sheets: {:?}",
+        t.diagnostics
+    );
+}
+
 #[test]
 fn three_sheets_branching_off_one_curve_are_reported() {
     // A spine along x with three fins at 120° round it (like a bulkhead meeting the hull):

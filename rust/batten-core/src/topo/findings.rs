@@ -11,7 +11,7 @@ use super::brep::{Brep, HalfEdgeId};
 use super::checks::ValidationError;
 use super::topology::TopoFace;
 use crate::diagnostic::Diagnostic;
-use crate::network::{Junctions, NetworkCurve};
+use crate::network::{Junctions, NetworkCurve, Role};
 
 /// Faces with more corners than this are reported ([`Diagnostic::UnusualFace`]): the N-sided
 /// patch of §3.2.1 degrades with many sides.
@@ -90,15 +90,29 @@ struct UnusedEdges {
     location: DVec3,
 }
 
-/// A [`Diagnostic::NonManifoldNode`] at the origin of each of the `branching` half-edges.
+/// Sheets meeting along a knuckle curve at a node are told apart by the direction in which
+/// they leave it, about the knuckle's tangent: directions closer than this (degrees) are one
+/// sheet.
+const SHEET_GAP_DEGREES: f64 = 30.0;
+
+/// A [`Diagnostic::NonManifoldNode`] at the origin of each of the `branching` half-edges
+/// (leaving directions `dirs`), except where a knuckle curve runs through the node and the
+/// other edges leave it in at most two sheets about the knuckle: the two faces of a crease
+/// (a boss's flat end meeting its side, where the line across the end and the line along the
+/// side meet the edge at one point) are one surface, though their tangents lie in no one plane.
 pub(crate) fn non_manifold_nodes(
     curves: &[NetworkCurve],
     brep: &Brep,
     branching: &[HalfEdgeId],
+    dirs: &[DVec3],
     diagnostics: &mut Vec<Diagnostic>,
 ) {
     for h in branching {
-        let v = brep.half_edges[h.index()].origin.index();
+        let v = brep.half_edges[h.index()].origin;
+        if two_sheets_about_a_knuckle(curves, brep, dirs, v) {
+            continue;
+        }
+        let v = v.index();
         diagnostics.push(Diagnostic::NonManifoldNode {
             curves: brep.vertices[v]
                 .curves
@@ -108,6 +122,65 @@ pub(crate) fn non_manifold_nodes(
             location: brep.vertices[v].position,
         });
     }
+}
+
+/// True when a curve of role knuckle runs through vertex `v` (two of its half-edges leave
+/// `v` in opposite directions) and the other half-edges leaving `v` point, about its tangent,
+/// into at most two sheets ([`SHEET_GAP_DEGREES`] apart or more).
+fn two_sheets_about_a_knuckle(
+    curves: &[NetworkCurve],
+    brep: &Brep,
+    dirs: &[DVec3],
+    v: crate::topo::VertexId,
+) -> bool {
+    let leaving: Vec<usize> = (0..brep.half_edges.len())
+        .filter(|&i| brep.half_edges[i].origin == v)
+        .collect();
+    let curve_of = |i: usize| brep.edges[brep.half_edges[i].edge.index()].curve;
+    let axis = leaving.iter().find_map(|&a| {
+        let c = curve_of(a);
+        (curves[c].role == Role::Knuckle)
+            .then(|| {
+                leaving
+                    .iter()
+                    .find(|&&b| b != a && curve_of(b) == c && dirs[a].dot(dirs[b]) < -0.5)
+                    .map(|_| (c, dirs[a]))
+            })
+            .flatten()
+    });
+    let Some((knuckle, axis)) = axis else {
+        return false;
+    };
+    let Some(axis) = axis.try_normalize() else {
+        return false;
+    };
+    let reference = axis.any_orthonormal_vector();
+    let other = axis.cross(reference);
+    let mut angles: Vec<f64> = leaving
+        .iter()
+        .filter(|&&i| curve_of(i) != knuckle)
+        .filter_map(|&i| {
+            let d = dirs[i] - axis * dirs[i].dot(axis);
+            (d.length() > 1e-9).then(|| d.dot(other).atan2(d.dot(reference)))
+        })
+        .collect();
+    if angles.len() <= 2 {
+        return true;
+    }
+    angles.sort_by(f64::total_cmp);
+    let gap = SHEET_GAP_DEGREES.to_radians();
+    let n = angles.len();
+    let sheets = (0..n)
+        .filter(|&i| {
+            let next = if i + 1 < n {
+                angles[i + 1]
+            } else {
+                angles[0] + std::f64::consts::TAU
+            };
+            next - angles[i] >= gap
+        })
+        .count();
+    sheets <= 2
 }
 
 /// A [`Diagnostic::UnusualFace`] for each face with fewer than [`MIN_CORNERS`] or more than

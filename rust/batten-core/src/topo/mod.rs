@@ -83,7 +83,7 @@ impl Topology {
 
         // 4. Normals, the rotation system and the next/prev links.
         let mut rotation = linking::link(&mut brep, &dirs, &evals);
-        findings::non_manifold_nodes(curves, &brep, &rotation.branching, &mut diagnostics);
+        findings::non_manifold_nodes(curves, &brep, &rotation.branching, &dirs, &mut diagnostics);
 
         // 5–6. Shells (connected parts), loops, faces with their corners, boundary loops.
         let shell_of = shells::components(&rotation.neighbours);
