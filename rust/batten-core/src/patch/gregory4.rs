@@ -16,18 +16,7 @@ use glam::{DVec2, DVec3};
 
 use super::boundary::PreparedSide;
 use super::corner::CornerData;
-use super::ribbon::PreparedRibbon;
-
-#[inline]
-fn hermite(x: f64) -> [f64; 4] {
-    let (x2, x3) = (x * x, x * x * x);
-    [
-        2.0 * x3 - 3.0 * x2 + 1.0,
-        x3 - 2.0 * x2 + x,
-        -2.0 * x3 + 3.0 * x2,
-        x3 - x2,
-    ]
-}
+use super::ribbon::{hermite_basis, PreparedRibbon};
 
 /// A corner of the unit square for the tensor-product Hermite interpolant `P12`: position,
 /// derivatives along `u` and `v` and twist `∂²/∂u∂v`, in the square's axes.
@@ -98,8 +87,8 @@ pub(crate) fn blend(
     let ((b, bv), (t, t2)) = (along_u.near, along_u.far);
     let ((r, r1), (l, lu)) = (along_v.near, along_v.far);
     let (ru, tv) = (-r1, -t2);
-    let hu = hermite(u);
-    let hv = hermite(v);
+    let hu = hermite_basis(u);
+    let hv = hermite_basis(v);
     let p1 = l * hu[0] + lu * hu[1] + r * hu[2] + ru * hu[3];
     let p2 = b * hv[0] + bv * hv[1] + t * hv[2] + tv * hv[3];
     let [c0, c1, c2, c3] = [&corners[0], &corners[1], &corners[2], &corners[3]];

@@ -201,24 +201,7 @@ fn through_points(pts: &[DVec3]) -> Result<NurbsCurve, crate::curve::CurveError>
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn poly(name: &str, pts: &[[f64; 3]]) -> NetworkCurve {
-        let n = pts.len();
-        let mut knots = vec![0.0, 0.0];
-        knots.extend((1..n - 1).map(|i| i as f64));
-        knots.extend([(n - 1) as f64; 2]);
-        NetworkCurve {
-            name: name.to_owned(),
-            role: Role::Free,
-            curve: NurbsCurve::try_new(
-                1,
-                knots,
-                pts.iter().copied().map(DVec3::from).collect(),
-                None,
-            )
-            .expect("polyline"),
-        }
-    }
+    use crate::wireframe::test_curves::poly;
 
     /// Three stations of a hard-chine hull (x = 0, 2, 4), the chine rising from z 0.5 to 0.7.
     fn stations() -> (Network, Vec<Vec<DVec3>>) {

@@ -12,6 +12,8 @@
 mod chines;
 mod data_nodes;
 mod snap;
+#[cfg(test)]
+mod test_curves;
 mod transom;
 
 pub use chines::chines_from_knuckles;

@@ -12,6 +12,7 @@
 
 use glam::DVec3;
 
+use super::data_nodes::axis_planes;
 use crate::network::NetworkCurve;
 
 /// A chain of knuckle points: the curve index and the point, in order along the axis of the
@@ -105,14 +106,10 @@ fn plane_of_points(chain: &Chain, tolerance: f64) -> Option<(usize, f64)> {
     if chain.len() < 2 {
         return None;
     }
-    (0..3).find_map(|axis| {
-        let (lo, hi) = chain
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
-                (lo.min(q.1[axis]), hi.max(q.1[axis]))
-            });
-        (hi - lo <= tolerance).then_some((axis, 0.5 * (lo + hi)))
-    })
+    axis_planes(chain.iter().map(|q| q.1), tolerance)
+        .into_iter()
+        .enumerate()
+        .find_map(|(axis, v)| v.map(|v| (axis, v)))
 }
 
 /// The points strictly between knuckle `k` (of curve `own`) and chain end `end`, in order
@@ -184,27 +181,10 @@ fn guided_piece(
 mod tests {
     use super::*;
     use crate::curve::NurbsCurve;
-    use crate::network::{Network, Role};
+    use crate::network::Network;
     use crate::tolerance::Tolerance;
     use crate::wireframe::chines_from_knuckles;
-
-    fn poly(name: &str, pts: &[[f64; 3]]) -> NetworkCurve {
-        let n = pts.len();
-        let mut knots = vec![0.0, 0.0];
-        knots.extend((1..n - 1).map(|i| i as f64));
-        knots.extend([(n - 1) as f64; 2]);
-        NetworkCurve {
-            name: name.to_owned(),
-            role: Role::Free,
-            curve: NurbsCurve::try_new(
-                1,
-                knots,
-                pts.iter().copied().map(DVec3::from).collect(),
-                None,
-            )
-            .expect("polyline"),
-        }
-    }
+    use crate::wireframe::test_curves::poly;
 
     /// A transom at x = 0: three waterlines (z 1.0, 1.5, 2.0) run across it and turn forward at
     /// their knuckles; the profile comes down the transom and turns forward onto the counter at
