@@ -89,7 +89,14 @@ from . import (
     spline_joints,
 )
 from .atomic_write import write_atomically
-from .boundary_samples import along_boundary, boundary_points, is_stray, section_anchors, thinned
+from .boundary_samples import (
+    along_boundary,
+    boundary_points,
+    is_stray,
+    section_anchors,
+    thinned,
+    without_end_stretches_along,
+)
 from .bridge import curves_in, curves_out, mesh_out, sections_in
 from .file_text import file_path, read_text
 from .fit_data import fit_data
@@ -1921,7 +1928,9 @@ def export_sections(
     format has it). The file is a consistent network (:mod:`batten.boundary_samples`): a
     boundary curve has among its points every section end and corner on it, a chine ends on
     a section or a boundary curve, and a section piece along a boundary curve, or one ending
-    inside faces (cut where the surface folds, which the build reports), is left out.
+    inside faces (cut where the surface folds, which the build reports), is left out, as is
+    the stretch from a section's end to where it meets a boundary curve that it runs beside
+    (a reader would join the two).
     Returns the path; NetworkFileError when it cannot be written. ``progress``: as
     :func:`export_iges`'s (steps: the surface measured, the sections cut, the file written)."""
     return run(_export_sections_steps(source, path, stations, waterlines, tolerance), progress)
@@ -1944,6 +1953,7 @@ def _write_section_file(source, path, cut) -> Path:
     network = read_curves(source)
     boundary = [c for c in network if c.role in KIND_OF_ROLE]
     curves = []
+    kept: list[tuple[np.ndarray, list[int]]] = []
     for family, kind in (("stations", "station"), ("waterlines", "waterline")):
         for s in cut[family]:
             for k, pts in enumerate(s.polylines):
@@ -1952,12 +1962,17 @@ def _write_section_file(source, path, cut) -> Path:
                 ):
                     continue
                 name = s.name if k == 0 else f"{s.name} ({k + 1})"
-                pts, _ = thinned(pts, s.corners[k], DEFAULT_SECTION_TOLERANCE)
+                pts, corners = without_end_stretches_along(
+                    pts,
+                    s.corners[k],
+                    boundary,
+                    SECTION_CAPTURE_FACTOR * DEFAULT_SECTION_TOLERANCE,
+                    EXPORT_MEET_DISTANCE,
+                )
+                kept.append((pts, corners))
+                pts, _ = thinned(pts, corners, DEFAULT_SECTION_TOLERANCE)
                 curves.append({"name": name, "kind": kind, "points": np.round(pts, 6).tolist()})
-    anchors = section_anchors(
-        [p for f in ("stations", "waterlines") for s in cut[f] for p in s.polylines],
-        [c for f in ("stations", "waterlines") for s in cut[f] for c in s.corners],
-    )
+    anchors = section_anchors([p for p, _ in kept], [c for _, c in kept])
     for c in boundary:
         others = [o for o in boundary if o is not c]
         trim = c.role == "knuckle"

@@ -11,7 +11,9 @@ fitted curve's detail is, and every corner), and evenly between. A chine whose e
 other curve of the file (it ended on a curve the file does not hold) is cut back to its last
 section: a reader joining the sections' knuckles finds the same chine. A section that runs
 along a boundary curve (a station in the transom's plane) is left out: the file has the curve;
-so is a stray piece ending inside faces, cut where the surface folds (:func:`is_stray`).
+so is a stray piece ending inside faces, cut where the surface folds (:func:`is_stray`), and a
+stretch from a section's end to its corner that a reader would merge into a boundary curve
+(:func:`without_end_stretches_along`).
 """
 
 from __future__ import annotations
@@ -78,6 +80,42 @@ def along_boundary(polyline: np.ndarray, boundary: list, within: float) -> bool:
     included, all within ``within`` (m) of it. The file then holds the curve already."""
     picks = polyline[np.linspace(0, len(polyline) - 1, ALONG_CHECKS).round().astype(int)]
     return any(all(c.nearest(p.tolist())[1] <= within for p in picks) for c in boundary)
+
+
+def without_end_stretches_along(
+    points: np.ndarray, corners, boundary: list, within: float, meet: float
+) -> tuple[np.ndarray, list[int]]:
+    """``(points, corners)`` of the section polyline ``points`` without an end stretch that
+    runs within ``within`` (m) of a ``boundary`` curve from the section's end to where it meets
+    that curve (within ``meet``), with the indices of ``corners`` in the result (those cut
+    off dropped). A reader joining curves that come that close ends the stretch on the curve
+    beside it, and the two bound a face of two sides (seen: a KCS waterline 9 mm above the
+    lower corner of the shaft boss's flat end, crossing the end to its edge); the boundary
+    curve is that stretch already, and the section then ends where it meets it."""
+    n = len(points)
+    lo, hi = 0, n - 1
+    for c in boundary:
+        lo = max(lo, _last_meeting(points, range(n), c, within, meet, default=0))
+        hi = min(hi, _last_meeting(points, range(n - 1, -1, -1), c, within, meet, default=n - 1))
+    if lo >= hi:
+        return points, [int(k) for k in corners]
+    return points[lo : hi + 1], [int(k) - lo for k in corners if lo <= k <= hi]
+
+
+def _last_meeting(points: np.ndarray, order, curve, within: float, meet: float, default: int) -> int:
+    """Walking ``points`` in ``order`` from a section's end while they stay within ``within``
+    of ``curve``: the last one that meets it (within ``meet``), or ``default`` when the end
+    meets it itself or none does."""
+    found = default
+    for k, i in enumerate(order):
+        gap = curve.nearest(points[i].tolist())[1]
+        if gap > within:
+            break
+        if gap <= meet:
+            if k == 0:
+                return default
+            found = i
+    return found
 
 
 def is_stray(polyline: np.ndarray, network: list, within: float) -> bool:
