@@ -481,6 +481,43 @@ fn hard_chine_keeps_its_crease_and_flat_panels() {
     }
 }
 
+#[test]
+fn a_line_ending_on_a_knuckle_takes_its_tangent_plane_from_its_own_side() {
+    // The hard-chine barge with a line across its flat bottom from the keel to the chine at
+    // x = 2.5, and a diagonal on the wall side from that node up to the deck at x = 4: at the
+    // node, the diagonal is across the knuckle. (It once tilted the bottom line's ribbon out
+    // of the bottom's plane, and the flat bottom bulged; KCS's shaft boss end bulged 3 mm.)
+    let beta: f64 = 20.0;
+    let h = 2.0 * beta.to_radians().tan();
+    let mut curves = hard_chine(beta, Role::Knuckle).curves().to_vec();
+    curves.push(nc("floor", Role::Free, line([2.5, 0., 0.], [2.5, 2., h])));
+    curves.push(nc("diagonal", Role::Free, line([2.5, 2., h], [4., 2., 3.])));
+    let net = Network::try_new("barge with lines", curves).expect("network");
+    let hull = build(&net, 12);
+    let r = &hull.report;
+    assert_finite(&hull.mesh);
+    assert_eq!(r.faces, 6, "three bottom panels and three side panels");
+    let bottom_n = DVec3::new(0.0, -h, 2.0).normalize();
+    let (mut bottom, mut side) = (0.0f64, 0.0f64);
+    for p in &hull.mesh.positions {
+        let p = DVec3::from(*p);
+        if p.z <= h {
+            bottom = bottom.max(p.dot(bottom_n).abs());
+        } else {
+            side = side.max((p.y - 2.0).abs());
+        }
+    }
+    println!(
+        "barge with lines: bottom {bottom:.2e}, side {side:.2e}, max normal angle {:.2e}°",
+        r.max_normal_angle_deg
+    );
+    assert!(
+        bottom < 1e-9 && side < 1e-9,
+        "flat panels stay flat ({bottom:e}, {side:e})"
+    );
+    assert!(r.max_normal_angle_deg < 1e-3, "smooth across the lines");
+}
+
 /// Check a report's knuckle edges against its crease report and the network: every crease
 /// range of a knuckle curve is the span of its edges' ranges, and every edge's polyline has
 /// `KNUCKLE_EDGE_SAMPLES + 1` points on its curve.

@@ -58,21 +58,31 @@ pub(crate) fn beyond(
 }
 
 /// The tangents, at node `v`, of the curves other than `curve` whose region-bounding edges end
-/// there (both sides of the curve), each leaving the node.
+/// there (both sides of the curve), each leaving the node. Where a knuckle runs through the
+/// node, only its edges count: the surface on this curve's side of the knuckle has the
+/// knuckle's tangent and this curve's, and a curve on the far side (a line on along a shaft
+/// boss from its flat end's edge) belongs to the other tangent plane.
 fn crossing_tangents(
     v: VertexId,
     curve: usize,
     topology: &Topology,
     edges: &FaceEdges,
+    knuckle: &[Option<Knuckle>],
 ) -> Vec<DVec3> {
-    edges.at_vertex[v.index()]
+    let crossing: Vec<(DVec3, bool)> = edges.at_vertex[v.index()]
         .iter()
         .filter(|end| topology.brep.edges[end.edge].curve != curve)
         .filter_map(|end| {
             edges.info[end.edge]
                 .as_ref()
-                .map(|o| o.leaving_tangent(end.at_start))
+                .map(|o| (o.leaving_tangent(end.at_start), knuckle[end.edge].is_some()))
         })
+        .collect();
+    let on_knuckle = crossing.iter().any(|&(_, k)| k);
+    crossing
+        .into_iter()
+        .filter(|&(_, k)| k || !on_knuckle)
+        .map(|(t, _)| t)
         .collect()
 }
 
@@ -97,7 +107,7 @@ pub(crate) fn shared_normal(
     let mut nodes = Vec::with_capacity(2);
     let (t0, t1) = (info.segment.t0, info.segment.t1);
     for (v, t) in [(e.start, t0), (e.end, t1)] {
-        let tangents = crossing_tangents(v, e.curve, topology, edges);
+        let tangents = crossing_tangents(v, e.curve, topology, edges, knuckle);
         if !tangents.is_empty() {
             nodes.push(RibbonNode { t, tangents });
         }
@@ -106,7 +116,7 @@ pub(crate) fn shared_normal(
         .into_iter()
         .filter_map(|at_start| beyond(k, at_start, topology, edges, knuckle))
         .filter_map(|(v, _, t, d)| {
-            let tangents = crossing_tangents(v, e.curve, topology, edges);
+            let tangents = crossing_tangents(v, e.curve, topology, edges, knuckle);
             (!tangents.is_empty()).then_some((RibbonNode { t, tangents }, d))
         })
         .collect();
