@@ -1071,7 +1071,9 @@ def import_sections(
     points, fair every curve within ``tolerance`` (m) keeping its end points and corners, join
     the corners (knuckles) of consecutive sections into chines (role ``knuckle``; a chine in one
     plane, a transom's edge, is carried on in that plane to the profile's and the deck edge's
-    corners there, shaped like the nearest station), then move the
+    corners there, shaped like the nearest station; a flat end that the profile outlines
+    between two of its knuckles, a shaft boss's, gets its edge shaped the same way and straight
+    lines across it and on to that station, role ``free``), then move the
     curves, as little as possible, through the nodes where they meet (where two curves come
     within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each other they are one node, and both
     pass exactly through it), and draw them as NURBS curve objects in a new collection, with
@@ -1080,7 +1082,8 @@ def import_sections(
     file that cannot be read, or holds no curves, raises NetworkFileError naming it.
 
     Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`; a
-    chine's report has ``kind`` ``"chine"`` and ``points``, the knuckles it joins), with
+    chine's report has ``kind`` ``"chine"`` and ``points``, the knuckles it joins; a flat end's
+    line ``"line"``; the flat of bottom ``"flat_of_bottom"``), with
     ``points`` (how many the data had), ``data_nodes`` (nodes of the data it was fitted
     through), ``nodes`` (nodes the curve was moved through),
     ``skipped_nodes`` (nodes it leaves out because meeting them would take one of its points
@@ -1170,7 +1173,7 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
     reports += [
         {
             "curve": ch.name,
-            "kind": "flat_of_bottom" if ch.role == "fob" else "chine",
+            "kind": CHINE_KIND_OF_ROLE[ch.role],
             "points": len(p),
             "corners": [],
             "fit_tolerance": None,
@@ -1239,6 +1242,12 @@ def _off_given_chines(knuckles: list[np.ndarray], curves: list[Curve], within: f
     given = [c for c in curves if c.role == "knuckle"]
     off = [[k for k in ks if all(g.nearest(k)[1] > within for g in given)] for ks in knuckles]
     return [np.asarray(ks, dtype=float).reshape(-1, 3) for ks in off]
+
+
+#: The ``kind`` of the report of a curve the import adds, by its role: a chine joining knuckles,
+#: the flat of bottom, or a straight line parting a flat end (a shaft boss's) and the band
+#: beside it.
+CHINE_KIND_OF_ROLE = {"knuckle": "chine", "fob": "flat_of_bottom", "free": "line"}
 
 
 def _chain_points(chine: Curve, knuckles: list[np.ndarray], within: float) -> np.ndarray:

@@ -148,7 +148,8 @@ fn points3(obj: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<Vec<DVec3
 /// The knuckle curves (chines) joining the knuckles of consecutive sections
 /// (`batten_core::chines_from_knuckles`): `knuckles[i]` are the knuckle points ((k, 3), k ≥ 0)
 /// of curve `i`, sections are the curves lying in an axis plane within `tolerance` (m).
-/// Returns the new curves, role `knuckle`. The GIL is released.
+/// Returns the new curves: chines, role `knuckle`, then the straight lines that part a flat
+/// end (a shaft boss's), role `free`. The GIL is released.
 #[pyfunction]
 #[pyo3(signature = (curves, knuckles, tolerance))]
 pub(crate) fn chines_from_knuckles<'py>(

@@ -31,7 +31,11 @@ fn plane_of(curve: &NurbsCurve, tolerance: f64) -> Option<(usize, f64)> {
 /// section); curves in no axis plane take part in no chine. A chain lying in one axis plane
 /// (a transom's edge) is carried on in that plane to the knuckles beyond its ends
 /// (module `transom`). Each chine is named `chine<k> <first>–<last>` (k from 1) after the curves it
-/// starts and ends on, and passes through its knuckle points.
+/// starts and ends on, and passes through its knuckle points. A flat end that a curve in an
+/// axis plane (the profile) outlines between two of its knuckles (a shaft boss's) gets its
+/// edge, a chine shaped like the nearest parallel section, and two straight lines of role
+/// [`Role::Free`] after the chines: `flat end<k> <outline>` across the end to the edge's point
+/// farthest from the outline, and `flat end<k> <section>` on from there to that section.
 ///
 /// Errors: knuckles given for a different number of curves ([`Error::InvalidInput`]), and a
 /// chine the curve kernel refuses (named).
@@ -74,13 +78,34 @@ pub fn chines_from_knuckles(
         }
         chains.extend(chains_of(&sections).into_iter().map(|c| (axis, c)));
     }
+    let ends = transom::flat_ends(curves, &planes, knuckles, &chains, tolerance.get());
+    let mut lines: Vec<(String, [DVec3; 2])> = Vec::new();
+    for (k, e) in ends.iter().enumerate() {
+        lines.push((
+            format!("flat end{} {}", k + 1, curves[e.outline].name),
+            e.across,
+        ));
+        if let Some((g, along)) = e.along {
+            lines.push((format!("flat end{} {}", k + 1, curves[g].name), along));
+        }
+    }
+    chains.extend(ends.into_iter().map(|e| e.edge));
     let carried = transom::carried_on_in_plane(curves, &planes, knuckles, &chains, tolerance.get());
-    chains
+    let mut out = chains
         .iter()
         .zip(&carried)
         .enumerate()
         .map(|(k, ((_, chain), (head, tail)))| chine_curve(network, chain, head, tail, k + 1))
-        .collect()
+        .collect::<Result<Vec<_>, Error>>()?;
+    for (name, ends) in lines {
+        let curve = through_points(&ends).map_err(|e| e.named(&name))?;
+        out.push(NetworkCurve {
+            name,
+            role: Role::Free,
+            curve,
+        });
+    }
+    Ok(out)
 }
 
 /// One section of a family: its plane's value along the axis, and its knuckles (curve index,

@@ -9,10 +9,19 @@
 //! station just forward of the transom): that section's run between the points nearest the two
 //! ends, moved onto them with a shift that blends from one end's offset to the other's along
 //! its length, then laid into the plane.
+//!
+//! A flat end with no chine at all — a shaft boss cut square, which the profile outlines
+//! between two knuckles and no section crosses — gets its edge the same way ([`flat_ends`]):
+//! from one knuckle to the other, shaped by the nearest station. Its face would have two sides
+//! (the profile and the edge), and the band of boss between the edge and that station turns by
+//! half a circle, too much for one patch (KCS: a 154.6° normal jump there); a straight line
+//! across the end to the edge's point farthest from the profile, and one on from there to the
+//! station, part both.
 
 use glam::DVec3;
 
 use super::data_nodes::axis_planes;
+use crate::defaults::SECTION_CAPTURE_FACTOR;
 use crate::network::NetworkCurve;
 
 /// A chain of knuckle points: the curve index and the point, in order along the axis of the
@@ -101,6 +110,141 @@ pub(super) fn carried_on_in_plane(
         .collect()
 }
 
+/// A flat end outlined by a curve in an axis plane (the profile) between two of its
+/// knuckles: its edge, a knuckle chain from one knuckle to the other, the straight line
+/// across it from the edge's point farthest from the outline to the outline (the end, a face
+/// of two sides, becomes two of three), and the line on from there to the guiding section.
+pub(super) struct FlatEnd {
+    /// The family axis (the end's plane is square to it) and the edge's chain.
+    pub(super) edge: (usize, Chain),
+    /// The line across the end: from the outline curve's point to the edge's.
+    pub(super) across: [DVec3; 2],
+    /// The outline curve (network index).
+    pub(super) outline: usize,
+    /// The guiding section (network index) and the straight line from the edge's point
+    /// farthest from the outline to that section: it parts the band between the edge and the
+    /// section (half a boss's circumference, too much turn for one face) in two.
+    pub(super) along: Option<(usize, [DVec3; 2])>,
+}
+
+/// The flat ends that a curve lying in an axis plane (the profile) outlines between two of its
+/// knuckles, where it runs in a plane square to another axis: a shaft boss's end, whose edge
+/// no section gives. Each edge runs from one knuckle to the other through the shape of the
+/// nearest parallel section ([`guided_piece`]); none where no section guides it, where a
+/// knuckle is on a chain already, where a chain crosses the end (it is the edge, carried on
+/// to the knuckles by [`carried_on_in_plane`]), or where another curve ends within the
+/// import's capture distance of one of the two knuckles.
+pub(super) fn flat_ends(
+    curves: &[NetworkCurve],
+    planes: &[Option<(usize, f64)>],
+    knuckles: &[Vec<DVec3>],
+    chains: &[(usize, Chain)],
+    tolerance: f64,
+) -> Vec<FlatEnd> {
+    let on_a_chain = |p: DVec3| {
+        chains
+            .iter()
+            .any(|(_, ch)| ch.iter().any(|q| q.1.distance(p) <= tolerance))
+    };
+    let mut found = Vec::new();
+    for (i, ks) in knuckles.iter().enumerate() {
+        let Some((own_axis, _)) = planes[i] else {
+            continue;
+        };
+        let curve = &curves[i].curve;
+        let dec = curve.bezier_decomposition();
+        let mut at: Vec<(f64, DVec3)> = ks
+            .iter()
+            .filter(|&&k| !on_a_chain(k))
+            .filter_map(|&k| dec.nearest(k, 1e-3 * tolerance).ok().map(|n| (n.t, k)))
+            .collect();
+        at.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // A corner where a section ends already has that section's edges: an added edge would
+        // leave it beside them (KVLCC2's lowest waterline ends at its boss's lower corner).
+        let ends_at = |p: DVec3| {
+            curves.iter().enumerate().any(|(j, c)| {
+                let (lo, hi) = c.curve.domain();
+                j != i
+                    && (c.curve.point(lo).distance(p) <= SECTION_CAPTURE_FACTOR * tolerance
+                        || c.curve.point(hi).distance(p) <= SECTION_CAPTURE_FACTOR * tolerance)
+            })
+        };
+        for w in at.windows(2) {
+            let ((ta, a), (tb, b)) = (w[0], w[1]);
+            if ends_at(a) || ends_at(b) {
+                continue;
+            }
+            for axis in (0..3).filter(|&x| x != own_axis) {
+                let c = 0.5 * (a[axis] + b[axis]);
+                let flat = (0..=16).all(|j| {
+                    let p = curve.point(ta + (tb - ta) * j as f64 / 16.0);
+                    (p[axis] - c).abs() <= tolerance
+                });
+                if !flat {
+                    continue;
+                }
+                let chord = (b - a).normalize_or_zero();
+                let span = (b - a).length();
+                let crosses = |p: DVec3| {
+                    let along = (p - a).dot(chord);
+                    (p[axis] - c).abs() <= tolerance
+                        && along > tolerance
+                        && along < span - tolerance
+                };
+                if chains
+                    .iter()
+                    .any(|(_, ch)| ch.iter().filter(|q| crosses(q.1)).count() >= 2)
+                {
+                    break;
+                }
+                let piece = guided_piece(curves, planes, (axis, c), i, a, b, tolerance);
+                // The edge's point farthest from the outline's chord.
+                let off = |p: DVec3| (p - a) - chord * (p - a).dot(chord);
+                let far = piece
+                    .iter()
+                    .map(|q| q.1)
+                    .max_by(|p, q| off(*p).length().total_cmp(&off(*q).length()));
+                // Its foot on the outline's chord, where the outline runs straight there (a
+                // boss's end), else the outline's nearest point: both put the line across the
+                // end square to the outline.
+                let foot = |m: DVec3| {
+                    let on_chord = m - off(m);
+                    dec.nearest(on_chord, 1e-3 * tolerance).ok().map(|n| {
+                        if n.distance <= tolerance {
+                            on_chord
+                        } else {
+                            n.point
+                        }
+                    })
+                };
+                if let (Some(m), Some(&(g, _))) = (far, piece.first()) {
+                    let Some(foot) = foot(m) else {
+                        break;
+                    };
+                    let mut q = m;
+                    q[axis] = planes[g].map_or(c, |(_, w)| w);
+                    let along = curves[g]
+                        .curve
+                        .nearest(q, 1e-3 * tolerance)
+                        .ok()
+                        .map(|n| (g, [m, n.point]));
+                    let mut chain = vec![(i, a)];
+                    chain.extend(piece);
+                    chain.push((i, b));
+                    found.push(FlatEnd {
+                        edge: (axis, chain),
+                        across: [foot, m],
+                        outline: i,
+                        along,
+                    });
+                }
+                break;
+            }
+        }
+    }
+    found
+}
+
 /// The axis plane every point of a chain of two or more lies in, within `tolerance`.
 fn plane_of_points(chain: &Chain, tolerance: f64) -> Option<(usize, f64)> {
     if chain.len() < 2 {
@@ -181,7 +325,7 @@ fn guided_piece(
 mod tests {
     use super::*;
     use crate::curve::NurbsCurve;
-    use crate::network::Network;
+    use crate::network::{Network, Role};
     use crate::tolerance::Tolerance;
     use crate::wireframe::chines_from_knuckles;
     use crate::wireframe::test_curves::poly;
@@ -252,6 +396,116 @@ mod tests {
             .min_by(|a, b| (a.y - 0.9).abs().total_cmp(&(b.y - 0.9).abs()))
             .expect("samples");
         assert!(mid.z > 0.5 && mid.z < 0.62, "follows the station: {mid}");
+    }
+
+    /// A shaft boss ending flat at x = 0: the profile comes aft along its top, down its end
+    /// (x = 0, z 1.5 to 0.5) and forward along its bottom; a station at x = 0.5 is its round
+    /// section.
+    fn boss(extra: Option<NetworkCurve>) -> (Network, Vec<Vec<DVec3>>) {
+        let (a, b) = (DVec3::new(0.0, 0.0, 1.5), DVec3::new(0.0, 0.0, 0.5));
+        let mut curves = vec![
+            poly(
+                "profile",
+                &[[3.0, 0.0, 2.0], a.to_array(), b.to_array(), [3.0, 0.0, 0.0]],
+            ),
+            poly(
+                "station",
+                &[
+                    [0.5, 0.0, 1.5],
+                    [0.5, 0.35, 1.35],
+                    [0.5, 0.5, 1.0],
+                    [0.5, 0.35, 0.65],
+                    [0.5, 0.0, 0.5],
+                ],
+            ),
+        ];
+        let mut knuckles = vec![vec![a, b], Vec::new()];
+        if let Some(c) = extra {
+            curves.push(c);
+            knuckles.push(Vec::new());
+        }
+        (Network::try_new("boss", curves).expect("network"), knuckles)
+    }
+
+    #[test]
+    fn a_boss_end_gets_its_edge_and_the_lines_that_part_it() {
+        let (net, knuckles) = boss(None);
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        let names: Vec<&str> = chines.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(
+            names,
+            [
+                "chine1 profile–profile",
+                "flat end1 profile",
+                "flat end1 station"
+            ]
+        );
+        let edge = &chines[0];
+        assert_eq!(edge.role, Role::Knuckle);
+        for k in &knuckles[0] {
+            assert!(edge.curve.nearest(*k, 1e-12).expect("nearest").distance < 1e-9);
+        }
+        let pts = samples(&edge.curve);
+        assert!(pts.iter().all(|p| p.x.abs() < 1e-9), "in the end's plane");
+        let widest = pts.iter().map(|p| p.y).fold(0.0, f64::max);
+        assert!(
+            (widest - 0.5).abs() < 0.05,
+            "as wide as the station: {widest}"
+        );
+        // Across the end from the profile to the edge's widest point, then on to the station.
+        let (across, along) = (&chines[1].curve, &chines[2].curve);
+        let ends = |c: &NurbsCurve| {
+            let (lo, hi) = c.domain();
+            (c.point(lo), c.point(hi))
+        };
+        let (p0, m) = ends(across);
+        let (m2, q) = ends(along);
+        assert!(
+            p0.x.abs() < 1e-9 && p0.y.abs() < 1e-9,
+            "starts on the profile: {p0}"
+        );
+        assert!(
+            m.distance(m2) < 1e-12 && (m.y - widest).abs() < 0.05,
+            "meets the edge: {m}"
+        );
+        assert!(
+            (q.x - 0.5).abs() < 1e-9 && (q.y - 0.5).abs() < 0.05,
+            "ends on the station: {q}"
+        );
+    }
+
+    #[test]
+    fn a_corner_where_a_section_ends_gets_no_flat_end() {
+        let (net, knuckles) = boss(Some(poly("waterline", &[[0.0, 0.0, 0.5], [3.0, 1.0, 0.5]])));
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        assert!(
+            chines.is_empty(),
+            "{:?}",
+            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn a_boss_end_crossed_by_waterlines_takes_their_chine_as_its_edge() {
+        // Two waterlines cross the end to its edge and turn forward along the boss: their
+        // knuckles make the chine, carried on to the profile's corners; no second edge.
+        let (net, mut knuckles) = boss(None);
+        let mut curves = net.curves().to_vec();
+        for (z, w) in [(0.8, 0.45), (1.2, 0.45)] {
+            curves.push(poly(
+                &format!("wl{z}"),
+                &[[0.0, 0.0, z], [0.0, w, z], [3.0, w, z]],
+            ));
+            knuckles.push(vec![DVec3::new(0.0, w, z)]);
+        }
+        let net = Network::try_new("boss with waterlines", curves).expect("network");
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        let names: Vec<&str> = chines.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names, ["chine1 profile–profile"]);
+        for k in [&knuckles[0][..], &knuckles[2], &knuckles[3]].concat() {
+            let gap = chines[0].curve.nearest(k, 1e-12).expect("nearest").distance;
+            assert!(gap < 1e-9, "through {k}: {gap}");
+        }
     }
 
     #[test]
