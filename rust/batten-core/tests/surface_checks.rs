@@ -194,3 +194,32 @@ fn the_faired_apart_kcs_reports_its_holes_and_folds_where_they_are() {
         assert!(!w.curves.is_empty() && w.location.is_some(), "{w:?}");
     }
 }
+
+/// KCS's flat-of-bottom bay as the import made it while the flat of bottom passed up to
+/// 0.55 mm off the stations' flat ends: the profile, the flat of bottom, wl_z0.30 and
+/// wl_z1.50 between st11 and st14, and those stations up to wl_z1.50, each cut at its
+/// crossings (`tests/data/kcs_flat_of_bottom_bay.json`, written with `Curve.split` from
+/// `api.import_sections` of `shared/hulls/kcs`). The bilge patches' sides end in a short flat
+/// stretch there, and still meet the planar faces of the flat smoothly: the Gregory patches'
+/// twists are their ribbons' own end derivatives. (With the twists taken over 1e-4 of a side,
+/// the ribbon turning within that of its end tilted the bilge 0.53° off the flat.)
+#[test]
+fn the_kcs_bilge_meets_its_flat_of_bottom_tangentially() {
+    let path = format!(
+        "{}/tests/data/kcs_flat_of_bottom_bay.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let net = Network::from_json(&std::fs::read_to_string(path).expect("fixture")).expect("reads");
+    let r = report(&net, 1e-4, 8);
+    assert_eq!(r.faces, 9, "three bays of flat, bilge and side");
+    // The cut curves are its rim (one hole, named); nothing else is found.
+    let kinds: Vec<WarningKind> = r.warnings.iter().map(|w| w.kind).collect();
+    assert_eq!(kinds, [WarningKind::Hole], "{:?}", r.warnings);
+    assert!(
+        r.max_normal_angle_deg < 1e-3,
+        "{}° at {:?} on {:?}",
+        r.max_normal_angle_deg,
+        r.max_normal_angle_at,
+        r.max_normal_angle_curve
+    );
+}
