@@ -128,12 +128,13 @@ pub(super) struct FlatEnd {
 }
 
 /// The flat ends that a curve lying in an axis plane (the profile) outlines between two of its
-/// knuckles, where it runs in a plane square to another axis: a shaft boss's end, whose edge
+/// knuckles, where it runs in a plane square to the length: a shaft boss's end, whose edge
 /// no section gives. Each edge runs from one knuckle to the other through the shape of the
 /// nearest parallel section ([`guided_piece`]); none where no section guides it, where a
-/// knuckle is on a chain already, where a chain crosses the end (it is the edge, carried on
-/// to the knuckles by [`carried_on_in_plane`]), or where another curve ends within the
-/// import's capture distance of one of the two knuckles.
+/// knuckle is on a chain already, where a section crosses the end with a knuckle (two or more
+/// make a chain, the edge, carried on to the knuckles by [`carried_on_in_plane`]), or where
+/// another curve ends within the import's capture distance of one of the two knuckles. Only
+/// ends square to the length (x) count.
 pub(super) fn flat_ends(
     curves: &[NetworkCurve],
     planes: &[Option<(usize, f64)>],
@@ -174,7 +175,9 @@ pub(super) fn flat_ends(
             if ends_at(a) || ends_at(b) {
                 continue;
             }
-            for axis in (0..3).filter(|&x| x != own_axis) {
+            // The end's plane is square to the length (x): a boss's or a stern's end, never
+            // the flat keel between two knuckles of the profile.
+            for axis in [0].into_iter().filter(|&x| x != own_axis) {
                 let c = 0.5 * (a[axis] + b[axis]);
                 let flat = (0..=16).all(|j| {
                     let p = curve.point(ta + (tb - ta) * j as f64 / 16.0);
@@ -191,9 +194,13 @@ pub(super) fn flat_ends(
                         && along > tolerance
                         && along < span - tolerance
                 };
-                if chains
+                // A section crossing the end has its knuckle on the edge: with two or more,
+                // their chine is the edge (carried on to the corners); with one, an edge
+                // shaped by the station would pass beside it. Either way none is added.
+                if knuckles
                     .iter()
-                    .any(|(_, ch)| ch.iter().filter(|q| crosses(q.1)).count() >= 2)
+                    .enumerate()
+                    .any(|(j, ks)| j != i && ks.iter().any(|&k| crosses(k)))
                 {
                     break;
                 }
@@ -477,6 +484,46 @@ mod tests {
     #[test]
     fn a_corner_where_a_section_ends_gets_no_flat_end() {
         let (net, knuckles) = boss(Some(poly("waterline", &[[0.0, 0.0, 0.5], [3.0, 1.0, 0.5]])));
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        assert!(
+            chines.is_empty(),
+            "{:?}",
+            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn a_lone_waterline_across_the_end_or_a_flat_keel_gets_no_flat_end() {
+        // One waterline crosses the boss's end: an edge shaped by the station would pass
+        // beside its knuckle.
+        let (net, mut knuckles) = boss(None);
+        let mut curves = net.curves().to_vec();
+        curves.push(poly(
+            "wl",
+            &[[0.0, 0.0, 0.8], [0.0, 0.45, 0.8], [3.0, 0.45, 0.8]],
+        ));
+        knuckles.push(vec![DVec3::new(0.0, 0.45, 0.8)]);
+        let net = Network::try_new("boss with a waterline", curves).expect("network");
+        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
+        assert!(
+            chines.is_empty(),
+            "{:?}",
+            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
+        );
+        // A profile with a knuckle at each end of its flat keel, and a waterline above it: the
+        // keel is no end (its plane is not square to the length).
+        let profile = poly(
+            "profile",
+            &[
+                [-1.0, 0.0, 1.0],
+                [0.0, 0.0, 0.0],
+                [10.0, 0.0, 0.0],
+                [11.0, 0.0, 1.0],
+            ],
+        );
+        let wl = poly("wl", &[[0.3, 0.0, 0.3], [5.0, 1.0, 0.3], [9.7, 0.0, 0.3]]);
+        let net = Network::try_new("keel", vec![profile, wl]).expect("network");
+        let knuckles = vec![vec![DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0)], Vec::new()];
         let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
         assert!(
             chines.is_empty(),
