@@ -12,8 +12,8 @@ other curve of the file (it ended on a curve the file does not hold) is cut back
 section: a reader joining the sections' knuckles finds the same chine. A section that runs
 along a boundary curve (a station in the transom's plane) is left out: the file has the curve;
 so is a stray piece ending inside faces, cut where the surface folds (:func:`is_stray`), and a
-stretch from a section's end to its corner that a reader would merge into a boundary curve
-(:func:`without_end_stretches_along`).
+stretch from a section's end to where it meets a boundary curve that it runs beside, which a
+reader would merge into that curve (:func:`without_end_stretches_along`).
 """
 
 from __future__ import annotations
