@@ -49,11 +49,7 @@ pub(super) fn carried_on_in_plane(
     chains: &[(usize, Chain)],
     tolerance: f64,
 ) -> Vec<(Chain, Chain)> {
-    let on_a_chain = |p: DVec3| {
-        chains
-            .iter()
-            .any(|(_, ch)| ch.iter().any(|q| q.1.distance(p) <= tolerance))
-    };
+    let on_a_chain = |p: DVec3| on_a_chain(chains, p, tolerance);
     chains
         .iter()
         .map(|(family, chain)| {
@@ -142,11 +138,7 @@ pub(super) fn flat_ends(
     chains: &[(usize, Chain)],
     tolerance: f64,
 ) -> Vec<FlatEnd> {
-    let on_a_chain = |p: DVec3| {
-        chains
-            .iter()
-            .any(|(_, ch)| ch.iter().any(|q| q.1.distance(p) <= tolerance))
-    };
+    let on_a_chain = |p: DVec3| on_a_chain(chains, p, tolerance);
     let mut found = Vec::new();
     for (i, ks) in knuckles.iter().enumerate() {
         let Some((own_axis, _)) = planes[i] else {
@@ -250,6 +242,13 @@ pub(super) fn flat_ends(
         }
     }
     found
+}
+
+/// Whether `p` is within `tolerance` of a point of one of `chains`.
+fn on_a_chain(chains: &[(usize, Chain)], p: DVec3, tolerance: f64) -> bool {
+    chains
+        .iter()
+        .any(|(_, ch)| ch.iter().any(|q| q.1.distance(p) <= tolerance))
 }
 
 /// The axis plane every point of a chain of two or more lies in, within `tolerance`.
@@ -481,15 +480,17 @@ mod tests {
         );
     }
 
+    /// `chines_from_knuckles` adds no curve to `net` with `knuckles`.
+    fn assert_no_chines(net: &Network, knuckles: &[Vec<DVec3>]) {
+        let chines = chines_from_knuckles(net, knuckles, Tolerance::DEFAULT).expect("chines");
+        let names: Vec<&str> = chines.iter().map(|c| c.name.as_str()).collect();
+        assert!(names.is_empty(), "{names:?}");
+    }
+
     #[test]
     fn a_corner_where_a_section_ends_gets_no_flat_end() {
         let (net, knuckles) = boss(Some(poly("waterline", &[[0.0, 0.0, 0.5], [3.0, 1.0, 0.5]])));
-        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
-        assert!(
-            chines.is_empty(),
-            "{:?}",
-            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
-        );
+        assert_no_chines(&net, &knuckles);
     }
 
     #[test]
@@ -504,12 +505,7 @@ mod tests {
         ));
         knuckles.push(vec![DVec3::new(0.0, 0.45, 0.8)]);
         let net = Network::try_new("boss with a waterline", curves).expect("network");
-        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
-        assert!(
-            chines.is_empty(),
-            "{:?}",
-            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
-        );
+        assert_no_chines(&net, &knuckles);
         // A profile with a knuckle at each end of its flat keel, and a waterline above it: the
         // keel is no end (its plane is not square to the length).
         let profile = poly(
@@ -524,12 +520,7 @@ mod tests {
         let wl = poly("wl", &[[0.3, 0.0, 0.3], [5.0, 1.0, 0.3], [9.7, 0.0, 0.3]]);
         let net = Network::try_new("keel", vec![profile, wl]).expect("network");
         let knuckles = vec![vec![DVec3::ZERO, DVec3::new(10.0, 0.0, 0.0)], Vec::new()];
-        let chines = chines_from_knuckles(&net, &knuckles, Tolerance::DEFAULT).expect("chines");
-        assert!(
-            chines.is_empty(),
-            "{:?}",
-            chines.iter().map(|c| &c.name).collect::<Vec<_>>()
-        );
+        assert_no_chines(&net, &knuckles);
     }
 
     #[test]
