@@ -21,12 +21,17 @@
 use glam::DVec3;
 
 use super::data_nodes::axis_planes;
+use crate::curve::BezierDecomposition;
 use crate::defaults::SECTION_CAPTURE_FACTOR;
 use crate::network::NetworkCurve;
 
 /// A chain of knuckle points: the curve index and the point, in order along the axis of the
 /// family whose sections gave them.
 pub(super) type Chain = Vec<(usize, DVec3)>;
+
+/// The axis along the hull's length (x): a flat end's plane is square to it, never the flat
+/// keel's between two knuckles of the profile.
+const LENGTH_AXIS: usize = 0;
 
 /// Points the carried-on piece takes from its guiding section, between the two ends.
 const GUIDE_SAMPLES: usize = 8;
@@ -139,13 +144,21 @@ pub(super) fn flat_ends(
     tolerance: f64,
 ) -> Vec<FlatEnd> {
     let on_a_chain = |p: DVec3| on_a_chain(chains, p, tolerance);
+    let capture = SECTION_CAPTURE_FACTOR * tolerance;
+    let curve_ends: Vec<[DVec3; 2]> = curves
+        .iter()
+        .map(|c| {
+            let (lo, hi) = c.curve.domain();
+            [c.curve.point(lo), c.curve.point(hi)]
+        })
+        .collect();
     let mut found = Vec::new();
     for (i, ks) in knuckles.iter().enumerate() {
-        let Some((own_axis, _)) = planes[i] else {
+        // An outline in a plane square to the length has no stretch in another such plane.
+        if planes[i].is_none_or(|(own, _)| own == LENGTH_AXIS) {
             continue;
-        };
-        let curve = &curves[i].curve;
-        let dec = curve.bezier_decomposition();
+        }
+        let dec = curves[i].curve.bezier_decomposition();
         let mut at: Vec<(f64, DVec3)> = ks
             .iter()
             .filter(|&&k| !on_a_chain(k))
@@ -155,93 +168,102 @@ pub(super) fn flat_ends(
         // A corner where a section ends already has that section's edges: an added edge would
         // leave it beside them (KVLCC2's lowest waterline ends at its boss's lower corner).
         let ends_at = |p: DVec3| {
-            curves.iter().enumerate().any(|(j, c)| {
-                let (lo, hi) = c.curve.domain();
-                j != i
-                    && (c.curve.point(lo).distance(p) <= SECTION_CAPTURE_FACTOR * tolerance
-                        || c.curve.point(hi).distance(p) <= SECTION_CAPTURE_FACTOR * tolerance)
-            })
+            curve_ends
+                .iter()
+                .enumerate()
+                .any(|(j, e)| j != i && e.iter().any(|q| q.distance(p) <= capture))
         };
         for w in at.windows(2) {
-            let ((ta, a), (tb, b)) = (w[0], w[1]);
-            if ends_at(a) || ends_at(b) {
+            if ends_at(w[0].1) || ends_at(w[1].1) {
                 continue;
             }
-            // The end's plane is square to the length (x): a boss's or a stern's end, never
-            // the flat keel between two knuckles of the profile.
-            for axis in [0].into_iter().filter(|&x| x != own_axis) {
-                let c = 0.5 * (a[axis] + b[axis]);
-                let flat = (0..=16).all(|j| {
-                    let p = curve.point(ta + (tb - ta) * j as f64 / 16.0);
-                    (p[axis] - c).abs() <= tolerance
-                });
-                if !flat {
-                    continue;
-                }
-                let chord = (b - a).normalize_or_zero();
-                let span = (b - a).length();
-                let crosses = |p: DVec3| {
-                    let along = (p - a).dot(chord);
-                    (p[axis] - c).abs() <= tolerance
-                        && along > tolerance
-                        && along < span - tolerance
-                };
-                // A section crossing the end has its knuckle on the edge: with two or more,
-                // their chine is the edge (carried on to the corners); with one, an edge
-                // shaped by the station would pass beside it. Either way none is added.
-                if knuckles
-                    .iter()
-                    .enumerate()
-                    .any(|(j, ks)| j != i && ks.iter().any(|&k| crosses(k)))
-                {
-                    break;
-                }
-                let piece = guided_piece(curves, planes, (axis, c), i, a, b, tolerance);
-                // The edge's point farthest from the outline's chord.
-                let off = |p: DVec3| (p - a) - chord * (p - a).dot(chord);
-                let far = piece
-                    .iter()
-                    .map(|q| q.1)
-                    .max_by(|p, q| off(*p).length().total_cmp(&off(*q).length()));
-                // Its foot on the outline's chord, where the outline runs straight there (a
-                // boss's end), else the outline's nearest point: both put the line across the
-                // end square to the outline.
-                let foot = |m: DVec3| {
-                    let on_chord = m - off(m);
-                    dec.nearest(on_chord, 1e-3 * tolerance).ok().map(|n| {
-                        if n.distance <= tolerance {
-                            on_chord
-                        } else {
-                            n.point
-                        }
-                    })
-                };
-                if let (Some(m), Some(&(g, _))) = (far, piece.first()) {
-                    let Some(foot) = foot(m) else {
-                        break;
-                    };
-                    let mut q = m;
-                    q[axis] = planes[g].map_or(c, |(_, w)| w);
-                    let along = curves[g]
-                        .curve
-                        .nearest(q, 1e-3 * tolerance)
-                        .ok()
-                        .map(|n| (g, [m, n.point]));
-                    let mut chain = vec![(i, a)];
-                    chain.extend(piece);
-                    chain.push((i, b));
-                    found.push(FlatEnd {
-                        edge: (axis, chain),
-                        across: [foot, m],
-                        outline: i,
-                        along,
-                    });
-                }
-                break;
-            }
+            found.extend(flat_end(
+                curves,
+                planes,
+                knuckles,
+                (i, &dec),
+                [w[0], w[1]],
+                tolerance,
+            ));
         }
     }
     found
+}
+
+/// The flat end of outline curve `outline.0` (its Bézier pieces `outline.1`) between its
+/// knuckles `ends` (parameter and point), as [`flat_ends`] finds it: `None` where the stretch
+/// between them leaves the plane square to the length, a knuckle of another curve lies on the
+/// end, or no station guides its edge.
+fn flat_end(
+    curves: &[NetworkCurve],
+    planes: &[Option<(usize, f64)>],
+    knuckles: &[Vec<DVec3>],
+    outline: (usize, &BezierDecomposition),
+    ends: [(f64, DVec3); 2],
+    tolerance: f64,
+) -> Option<FlatEnd> {
+    let (i, dec) = outline;
+    let [(ta, a), (tb, b)] = ends;
+    let axis = LENGTH_AXIS;
+    let curve = &curves[i].curve;
+    let c = 0.5 * (a[axis] + b[axis]);
+    let flat = (0..=16).all(|j| {
+        let p = curve.point(ta + (tb - ta) * j as f64 / 16.0);
+        (p[axis] - c).abs() <= tolerance
+    });
+    if !flat {
+        return None;
+    }
+    let chord = (b - a).normalize_or_zero();
+    let span = (b - a).length();
+    let crosses = |p: DVec3| {
+        let along = (p - a).dot(chord);
+        (p[axis] - c).abs() <= tolerance && along > tolerance && along < span - tolerance
+    };
+    // A section crossing the end has its knuckle on the edge: with two or more, their chine is
+    // the edge (carried on to the corners); with one, an edge shaped by the station would pass
+    // beside it. Either way none is added.
+    if knuckles
+        .iter()
+        .enumerate()
+        .any(|(j, ks)| j != i && ks.iter().any(|&k| crosses(k)))
+    {
+        return None;
+    }
+    let piece = guided_piece(curves, planes, (axis, c), i, a, b, tolerance);
+    let &(g, _) = piece.first()?;
+    // The edge's point farthest from the outline's chord.
+    let off = |p: DVec3| (p - a) - chord * (p - a).dot(chord);
+    let m = piece
+        .iter()
+        .map(|q| q.1)
+        .max_by(|p, q| off(*p).length().total_cmp(&off(*q).length()))?;
+    // Its foot on the outline's chord, where the outline runs straight there (a boss's end),
+    // else the outline's nearest point: both put the line across the end square to the
+    // outline.
+    let on_chord = m - off(m);
+    let nearest = dec.nearest(on_chord, 1e-3 * tolerance).ok()?;
+    let foot = if nearest.distance <= tolerance {
+        on_chord
+    } else {
+        nearest.point
+    };
+    let mut q = m;
+    q[axis] = planes[g].map_or(c, |(_, w)| w);
+    let along = curves[g]
+        .curve
+        .nearest(q, 1e-3 * tolerance)
+        .ok()
+        .map(|n| (g, [m, n.point]));
+    let mut chain = vec![(i, a)];
+    chain.extend(piece);
+    chain.push((i, b));
+    Some(FlatEnd {
+        edge: (axis, chain),
+        across: [foot, m],
+        outline: i,
+        along,
+    })
 }
 
 /// Whether `p` is within `tolerance` of a point of one of `chains`.
