@@ -233,13 +233,26 @@ def _source_name(source) -> str:
     return "network"
 
 
+def _registered() -> None:
+    """Register the add-on (:func:`batten.register`) when nothing has yet: a headless script
+    that imports ``batten.api`` without it would read every curve's role as "free" (a hull
+    without its keel, deck, chines or flat of bottom) and could set none. Registering twice is
+    harmless, so this only looks for the curves' role property."""
+    if not hasattr(bpy.types.Object, "batten"):
+        from . import register
+
+        register()
+
+
 def curve_objects(source) -> list:
     """The objects of ``source``: a collection (with its child collections), an iterable of
-    objects, or one object, in a stable order (by name).
+    objects, or one object, in a stable order (by name). Registers the add-on first if a
+    headless script has not (:func:`_registered`), so the objects' roles are there.
 
     Raises InvalidArgumentError when ``source`` is none of these or holds nothing, and
     CurveError (naming the object) when an object is not a curve.
     """
+    _registered()
     if isinstance(source, bpy.types.Collection):
         objects = list(source.all_objects)
         where = f"collection '{source.name}'"
@@ -339,7 +352,9 @@ def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):
 def _draw_collection(name: str, curves: list[Curve], *, resolution: int = CURVE_RESOLUTION):
     """Draw ``curves`` as curve objects in a new collection ``name`` linked to the scene:
     all of them, or (if drawing fails midway) none, with everything created removed again.
-    A name Blender cannot store (a file name's undecodable bytes) is drawn with U+FFFD."""
+    A name Blender cannot store (a file name's undecodable bytes) is drawn with U+FFFD.
+    Registers the add-on first if a headless script has not, so the roles are drawn too."""
+    _registered()
     coll = bpy.data.collections.new(blender_name(name))
     created = []
     try:
