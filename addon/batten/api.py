@@ -233,7 +233,7 @@ def _source_name(source) -> str:
     return "network"
 
 
-def _registered() -> None:
+def _ensure_registered() -> None:
     """Register the add-on (:func:`batten.register`) when nothing has yet: a headless script
     that imports ``batten.api`` without it would read every curve's role as "free" (a hull
     without its keel, deck, chines or flat of bottom) and could set none. Registering twice is
@@ -247,12 +247,12 @@ def _registered() -> None:
 def curve_objects(source) -> list:
     """The objects of ``source``: a collection (with its child collections), an iterable of
     objects, or one object, in a stable order (by name). Registers the add-on first if a
-    headless script has not (:func:`_registered`), so the objects' roles are there.
+    headless script has not (:func:`_ensure_registered`), so the objects' roles are there.
 
     Raises InvalidArgumentError when ``source`` is none of these or holds nothing, and
     CurveError (naming the object) when an object is not a curve.
     """
-    _registered()
+    _ensure_registered()
     if isinstance(source, bpy.types.Collection):
         objects = list(source.all_objects)
         where = f"collection '{source.name}'"
@@ -354,7 +354,7 @@ def _draw_collection(name: str, curves: list[Curve], *, resolution: int = CURVE_
     all of them, or (if drawing fails midway) none, with everything created removed again.
     A name Blender cannot store (a file name's undecodable bytes) is drawn with U+FFFD.
     Registers the add-on first if a headless script has not, so the roles are drawn too."""
-    _registered()
+    _ensure_registered()
     coll = bpy.data.collections.new(blender_name(name))
     created = []
     try:
