@@ -10,9 +10,9 @@ use common::{poly, wigley};
 use std::collections::{BTreeMap, HashMap};
 
 use batten_core::{
-    build_hull, Error, FaceError, HullOptions, HullReport, HullSurface, KnuckleSource, Network,
-    NetworkCurve, NurbsCurve, Role, SurfaceMesh, Tolerance, Topology, WarningKind,
-    KNUCKLE_EDGE_SAMPLES, MAX_RESOLUTION,
+    build_hull, tessellate_patches, Error, FaceError, HullOptions, HullReport, HullSurface,
+    KnuckleSource, Network, NetworkCurve, NurbsCurve, Role, SurfaceMesh, Tolerance, Topology,
+    WarningKind, KNUCKLE_EDGE_SAMPLES, MAX_RESOLUTION,
 };
 use glam::DVec3;
 
@@ -241,16 +241,97 @@ fn wigley_example_matches_its_exact_volume_and_refines() {
 
 #[test]
 fn seam_dihedral_halves_when_the_resolution_doubles() {
+    // At 16 and 32: at 8 the sphere octant's own mesh turns by more than the build's
+    // refinement angle, and its faces are meshed finer than the resolution.
     for (name, net) in [("wigley", wigley(7, 3)), ("sphere", sphere_octant())] {
-        let coarse = max_seam_dihedral(&build(&net, 8).mesh);
-        let fine = max_seam_dihedral(&build(&net, 16).mesh);
+        let coarse = max_seam_dihedral(&build(&net, 16).mesh);
+        let fine = max_seam_dihedral(&build(&net, 32).mesh);
         let ratio = fine / coarse;
-        println!("{name} seam dihedral: {coarse:.4}° at 8, {fine:.4}° at 16 (ratio {ratio:.3})");
+        println!("{name} seam dihedral: {coarse:.4}° at 16, {fine:.4}° at 32 (ratio {ratio:.3})");
         assert!(
             (0.35..0.7).contains(&ratio),
             "{name}: a smooth seam's dihedral is proportional to the mesh size (ratio {ratio})"
         );
     }
+}
+
+/// The largest angle (degrees) between two polygons of `mesh` sharing an edge.
+fn max_neighbour_angle(mesh: &SurfaceMesh) -> f64 {
+    let faces: Vec<&[u32]> = mesh.faces().collect();
+    let normals: Vec<DVec3> = faces.iter().map(|f| face_normal(mesh, f)).collect();
+    check_orientation(mesh)
+        .values()
+        .filter(|u| u.len() == 2)
+        .map(|u| normals[u[0]].angle_between(normals[u[1]]).to_degrees())
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_face_turning_too_tightly_for_the_resolution_is_meshed_finer_and_stays_welded() {
+    // The sphere octant at resolution 4: the triangles at its pole, meshed uniformly, turn by
+    // 36° between neighbouring polygons, more than a fold's 30°.
+    let net = sphere_octant();
+    let hull = build(&net, 4);
+    let uniform = tessellate_patches(&hull.patches, 4).expect("mesh");
+    let (coarse, refined) = (
+        max_neighbour_angle(&uniform),
+        max_neighbour_angle(&hull.mesh),
+    );
+    println!(
+        "sphere at 4: {} polygons, {coarse:.1}° uniform; {} polygons, {refined:.1}° built",
+        uniform.face_count(),
+        hull.mesh.face_count()
+    );
+    assert!(coarse > 30.0, "the uniform mesh turns by {coarse}°");
+    assert!(
+        hull.mesh.face_count() > uniform.face_count(),
+        "the build meshed finer"
+    );
+    assert!(refined <= 20.0, "the built mesh turns by {refined}°");
+    assert_eq!(hull.report.folds, 0);
+    // Welded: every free mesh edge lies on the octant's rim (the planes x, y or z = 0), so
+    // faces meshed at different counts share their edges' vertices, with no crack between.
+    let p = |v: u32| DVec3::from(hull.mesh.positions[v as usize]);
+    for ((a, b), uses) in check_orientation(&hull.mesh) {
+        if uses.len() == 1 {
+            let on_rim = (0..3).any(|k| p(a)[k].abs() < 1e-9 && p(b)[k].abs() < 1e-9);
+            assert!(
+                on_rim,
+                "free mesh edge {:?}–{:?} inside the octant",
+                p(a),
+                p(b)
+            );
+        }
+    }
+    // The live rebuild of a moved meridian is the full build, refined faces and all.
+    let options = HullOptions {
+        tolerance: Tolerance::DEFAULT,
+        resolution: 4,
+    };
+    let mut live = batten_core::LiveHull::new(&net, &options).expect("live");
+    let curves: Vec<NetworkCurve> = net
+        .curves()
+        .iter()
+        .map(|c| {
+            if c.name != "meridian 30" {
+                return c.clone();
+            }
+            let mut points = c.curve.control_points();
+            points[1] *= 1.0 + 1e-5;
+            let weights = c.curve.weights();
+            let curve = NurbsCurve::try_new(2, c.curve.knots().to_vec(), points, weights)
+                .expect("moved meridian");
+            nc(&c.name, c.role, curve)
+        })
+        .collect();
+    let moved = Network::try_new("sphere", curves).expect("network");
+    live.rebuild(&moved).expect("rebuild");
+    assert_eq!(live.surface().mesh, build(&moved, 4).mesh);
+    assert_ne!(
+        live.surface().mesh,
+        hull.mesh,
+        "the meridian moved the surface"
+    );
 }
 
 /// A planar network in the plane `z = 0.3x + 0.2y + 1`: a square, a curved station, a

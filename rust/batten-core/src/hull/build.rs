@@ -7,7 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
-use super::folds::face_mesh_folds;
+use super::folds::{face_mesh_folds, FOLD_ANGLE_DEGREES};
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings, MeshShares};
@@ -172,6 +172,17 @@ pub(crate) enum FaceOutcome {
         mesh: FaceMesh,
         /// The mesh's share of the checks on the welded mesh.
         shares: MeshShares,
+        /// How finely the face's own mesh needs to be made ([`refinement`]).
+        need: Need,
+        /// The intervals `mesh` has on each side segment (all sides' segments in order).
+        counts: Vec<usize>,
+        /// The largest angle between neighbouring polygons of the mesh with `counts` of the
+        /// patch [`unfolded`] chose (degrees): `mesh`'s, unless `patch` replaced that one.
+        worst: f64,
+        /// The patch [`unfolded`] chose, where its mesh with `counts` folded and `patch` is the
+        /// side-blended patch taken instead ([`refolded`]): what a mesh with other counts
+        /// starts from again, so a live rebuild meets the full build's choice.
+        unfolded: Option<Patch>,
     },
     /// No patch: why.
     Failed(FaceError),
@@ -254,34 +265,55 @@ const FOLD_CHECK_VERTICES: usize = 1 << 20;
 /// where both fold about as badly, the paper's patch stays.
 const FALLBACK_GAIN: f64 = 0.5;
 
-/// A face's patch, and its mesh at `resolution` when it was made to look for folds: the
-/// corner-based patch, or — where its mesh folds ([`face_mesh_folds`]) and the side-blended
-/// patch of the same boundary and ribbons folds clearly less ([`FALLBACK_GAIN`]) — that one
-/// ([`PatchKind::SideBlend`]).
+/// A face's patch, its mesh at `resolution` when it was made to look for folds, and how many
+/// times `resolution` its mesh needs ([`refinement`]): the corner-based patch, or — where its
+/// mesh folds ([`face_mesh_folds`]) and the side-blended patch of the same boundary and
+/// ribbons folds clearly less ([`FALLBACK_GAIN`]) — that one ([`PatchKind::SideBlend`]). Both
+/// are judged on meshes fine enough for the tighter of their turns, so a patch whose coarse
+/// mesh only cuts a tight turn short is kept, and a fallback whose coarse mesh steps over a
+/// fold of its own is not taken for that.
 fn unfolded(
     plan: &FacePlan,
     patch: Patch,
     opts: &PatchOptions,
     resolution: usize,
-) -> (Patch, Option<FaceMesh>) {
+) -> (Patch, Option<FaceMesh>, Need) {
     if patch.mesh_vertex_count(resolution) > FOLD_CHECK_VERTICES {
-        return (patch, None);
+        return (patch, None, Need::NONE);
     }
     let mesh = patch.face_mesh(resolution);
-    let folds = face_mesh_folds(&mesh);
-    if folds.pairs == 0 || !mesh.is_finite() {
-        return (patch, Some(mesh));
+    if !mesh.is_finite() {
+        return (patch, Some(mesh), Need::NONE);
+    }
+    let need = refinement(&patch, &mesh, resolution);
+    let folds_at = |p: &Patch, m: usize, base: &FaceMesh| {
+        if m == 1 {
+            face_mesh_folds(base)
+        } else {
+            face_mesh_folds(&p.face_mesh(m * resolution))
+        }
+    };
+    if folds_at(&patch, need.times, &mesh).pairs == 0 {
+        return (patch, Some(mesh), need);
     }
     let blend_opts = PatchOptions {
         kind: PatchKind::SideBlend,
         ..*opts
     };
     let Ok(blended) = Patch::try_new(&plan.boundary, &plan.ribbons, &blend_opts) else {
-        return (patch, Some(mesh));
+        return (patch, Some(mesh), need);
     };
     let other = blended.face_mesh(resolution);
-    let other_folds = face_mesh_folds(&other);
-    if other.is_finite() && other_folds.excess <= FALLBACK_GAIN * folds.excess {
+    if !other.is_finite() {
+        return (patch, Some(mesh), need);
+    }
+    let other_need = refinement(&blended, &other, resolution);
+    let level = need.times.max(other_need.times);
+    let (folds, other_folds) = (
+        folds_at(&patch, level, &mesh),
+        folds_at(&blended, level, &other),
+    );
+    if other_folds.excess <= FALLBACK_GAIN * folds.excess {
         let note = PatchWarning::SideBlended {
             replaced: patch.kind(),
             replaced_pairs: folds.pairs,
@@ -289,9 +321,9 @@ fn unfolded(
             pairs: other_folds.pairs,
             degrees: other_folds.worst,
         };
-        (blended.with_warning(note), Some(other))
+        (blended.with_warning(note), Some(other), other_need)
     } else {
-        (patch, Some(mesh))
+        (patch, Some(mesh), need)
     }
 }
 
@@ -306,7 +338,7 @@ fn face_outcomes(
     options: &HullOptions,
 ) -> Result<Vec<Arc<FaceOutcome>>, Error> {
     let opts = patch_options(options);
-    type Built = (Patch, PatchLayout, Option<FaceMesh>);
+    type Built = (Patch, PatchLayout, Option<FaceMesh>, Need);
     let built: Vec<Option<Result<Built, FaceError>>> = stages
         .topology
         .faces
@@ -322,15 +354,15 @@ fn face_outcomes(
                     &stages.shared,
                 )?;
                 let patch = Patch::try_new(&plan.boundary, &plan.ribbons, &opts)?;
-                let (patch, mesh) = unfolded(&plan, patch, &opts, options.resolution);
-                Ok((patch, plan.layout, mesh))
+                let (patch, mesh, need) = unfolded(&plan, patch, &opts, options.resolution);
+                Ok((patch, plan.layout, mesh, need))
             })
         })
         .collect();
     // Counted before anything is meshed: a mesh too large to index is refused up front.
     let total = built.iter().enumerate().fold(0usize, |acc, (fi, b)| {
         let n = match (b, kept) {
-            (Some(Ok((patch, _, _))), _) => patch.mesh_vertex_count(options.resolution),
+            (Some(Ok((patch, _, _, _))), _) => patch.mesh_vertex_count(options.resolution),
             (None, Some(kept)) => match kept[fi].as_ref() {
                 FaceOutcome::Built { mesh, .. } => mesh.vertex_count(),
                 _ => 0,
@@ -348,10 +380,18 @@ fn face_outcomes(
         .map(|(fi, b)| match b {
             None => Arc::clone(&kept.expect("kept outcomes for the clean faces")[fi]),
             Some(Err(error)) => Arc::new(FaceOutcome::Failed(error)),
-            Some(Ok((patch, layout, mesh))) => {
+            Some(Ok((patch, layout, mesh, need))) => {
                 let mesh = mesh.unwrap_or_else(|| patch.face_mesh(options.resolution));
                 Arc::new(if mesh.is_finite() {
                     FaceOutcome::Built {
+                        unfolded: None,
+                        worst: if need.times == 1 {
+                            need.worst
+                        } else {
+                            face_mesh_folds(&mesh).worst
+                        },
+                        need,
+                        counts: vec![options.resolution; patch.segment_count()],
                         patch,
                         layout,
                         shares: MeshShares::of(&mesh),
@@ -362,7 +402,280 @@ fn face_outcomes(
                 })
             }
         })
+        .collect::<Vec<_>>())
+    .and_then(|outcomes| refined(outcomes, stages, options))
+}
+
+/// Neighbouring polygons of a face's own mesh more than this apart (degrees) ask for a finer
+/// mesh ([`refinement`]): where the surface turns tightly (a stem or a forefoot with a small
+/// radius, a bulb's crown), the resolution's polygons are too coarse to follow it, and their
+/// angles — which the fold check reads — are the mesh's, not the surface's.
+const REFINE_DEGREES: f64 = 20.0;
+
+/// [`refinement`] makes a face's mesh at most this many times finer than the resolution...
+const REFINE_MAX_TIMES: usize = 4;
+
+/// ...and gives its side segments at most this many intervals (never fewer than the
+/// resolution): what the meshes of the few faces that turn tightly may add is bounded.
+const REFINE_MAX_INTERVALS: usize = 64;
+
+/// How many times `resolution` the face of `patch` (whose mesh at `resolution` is `mesh`)
+/// needs on its sides: 1 when its neighbouring polygons are within [`REFINE_DEGREES`];
+/// otherwise the least doubling (up to [`REFINE_MAX_TIMES`], and [`REFINE_MAX_INTERVALS`]
+/// intervals per segment) after which they are, or failing that the doubling with the
+/// smallest largest angle if it is at most half the first (a tight turn the finer mesh
+/// follows). A fold keeps its angle however fine the mesh: its face is not refined, and the
+/// fold check reports it.
+fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize) -> Need {
+    let first = face_mesh_folds(mesh).worst;
+    let mut best = Need {
+        times: 1,
+        worst: first,
+    };
+    if first <= REFINE_DEGREES {
+        return best;
+    }
+    let mut m = 2;
+    while m <= REFINE_MAX_TIMES
+        && m * resolution <= REFINE_MAX_INTERVALS
+        && patch.mesh_vertex_count(m * resolution) <= FOLD_CHECK_VERTICES
+    {
+        let worst = face_mesh_folds(&patch.face_mesh(m * resolution)).worst;
+        if worst <= REFINE_DEGREES {
+            return Need { times: m, worst };
+        }
+        if worst < best.worst {
+            best = Need { times: m, worst };
+        }
+        m *= 2;
+    }
+    if best.worst <= 0.5 * first {
+        best
+    } else {
+        Need {
+            times: 1,
+            worst: first,
+        }
+    }
+}
+
+/// How finely a face's own mesh needs to be made ([`refinement`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Need {
+    /// How many times the resolution its sides need.
+    pub(crate) times: usize,
+    /// The largest angle between neighbouring polygons of its mesh made so (degrees).
+    pub(crate) worst: f64,
+}
+
+impl Need {
+    /// What a face whose mesh was not looked at needs: the resolution.
+    const NONE: Need = Need {
+        times: 1,
+        worst: 0.0,
+    };
+}
+
+/// The faces' outcomes with every face's mesh made with the intervals its segments need:
+/// each edge takes the largest need of the faces along it (so the two faces of an edge sample
+/// it alike and weld), a face's segment `resolution` times that. A face's need is its
+/// [`refinement`], raised to its finest edge's where its mesh with those mixed intervals has
+/// neighbouring polygons more than [`REFINE_DEGREES`] apart, until no need rises. A face
+/// whose counts are already those keeps its outcome (the same `Arc`). Errors:
+/// [`PatchError::MeshTooLarge`] when the refined meshes could not be indexed.
+fn refined(
+    outcomes: Vec<Arc<FaceOutcome>>,
+    stages: &Stages,
+    options: &HullOptions,
+) -> Result<Vec<Arc<FaceOutcome>>, Error> {
+    let (edges, resolution) = (stages.topology.brep.edges.len(), options.resolution);
+    let mut needs: Vec<usize> = outcomes
+        .iter()
+        .map(|o| match o.as_ref() {
+            FaceOutcome::Built { need, .. } => need.times,
+            _ => 1,
+        })
+        .collect();
+    let wanted = |needs: &[usize]| -> Vec<Option<Vec<usize>>> {
+        let mut times = vec![1usize; edges];
+        for (outcome, &need) in outcomes.iter().zip(needs) {
+            if let FaceOutcome::Built { layout, .. } = outcome.as_ref() {
+                for seg in layout.iter().flatten() {
+                    times[seg.edge] = times[seg.edge].max(need);
+                }
+            }
+        }
+        outcomes
+            .iter()
+            .map(|o| match o.as_ref() {
+                FaceOutcome::Built { layout, .. } => Some(
+                    layout
+                        .iter()
+                        .flatten()
+                        .map(|seg| resolution * times[seg.edge])
+                        .collect(),
+                ),
+                _ => None,
+            })
+            .collect()
+    };
+    // A face with finer sides than its own need, zipped to its coarser inside, may turn too
+    // sharply between its long thin triangles: it takes its finest side's need. Not a face
+    // that folds at its own need (no finer mesh mends a fold).
+    let mixed = |counts: &[usize]| counts.iter().any(|&c| c != counts[0]);
+    let mut want = wanted(&needs);
+    loop {
+        let raised: Vec<(usize, usize)> = outcomes
+            .par_iter()
+            .zip(&want)
+            .enumerate()
+            .filter_map(|(fi, (outcome, want))| {
+                let (
+                    FaceOutcome::Built {
+                        patch,
+                        need,
+                        counts,
+                        worst,
+                        unfolded,
+                        ..
+                    },
+                    Some(want),
+                ) = (outcome.as_ref(), want)
+                else {
+                    return None;
+                };
+                let patch = unfolded.as_ref().unwrap_or(patch);
+                let finest = want.iter().copied().max()? / resolution;
+                if !mixed(want) || finest <= needs[fi] || need.worst > FOLD_ANGLE_DEGREES {
+                    return None;
+                }
+                // A kept face's mesh may already have these intervals.
+                let mixed_worst = if want == counts {
+                    *worst
+                } else {
+                    face_mesh_folds(&patch.face_mesh_with(want)).worst
+                };
+                (mixed_worst > REFINE_DEGREES).then_some((fi, finest))
+            })
+            .collect();
+        if raised.is_empty() {
+            break;
+        }
+        for (fi, finest) in raised {
+            needs[fi] = finest;
+        }
+        want = wanted(&needs);
+    }
+    let total =
+        outcomes
+            .iter()
+            .zip(&want)
+            .fold(0usize, |acc, (o, want)| match (o.as_ref(), want) {
+                (FaceOutcome::Built { patch, .. }, Some(want)) => {
+                    acc.saturating_add(patch.mesh_vertex_count_with(want))
+                }
+                _ => acc,
+            });
+    if total >= u32::MAX as usize {
+        return Err(PatchError::MeshTooLarge(total).into());
+    }
+    Ok(outcomes
+        .into_par_iter()
+        .zip(want)
+        .enumerate()
+        .map(|(fi, (outcome, want))| match (outcome.as_ref(), want) {
+            (
+                FaceOutcome::Built {
+                    patch,
+                    layout,
+                    need,
+                    counts,
+                    unfolded,
+                    ..
+                },
+                Some(want),
+            ) => {
+                if want == *counts {
+                    return outcome;
+                }
+                let base = unfolded.as_ref().unwrap_or(patch);
+                let mesh = base.face_mesh_with(&want);
+                // At the resolution itself, `unfolded` has chosen; only a finer mesh may
+                // show what it could not.
+                let (patch, mesh, worst) = if want.iter().all(|&c| c == resolution) {
+                    let worst = face_mesh_folds(&mesh).worst;
+                    (base.clone(), mesh, worst)
+                } else {
+                    refolded(stages, fi, options, base, mesh, &want)
+                };
+                let unfolded = (patch.kind() != base.kind()).then(|| base.clone());
+                Arc::new(if mesh.is_finite() {
+                    FaceOutcome::Built {
+                        patch,
+                        layout: layout.clone(),
+                        shares: MeshShares::of(&mesh),
+                        mesh,
+                        need: *need,
+                        counts: want,
+                        worst,
+                        unfolded,
+                    }
+                } else {
+                    FaceOutcome::NonFinite
+                })
+            }
+            _ => outcome,
+        })
         .collect())
+}
+
+/// The patch of face `fi`, its mesh with the finer intervals `counts` ([`refined`]), and the
+/// largest angle between neighbouring polygons of `mesh` (`patch`'s with `counts`). `patch`
+/// and `mesh` as they are; or, where that finer mesh shows the corner-based patch folding
+/// where its mesh at the resolution stepped over it, the side-blended patch on
+/// [`unfolded`]'s terms, judged on meshes with these intervals.
+fn refolded(
+    stages: &Stages,
+    fi: usize,
+    options: &HullOptions,
+    patch: &Patch,
+    mesh: FaceMesh,
+    counts: &[usize],
+) -> (Patch, FaceMesh, f64) {
+    let folds = face_mesh_folds(&mesh);
+    if folds.pairs == 0 || patch.kind() == PatchKind::SideBlend || !mesh.is_finite() {
+        return (patch.clone(), mesh, folds.worst);
+    }
+    let Ok(plan) = plan_face(
+        &stages.topology.faces[fi],
+        &stages.topology,
+        &stages.edges,
+        &stages.knuckle,
+        &stages.shared,
+    ) else {
+        return (patch.clone(), mesh, folds.worst);
+    };
+    let blend_opts = PatchOptions {
+        kind: PatchKind::SideBlend,
+        ..patch_options(options)
+    };
+    let Ok(blended) = Patch::try_new(&plan.boundary, &plan.ribbons, &blend_opts) else {
+        return (patch.clone(), mesh, folds.worst);
+    };
+    let other = blended.face_mesh_with(counts);
+    let other_folds = face_mesh_folds(&other);
+    if other.is_finite() && other_folds.excess <= FALLBACK_GAIN * folds.excess {
+        let note = PatchWarning::SideBlended {
+            replaced: patch.kind(),
+            replaced_pairs: folds.pairs,
+            replaced_degrees: folds.worst,
+            pairs: other_folds.pairs,
+            degrees: other_folds.worst,
+        };
+        (blended.with_warning(note), other, folds.worst)
+    } else {
+        (patch.clone(), mesh, folds.worst)
+    }
 }
 
 impl Stages {
@@ -658,6 +971,19 @@ fn built(stages: &Stages) -> (Vec<PatchedFace>, Vec<&FaceMesh>) {
     (patched, meshes)
 }
 
+/// The intervals of each built face's mesh on its side segments, in face order (what
+/// [`HullSurface::mesh_counts`] holds).
+pub(crate) fn mesh_counts(stages: &Stages) -> Vec<Vec<usize>> {
+    stages
+        .faces
+        .iter()
+        .filter_map(|f| match f.as_ref() {
+            FaceOutcome::Built { counts, .. } => Some(counts.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The shares of the built faces' meshes, added in face order: the welded mesh's area vector
 /// (y) and volume before it is turned outward.
 fn total_shares(stages: &Stages) -> MeshShares {
@@ -745,6 +1071,8 @@ pub(crate) fn reassemble(
         patch_faces,
         layouts,
         patches_outward: surface.patches_outward,
+        mesh_counts: mesh_counts(stages),
+        mesh_resolution: surface.mesh_resolution,
     })
 }
 
@@ -787,6 +1115,8 @@ pub(crate) fn into_surface(
     mut mesh: SurfaceMesh,
     patches_outward: bool,
     report: HullReport,
+    stages: &Stages,
+    resolution: usize,
 ) -> HullSurface {
     for p in &mut mesh.face_patch {
         *p = patched[*p as usize].face as u32;
@@ -800,6 +1130,8 @@ pub(crate) fn into_surface(
         patch_faces,
         layouts,
         patches_outward,
+        mesh_counts: mesh_counts(stages),
+        mesh_resolution: resolution,
     }
 }
 
@@ -808,7 +1140,14 @@ pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurf
     let stages = Stages::full(network, options)?;
     let (patched, mesh, outward) = assemble(network, &stages)?;
     let report = measure(network, options, &stages, &patched, &mesh)?;
-    Ok(into_surface(patched, mesh, outward, report))
+    Ok(into_surface(
+        patched,
+        mesh,
+        outward,
+        report,
+        &stages,
+        options.resolution,
+    ))
 }
 
 /// The warnings' messages, joined for an error message.

@@ -61,9 +61,16 @@ impl HullSurface {
             .patches
             .par_iter()
             .zip(&self.patch_faces)
-            .map(|(patch, &face)| {
-                let mesh = patch.face_mesh(resolution);
-                let domain = patch.mesh_domain(resolution);
+            .enumerate()
+            .map(|(k, (patch, &face))| {
+                // The mesh's own intervals where it was made at `resolution` (finer where the
+                // surface turns tightly), else that resolution's.
+                let counts = match self.mesh_counts.get(k) {
+                    Some(c) if self.mesh_resolution == resolution => c.clone(),
+                    _ => vec![resolution; patch.segment_count()],
+                };
+                let mesh = patch.face_mesh_with(&counts);
+                let domain = patch.mesh_domain_with(&counts);
                 let polygons = &polygons_of[face];
                 if domain.len() != mesh.vertex_count() || polygons.len() != mesh.polygons().count()
                 {

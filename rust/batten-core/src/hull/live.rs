@@ -59,7 +59,14 @@ impl LiveHull {
         Ok(LiveHull {
             network: network.clone(),
             options: *options,
-            surface: Arc::new(into_surface(patched, mesh, outward, report)),
+            surface: Arc::new(into_surface(
+                patched,
+                mesh,
+                outward,
+                report,
+                &stages,
+                options.resolution,
+            )),
             stages,
             measured: true,
             last: Rebuild::Full { reason: None },
@@ -96,7 +103,14 @@ impl LiveHull {
             None => {
                 let (patched, mesh, outward, weld) = assemble_welded(network, &stages)?;
                 self.weld = weld;
-                into_surface(patched, mesh, outward, self.surface.report.clone())
+                into_surface(
+                    patched,
+                    mesh,
+                    outward,
+                    self.surface.report.clone(),
+                    &stages,
+                    self.options.resolution,
+                )
             }
         };
         // A kept face shares its outcome with the stages it was kept from.

@@ -121,6 +121,11 @@ pub struct HullSurface {
     /// Whether `∂P/∂u × ∂P/∂v` of the patches points out of the hull (false when the mesh was
     /// flipped to face away from the centreplane).
     pub patches_outward: bool,
+    /// The intervals of each patch's mesh on its side segments (in patch order): the
+    /// resolution, or a multiple of it where the surface turns too tightly for it.
+    pub(crate) mesh_counts: Vec<Vec<usize>>,
+    /// The resolution the mesh was made at.
+    pub(crate) mesh_resolution: usize,
 }
 
 impl HullSurface {

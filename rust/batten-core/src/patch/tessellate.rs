@@ -123,32 +123,55 @@ impl Patch {
         tessellate_patches(std::slice::from_ref(self), resolution)
     }
 
-    /// Boundary samples per side at resolution `r` ([`Patch::boundary_ring`]: `r` per segment).
-    fn side_counts(&self, r: usize) -> Vec<usize> {
+    /// The number of side segments, over all sides in order: the length of the per-segment
+    /// interval counts [`Patch::face_mesh_with`] takes.
+    pub(crate) fn segment_count(&self) -> usize {
         self.prepared_sides()
             .iter()
-            .map(|side| side.segs.len().saturating_mul(r))
+            .map(|side| side.segs.len())
+            .sum()
+    }
+
+    /// Boundary samples per side with `counts` intervals per segment (all sides' segments in
+    /// order).
+    fn side_counts(&self, counts: &[usize]) -> Vec<usize> {
+        let mut next = counts.iter();
+        self.prepared_sides()
+            .iter()
+            .map(|side| {
+                side.segs
+                    .iter()
+                    .fold(0usize, |a, _| a.saturating_add(*next.next().unwrap_or(&1)))
+            })
             .collect()
     }
 
     /// The vertices [`Patch::face_mesh`] makes at resolution `r`, counted without meshing.
     pub(crate) fn mesh_vertex_count(&self, r: usize) -> usize {
-        let counts = self.side_counts(r);
+        self.mesh_vertex_count_with(&vec![r; self.segment_count()])
+    }
+
+    /// The vertices [`Patch::face_mesh_with`] makes with `counts`, counted without meshing.
+    pub(crate) fn mesh_vertex_count_with(&self, counts: &[usize]) -> usize {
+        let counts = self.side_counts(counts);
         let boundary = counts.iter().fold(0usize, |a, &c| a.saturating_add(c));
         boundary.saturating_add(Interior::of(&counts).vertices(counts.len()))
     }
 
     /// The boundary samples of the face in counter-clockwise order starting at corner 0 (each
-    /// corner once), with their domain points.
-    fn boundary_ring(&self, r: usize) -> BoundaryRing {
+    /// corner once), with their domain points: `counts[j]` intervals on segment `j` (all
+    /// sides' segments in order).
+    fn boundary_ring(&self, counts: &[usize]) -> BoundaryRing {
         let n = self.sides();
         let mut pts = Vec::new();
         let mut dom = Vec::new();
         let mut starts = Vec::with_capacity(n + 1);
         let mut lambdas = Vec::new();
+        let mut next = counts.iter();
         for (i, side) in self.prepared_sides().iter().enumerate() {
             starts.push(pts.len());
             for (k, seg) in side.segs.iter().enumerate() {
+                let r = *next.next().unwrap_or(&1);
                 let (u0, u1) = (side.breaks[k], side.breaks[k + 1]);
                 pts.push(seg.p0);
                 dom.push(self.domain().side_point_v(i, u0));
@@ -192,11 +215,11 @@ impl Patch {
         out
     }
 
-    /// The domain point of every vertex of [`Patch::face_mesh`] at resolution `r`, in its
+    /// The domain point of every vertex of [`Patch::face_mesh_with`] with `counts`, in its
     /// vertex order: where the surface point of each vertex was evaluated (for figures taken
     /// at the vertices, such as the curvature).
-    pub(crate) fn mesh_domain(&self, r: usize) -> Vec<DVec2> {
-        let ring = self.boundary_ring(r);
+    pub(crate) fn mesh_domain_with(&self, counts: &[usize]) -> Vec<DVec2> {
+        let ring = self.boundary_ring(counts);
         let counts: Vec<usize> = ring.starts.windows(2).map(|w| w[1] - w[0]).collect();
         let inside = match Interior::of(&counts) {
             Interior::Grid { nu, nv } => grid_domain(&ring.domain, nu, nv),
@@ -207,15 +230,23 @@ impl Patch {
         out
     }
 
-    /// This patch's own mesh at resolution `r`, before welding ([`weld_face_meshes`]).
+    /// This patch's own mesh at resolution `r`, before welding ([`weld_face_meshes`]): `r`
+    /// intervals on every side segment.
     pub(crate) fn face_mesh(&self, r: usize) -> FaceMesh {
+        self.face_mesh_with(&vec![r; self.segment_count()])
+    }
+
+    /// This patch's own mesh with `counts[j]` intervals on side segment `j` (all sides'
+    /// segments in order; two faces sharing a segment sample it alike when they give it the
+    /// same count), before welding.
+    pub(crate) fn face_mesh_with(&self, counts: &[usize]) -> FaceMesh {
         let n = self.sides();
         let BoundaryRing {
             points: mut positions,
             domain: dom,
             starts,
             side_parameters: lambdas,
-        } = self.boundary_ring(r);
+        } = self.boundary_ring(counts);
         let b = positions.len();
         let counts: Vec<usize> = (0..n).map(|i| starts[i + 1] - starts[i]).collect();
         let mut faces = Vec::new();
