@@ -7,7 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
-use super::folds::{face_mesh_folds, FOLD_ANGLE_DEGREES};
+use super::folds::{face_mesh_folds, MeshFolds, FOLD_ANGLE_DEGREES};
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings, MeshShares};
@@ -296,11 +296,7 @@ fn unfolded(
     if folds_at(&patch, need.times, &mesh).pairs == 0 {
         return (patch, Some(mesh), need);
     }
-    let blend_opts = PatchOptions {
-        kind: PatchKind::SideBlend,
-        ..*opts
-    };
-    let Ok(blended) = Patch::try_new(&plan.boundary, &plan.ribbons, &blend_opts) else {
+    let Some(blended) = side_blend(plan, opts) else {
         return (patch, Some(mesh), need);
     };
     let other = blended.face_mesh(resolution);
@@ -313,18 +309,34 @@ fn unfolded(
         folds_at(&patch, level, &mesh),
         folds_at(&blended, level, &other),
     );
-    if other_folds.excess <= FALLBACK_GAIN * folds.excess {
-        let note = PatchWarning::SideBlended {
+    match fallback(&patch, &folds, blended, &other_folds) {
+        Some(blended) => (blended, Some(other), other_need),
+        None => (patch, Some(mesh), need),
+    }
+}
+
+/// The side-blended patch ([`PatchKind::SideBlend`]) of `plan`'s boundary and ribbons, None
+/// where it cannot be made.
+fn side_blend(plan: &FacePlan, opts: &PatchOptions) -> Option<Patch> {
+    let blend_opts = PatchOptions {
+        kind: PatchKind::SideBlend,
+        ..*opts
+    };
+    Patch::try_new(&plan.boundary, &plan.ribbons, &blend_opts).ok()
+}
+
+/// `blended`, noted as replacing `patch`, where its mesh folds clearly less than `patch`'s
+/// ([`FALLBACK_GAIN`]; `folds` and `other` measured on meshes alike); None otherwise.
+fn fallback(patch: &Patch, folds: &MeshFolds, blended: Patch, other: &MeshFolds) -> Option<Patch> {
+    (other.excess <= FALLBACK_GAIN * folds.excess).then(|| {
+        blended.with_warning(PatchWarning::SideBlended {
             replaced: patch.kind(),
             replaced_pairs: folds.pairs,
             replaced_degrees: folds.worst,
-            pairs: other_folds.pairs,
-            degrees: other_folds.worst,
-        };
-        (blended.with_warning(note), Some(other), other_need)
-    } else {
-        (patch, Some(mesh), need)
-    }
+            pairs: other.pairs,
+            degrees: other.worst,
+        })
+    })
 }
 
 /// The outcomes of the faces flagged in `dirty` (in parallel), the others taken from `kept`
@@ -417,7 +429,7 @@ const REFINE_MAX_TIMES: usize = 4;
 
 /// ...and gives its side segments at most this many intervals (never fewer than the
 /// resolution): what the meshes of the few faces that turn tightly may add is bounded.
-const REFINE_MAX_INTERVALS: usize = 64;
+const REFINE_MAX_INTERVALS: usize = 32;
 
 /// How many times `resolution` the face of `patch` (whose mesh at `resolution` is `mesh`)
 /// needs on its sides: 1 when its neighbouring polygons are within [`REFINE_DEGREES`];
@@ -655,26 +667,16 @@ fn refolded(
     ) else {
         return (patch.clone(), mesh, folds.worst);
     };
-    let blend_opts = PatchOptions {
-        kind: PatchKind::SideBlend,
-        ..patch_options(options)
-    };
-    let Ok(blended) = Patch::try_new(&plan.boundary, &plan.ribbons, &blend_opts) else {
+    let Some(blended) = side_blend(&plan, &patch_options(options)) else {
         return (patch.clone(), mesh, folds.worst);
     };
     let other = blended.face_mesh_with(counts);
-    let other_folds = face_mesh_folds(&other);
-    if other.is_finite() && other_folds.excess <= FALLBACK_GAIN * folds.excess {
-        let note = PatchWarning::SideBlended {
-            replaced: patch.kind(),
-            replaced_pairs: folds.pairs,
-            replaced_degrees: folds.worst,
-            pairs: other_folds.pairs,
-            degrees: other_folds.worst,
-        };
-        (blended.with_warning(note), other, folds.worst)
-    } else {
-        (patch.clone(), mesh, folds.worst)
+    if !other.is_finite() {
+        return (patch.clone(), mesh, folds.worst);
+    }
+    match fallback(patch, &folds, blended, &face_mesh_folds(&other)) {
+        Some(blended) => (blended, other, folds.worst),
+        None => (patch.clone(), mesh, folds.worst),
     }
 }
 
