@@ -342,7 +342,8 @@ fn fallback(patch: &Patch, folds: &MeshFolds, blended: Patch, other: &MeshFolds)
 /// The outcomes of the faces flagged in `dirty` (in parallel), the others taken from `kept`
 /// (all faces when `kept` is `None`): patch, then — once the whole mesh is known to be
 /// indexable ([`PatchError::MeshTooLarge`](crate::PatchError::MeshTooLarge) otherwise) —
-/// the patch's own mesh, checked finite.
+/// the patch's own mesh, checked finite; then every face's mesh made as finely as it and its
+/// neighbours need ([`refined`]).
 fn face_outcomes(
     stages: &Stages,
     kept: Option<&[Arc<FaceOutcome>]>,
