@@ -12,7 +12,8 @@ import pytest
 from batten_native import DEFAULT_SECTION_TOLERANCE, SECTION_CAPTURE_FACTOR, build_surface
 from helpers import new_curve, noisy_arc
 
-HULLS = Path(__file__).resolve().parents[2] / "shared" / "hulls"
+ROOT = Path(__file__).resolve().parents[1]
+HULLS = ROOT.parent / "shared" / "hulls"
 
 
 def test_fair_curve_refits_a_polyline_in_place_within_tolerance():
@@ -132,10 +133,25 @@ def test_real_ship_sections_import_within_5_mm(ship):
     assert len(lines) == {"kcs": 2, "kvlcc2": 0}[ship], lines
     assert all(curves[name].role == "free" for name in lines)
     assert flats == ["flat of bottom"] and curves["flat of bottom"].role == "fob", "a flat-bottomed ship"
+    # A section end running into a needle beside another curve is cut back to its last node
+    # (KVLCC2's highest waterline beside its falling deck edge): the surface passes those
+    # points, within 5 mm, instead of the curve.
+    dropped = {r["curve"]: r["dropped_points"] for r in reports if r.get("dropped_points")}
+    assert sorted(dropped) == {"kcs": [], "kvlcc2": ["wl_z25.50_part1of2", "wl_z25.50_part2of2"]}[ship]
     for c in data:
         drawn = curves[c["name"]]
-        far = max(drawn.nearest(p, 1e-9)[1] for p in c["points"])
+        gone = set(dropped.get(c["name"], []))
+        far = max(drawn.nearest(p, 1e-9)[1] for k, p in enumerate(c["points"]) if k not in gone)
         assert far <= 0.005, f"{ship} {c['name']}: a point is {far * 1e3:.2f} mm from the drawn curve"
+    if dropped:
+        sys.path.insert(0, str(ROOT / "blender_scripts"))
+        from measure_ships import clipped_triangles, surface_distance
+
+        (positions, corners, sizes, _), _ = build_surface(api.read_curves(coll), resolution=32)
+        by_name = {c["name"]: c["points"] for c in data}
+        points = np.array([by_name[name][k] for name, ks in dropped.items() for k in ks])
+        far = surface_distance(points, clipped_triangles(positions, corners, sizes, np.inf)).max()
+        assert far <= 0.005, f"{ship}: a dropped point is {far * 1e3:.2f} mm from the surface"
     for r in reports:
         c = curves[r["curve"]]
         assert len(c.corners(1.0)) == len(r["corners"]), f"{r['curve']}: corners kept sharp in Blender"

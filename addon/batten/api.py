@@ -1106,7 +1106,10 @@ def import_sections(
     distance to a node before the move), ``max_deviation`` and ``max_deviation_index``
     measured after the move (``rms_deviation`` is the fit's), and ``fit_tolerance``: a curve
     that leaves nodes out is fitted again closer (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS``
-    times) and the nodes found again.
+    times) and the nodes found again. ``dropped_points`` lists the indices of the file's points
+    a section no longer runs through: an end that meets another curve at a few degrees and runs
+    beside it in a needle (a waterline beside a falling sheer) ends at its last node before it,
+    and the surface, not the curve, passes those points.
 
     ``progress``: ``progress(label, done, total)`` after each section is fitted (see
     :mod:`batten.progress`); returning ``False`` raises :class:`Cancelled` and nothing is
@@ -1206,6 +1209,8 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
     for i, (report, sec, source) in enumerate(zip(reports[: len(sections)], sections, sources, strict=True)):
         report["points"] = len(sec.points)
         report["data_nodes"] = sum(1 for n in nodes if i in n["curves"])
+        kept = {k for k in source if k is not None}
+        report["dropped_points"] = [k for k in range(len(sec.points)) if k not in kept]
         report["max_deviation_index"] = _file_index(report["max_deviation_index"], source)
         report["corners"] = [_file_index(k, source) for k in report["corners"]]
     coll = _draw_collection(collection or name, snapped)

@@ -21,6 +21,7 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::needles::without_needle_ends;
 use crate::curve::Aabb;
 use crate::error::Error;
 use crate::tolerance::Tolerance;
@@ -79,7 +80,10 @@ pub fn nodes_from_data(
         })
         .collect();
     let nodes = cluster(&meetings, 2.0 * tol);
-    Ok(insert_nodes(points, &nodes, model_tolerance.get()))
+    Ok(without_needle_ends(
+        insert_nodes(points, &nodes, model_tolerance.get()),
+        2.0 * tol,
+    ))
 }
 
 /// A polyline with the sagitta of each of its segments and its bounding box grown by the
