@@ -21,7 +21,6 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::needles::without_needle_ends;
 use crate::curve::Aabb;
 use crate::error::Error;
 use crate::tolerance::Tolerance;
@@ -58,7 +57,7 @@ pub struct NodedPoints {
 /// than two points or a non-finite point takes no part (its fit names it).
 ///
 /// Errors: a tolerance that is not positive and finite ([`Error::Tolerance`]).
-pub fn nodes_from_data(
+pub(super) fn nodes_from_data(
     points: &[Vec<DVec3>],
     tolerance: f64,
     corner_angle: Option<f64>,
@@ -80,10 +79,7 @@ pub fn nodes_from_data(
         })
         .collect();
     let nodes = cluster(&meetings, 2.0 * tol);
-    Ok(without_needle_ends(
-        insert_nodes(points, &nodes, model_tolerance.get()),
-        2.0 * tol,
-    ))
+    Ok(insert_nodes(points, &nodes, model_tolerance.get()))
 }
 
 /// A polyline with the sagitta of each of its segments and its bounding box grown by the

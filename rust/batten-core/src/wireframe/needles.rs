@@ -139,8 +139,8 @@ fn distance_to_polyline(pts: &[DVec3], p: DVec3) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::data_nodes::nodes_from_data;
     use crate::tolerance::Tolerance;
+    use crate::wireframe::nodes_from_data;
 
     use glam::DVec3;
 
