@@ -1,11 +1,13 @@
 //! Tessellation of patches into one welded mesh of quads and triangles.
 //!
 //! Every side is sampled from its designer curve itself: segment `k` of a side gets
-//! `resolution` intervals at the curve parameters of [`crate::SideSegment::sample_parameters`]
-//! (always computed in the curve's increasing parameter and reversed when the face traverses
-//! the segment backwards), and its ends are the resolved node positions. Two faces sharing a
-//! segment therefore emit bitwise identical boundary vertices whichever direction they see it
-//! in, and [`tessellate_patches`] welds them by exact equality, never by a distance.
+//! `resolution` intervals — or its own count (`Patch::face_mesh_with`; the hull build gives
+//! a segment more where a face along it turns tightly) — at the curve parameters of
+//! [`crate::SideSegment::sample_parameters`] (always computed in the curve's increasing
+//! parameter and reversed when the face traverses the segment backwards), and its ends are the
+//! resolved node positions. Two faces sharing a segment with the same count therefore emit
+//! bitwise identical boundary vertices whichever direction they see it in, and
+//! [`tessellate_patches`] welds them by exact equality, never by a distance.
 //!
 //! Interiors: a 4-sided face whose opposite sides have equal sample counts is a grid of quads
 //! (domain points by a discrete Coons interpolation of the boundary samples); any other face is
