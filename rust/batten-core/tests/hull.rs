@@ -126,11 +126,17 @@ fn assert_outward(mesh: &SurfaceMesh) {
 
 /// The largest angle (degrees) between neighbouring mesh faces of different patches.
 fn max_seam_dihedral(mesh: &SurfaceMesh) -> f64 {
+    max_angle_between_neighbours(mesh, |a, b| mesh.face_patch[a] != mesh.face_patch[b])
+}
+
+/// The largest angle (degrees) between two polygons of `mesh` sharing an edge, over the pairs
+/// `keep` accepts.
+fn max_angle_between_neighbours(mesh: &SurfaceMesh, keep: impl Fn(usize, usize) -> bool) -> f64 {
     let faces: Vec<&[u32]> = mesh.faces().collect();
     let normals: Vec<DVec3> = faces.iter().map(|f| face_normal(mesh, f)).collect();
     check_orientation(mesh)
         .values()
-        .filter(|u| u.len() == 2 && mesh.face_patch[u[0]] != mesh.face_patch[u[1]])
+        .filter(|u| u.len() == 2 && keep(u[0], u[1]))
         .map(|u| normals[u[0]].angle_between(normals[u[1]]).to_degrees())
         .fold(0.0, f64::max)
 }
@@ -257,13 +263,7 @@ fn seam_dihedral_halves_when_the_resolution_doubles() {
 
 /// The largest angle (degrees) between two polygons of `mesh` sharing an edge.
 fn max_neighbour_angle(mesh: &SurfaceMesh) -> f64 {
-    let faces: Vec<&[u32]> = mesh.faces().collect();
-    let normals: Vec<DVec3> = faces.iter().map(|f| face_normal(mesh, f)).collect();
-    check_orientation(mesh)
-        .values()
-        .filter(|u| u.len() == 2)
-        .map(|u| normals[u[0]].angle_between(normals[u[1]]).to_degrees())
-        .fold(0.0, f64::max)
+    max_angle_between_neighbours(mesh, |_, _| true)
 }
 
 #[test]

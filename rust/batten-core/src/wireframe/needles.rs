@@ -18,6 +18,7 @@
 use glam::DVec3;
 
 use super::data_nodes::NodedPoints;
+use crate::curve::segment_distance;
 
 /// The largest angle (degrees) at which a section end meeting another curve, and the stretch
 /// before it, make a needle ([module doc](self)).
@@ -124,16 +125,7 @@ fn sine_at(pts: &[DVec3], at: DVec3, dir: DVec3) -> Option<f64> {
 /// The distance from `p` to the polyline `pts`.
 fn distance_to_polyline(pts: &[DVec3], p: DVec3) -> f64 {
     pts.windows(2)
-        .map(|w| {
-            let (a, b) = (w[0], w[1]);
-            let ab = b - a;
-            let t = if ab.length_squared() > 0.0 {
-                ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            p.distance(a + t * ab)
-        })
+        .map(|w| segment_distance(p, w[0], w[1]))
         .fold(f64::INFINITY, f64::min)
 }
 
