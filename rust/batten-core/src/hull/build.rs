@@ -286,14 +286,7 @@ fn unfolded(
         return (patch, Some(mesh), Need::NONE);
     }
     let need = refinement(&patch, &mesh, resolution);
-    let folds_at = |p: &Patch, m: usize, base: &FaceMesh| {
-        if m == 1 {
-            face_mesh_folds(base)
-        } else {
-            face_mesh_folds(&p.face_mesh(m * resolution))
-        }
-    };
-    if folds_at(&patch, need.times, &mesh).pairs == 0 {
+    if need.folds.pairs == 0 {
         return (patch, Some(mesh), need);
     }
     let Some(blended) = side_blend(plan, opts) else {
@@ -304,11 +297,16 @@ fn unfolded(
         return (patch, Some(mesh), need);
     }
     let other_need = refinement(&blended, &other, resolution);
+    // Both judged at the finer of their levels: a patch's own level's folds are at hand.
     let level = need.times.max(other_need.times);
-    let (folds, other_folds) = (
-        folds_at(&patch, level, &mesh),
-        folds_at(&blended, level, &other),
-    );
+    let folds_at = |p: &Patch, n: &Need| {
+        if n.times == level {
+            n.folds
+        } else {
+            face_mesh_folds(&p.face_mesh(level * resolution))
+        }
+    };
+    let (folds, other_folds) = (folds_at(&patch, &need), folds_at(&blended, &other_need));
     match fallback(&patch, &folds, blended, &other_folds) {
         Some(blended) => (blended, Some(other), other_need),
         None => (patch, Some(mesh), need),
@@ -399,7 +397,7 @@ fn face_outcomes(
                     FaceOutcome::Built {
                         unfolded: None,
                         worst: if need.times == 1 {
-                            need.worst
+                            need.folds.worst
                         } else {
                             face_mesh_folds(&mesh).worst
                         },
@@ -440,35 +438,32 @@ const REFINE_MAX_INTERVALS: usize = 32;
 /// follows). A fold keeps its angle however fine the mesh: its face is not refined, and the
 /// fold check reports it.
 fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize) -> Need {
-    let first = face_mesh_folds(mesh).worst;
-    let mut best = Need {
+    let first = Need {
         times: 1,
-        worst: first,
+        folds: face_mesh_folds(mesh),
     };
-    if first <= REFINE_DEGREES {
-        return best;
+    if first.folds.worst <= REFINE_DEGREES {
+        return first;
     }
+    let mut best = first;
     let mut m = 2;
     while m <= REFINE_MAX_TIMES
         && m * resolution <= REFINE_MAX_INTERVALS
         && patch.mesh_vertex_count(m * resolution) <= FOLD_CHECK_VERTICES
     {
-        let worst = face_mesh_folds(&patch.face_mesh(m * resolution)).worst;
-        if worst <= REFINE_DEGREES {
-            return Need { times: m, worst };
+        let folds = face_mesh_folds(&patch.face_mesh(m * resolution));
+        if folds.worst <= REFINE_DEGREES {
+            return Need { times: m, folds };
         }
-        if worst < best.worst {
-            best = Need { times: m, worst };
+        if folds.worst < best.folds.worst {
+            best = Need { times: m, folds };
         }
         m *= 2;
     }
-    if best.worst <= 0.5 * first {
+    if best.folds.worst <= 0.5 * first.folds.worst {
         best
     } else {
-        Need {
-            times: 1,
-            worst: first,
-        }
+        first
     }
 }
 
@@ -477,15 +472,19 @@ fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize) -> Need {
 pub(crate) struct Need {
     /// How many times the resolution its sides need.
     pub(crate) times: usize,
-    /// The largest angle between neighbouring polygons of its mesh made so (degrees).
-    pub(crate) worst: f64,
+    /// How its mesh made so folds (`worst`: the largest angle between neighbouring polygons).
+    pub(crate) folds: MeshFolds,
 }
 
 impl Need {
     /// What a face whose mesh was not looked at needs: the resolution.
     const NONE: Need = Need {
         times: 1,
-        worst: 0.0,
+        folds: MeshFolds {
+            pairs: 0,
+            worst: 0.0,
+            excess: 0.0,
+        },
     };
 }
 
@@ -559,7 +558,7 @@ fn refined(
                 };
                 let patch = unfolded.as_ref().unwrap_or(patch);
                 let finest = want.iter().copied().max()? / resolution;
-                if !mixed(want) || finest <= needs[fi] || need.worst > FOLD_ANGLE_DEGREES {
+                if !mixed(want) || finest <= needs[fi] || need.folds.worst > FOLD_ANGLE_DEGREES {
                     return None;
                 }
                 // A kept face's mesh may already have these intervals.
@@ -940,17 +939,6 @@ fn same_connectivity(a: &Topology, b: &Topology) -> Result<(), String> {
     }
 }
 
-/// The built faces of the stages as patches (in topology face order), welded into one mesh
-/// oriented outwards (`face_patch`: index into the patches), and whether the patches' own
-/// orientation was outward. [`Error::NoSurface`] when no face has a patch, or when the mesh's
-/// volume overflows.
-pub(crate) fn assemble(
-    network: &Network,
-    stages: &Stages,
-) -> Result<(Vec<PatchedFace>, SurfaceMesh, bool), Error> {
-    assemble_welded(network, stages).map(|(patched, mesh, outward, _)| (patched, mesh, outward))
-}
-
 /// The patched faces of `stages` in topology face order, and their meshes.
 fn built(stages: &Stages) -> (Vec<PatchedFace>, Vec<&FaceMesh>) {
     let mut patched = Vec::new();
@@ -996,7 +984,10 @@ fn total_shares(stages: &Stages) -> MeshShares {
     }))
 }
 
-/// [`assemble`], with how the faces' meshes were welded (what [`reassemble`] starts from).
+/// The built faces of the stages as patches (in topology face order), welded into one mesh
+/// oriented outwards (`face_patch`: index into the patches), whether the patches' own
+/// orientation was outward, and how the faces' meshes were welded (what [`reassemble`] starts
+/// from). [`Error::NoSurface`] when no face has a patch, or when the mesh's volume overflows.
 pub(crate) fn assemble_welded(
     network: &Network,
     stages: &Stages,
@@ -1026,7 +1017,7 @@ pub(crate) fn assemble_welded(
 /// The surface of `stages`, a live rebuild of `before` (whose surface, report aside, is
 /// `surface`, welded as `weld`) that patched some faces again and kept the others' outcomes
 /// (the same `Arc`): `surface`'s mesh with only the vertices of the faces patched again
-/// rewritten ([`Weld::rewrite`]), which is bit for bit the mesh [`assemble`] gives, with
+/// rewritten ([`Weld::rewrite`]), which is bit for bit the mesh [`assemble_welded`] gives, with
 /// `weld` updated to it. `None` where that cannot be shown — other faces patched, a face's
 /// mesh of another shape, vertices welded otherwise, the mesh turned the other way, figures
 /// that overflow — and the stages must be assembled afresh; `weld` is then unchanged. The
@@ -1079,7 +1070,7 @@ pub(crate) fn reassemble(
     })
 }
 
-/// The report of assembled stages ([`assemble`]), refused with [`Error::NoSurface`] when its
+/// The report of assembled stages ([`assemble_welded`]), refused with [`Error::NoSurface`] when its
 /// figures overflow.
 pub(crate) fn measure(
     network: &Network,
@@ -1140,17 +1131,20 @@ pub(crate) fn into_surface(
 
 /// The pipeline of [`build_hull`](super::build_hull), step by step (see there).
 pub(crate) fn build(network: &Network, options: &HullOptions) -> Result<HullSurface, Error> {
+    built_in_full(network, options).map(|(_, surface, _)| surface)
+}
+
+/// A build of `network` in full, report included: its stages, its surface, and how its faces'
+/// meshes were welded (what a [`LiveHull`](super::LiveHull) keeps to rebuild from).
+pub(crate) fn built_in_full(
+    network: &Network,
+    options: &HullOptions,
+) -> Result<(Stages, HullSurface, Weld), Error> {
     let stages = Stages::full(network, options)?;
-    let (patched, mesh, outward) = assemble(network, &stages)?;
+    let (patched, mesh, outward, weld) = assemble_welded(network, &stages)?;
     let report = measure(network, options, &stages, &patched, &mesh)?;
-    Ok(into_surface(
-        patched,
-        mesh,
-        outward,
-        report,
-        &stages,
-        options.resolution,
-    ))
+    let surface = into_surface(patched, mesh, outward, report, &stages, options.resolution);
+    Ok((stages, surface, weld))
 }
 
 /// The warnings' messages, joined for an error message.

@@ -8,7 +8,7 @@
 
 use std::sync::Arc;
 
-use super::build::{assemble_welded, into_surface, measure, reassemble, Stages};
+use super::build::{assemble_welded, built_in_full, into_surface, measure, reassemble, Stages};
 use super::patched::PatchedFace;
 use super::{HullOptions, HullSurface};
 use crate::error::Error;
@@ -53,20 +53,11 @@ impl LiveHull {
     /// Build `network` in full, report included (as [`build_hull`](super::build_hull), whose
     /// errors it returns).
     pub fn new(network: &Network, options: &HullOptions) -> Result<LiveHull, Error> {
-        let stages = Stages::full(network, options)?;
-        let (patched, mesh, outward, weld) = assemble_welded(network, &stages)?;
-        let report = measure(network, options, &stages, &patched, &mesh)?;
+        let (stages, surface, weld) = built_in_full(network, options)?;
         Ok(LiveHull {
             network: network.clone(),
             options: *options,
-            surface: Arc::new(into_surface(
-                patched,
-                mesh,
-                outward,
-                report,
-                &stages,
-                options.resolution,
-            )),
+            surface: Arc::new(surface),
             stages,
             measured: true,
             last: Rebuild::Full { reason: None },
@@ -206,7 +197,6 @@ impl LiveHull {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::hull::build::assemble;
     use crate::network::NetworkCurve;
     use crate::NurbsCurve;
     use glam::DVec3;
@@ -254,7 +244,7 @@ mod tests {
         let mut weld = hull.weld.clone();
         let kept = reassemble(&stages, &hull.stages, &hull.surface, &mut weld)
             .expect("the kept mesh is rewritten");
-        let (_, fresh, outward) = assemble(&after, &stages).expect("assembles");
+        let (_, fresh, outward, _) = assemble_welded(&after, &stages).expect("assembles");
         assert_eq!(
             kept.mesh.positions, fresh.positions,
             "positions bit for bit"
