@@ -7,6 +7,10 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::DVec3;
 use std::hint::black_box;
 
+/// The add-on's allocator (batten-py), so the figures are the add-on's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn wavy(n: usize) -> NurbsCurve {
     let pts: Vec<DVec3> = (0..n)
         .map(|i| {

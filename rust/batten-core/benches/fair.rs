@@ -5,6 +5,10 @@ use batten_core::{fair_points, FairOptions, Smoothing};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
 
+/// The add-on's allocator (batten-py), so the figures are the add-on's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// SplitMix64 + Box–Muller, deterministic.
 struct Rng(u64);
 

@@ -6,6 +6,10 @@ use batten_core::{build_hull, HullOptions, Network, Tolerance};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
+/// The add-on's allocator (batten-py), so the figures are the add-on's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn frigate() -> Network {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/frigate_network.json");

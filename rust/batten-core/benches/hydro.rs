@@ -20,6 +20,10 @@ use batten_core::{
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 
+/// The add-on's allocator (batten-py), so the figures are the add-on's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The repository's root.
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")

@@ -9,6 +9,10 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use glam::DVec3;
 use std::hint::black_box;
 
+/// The add-on's allocator (batten-py), so the figures are the add-on's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn bezier(pts: &[DVec3]) -> NurbsCurve {
     let p = pts.len() - 1;
     let mut knots = vec![0.0; p + 1];

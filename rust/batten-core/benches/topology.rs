@@ -9,6 +9,10 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use glam::DVec3;
 use std::hint::black_box;
 
+/// The add-on's allocator (batten-py), so the figures are the add-on's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Bézier ordinates of the surface height `y = 0.6 (1 − u²)(1 − z²)`, `u = (x − 5)/6`, along a
 /// straight (x, z) segment: the blossom of a product of four linear factors.
 fn ordinates(p: (f64, f64), q: (f64, f64)) -> [f64; 5] {

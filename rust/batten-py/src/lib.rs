@@ -27,6 +27,12 @@ mod topology;
 
 use pyo3::prelude::*;
 
+/// Rust's allocations in the add-on go to mimalloc: the core allocates and frees arrays of a
+/// few megabytes on every rebuild, which glibc's malloc returns to the system and faults in
+/// again each time (the benches use the same allocator).
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// The compiled module `batten_native._native`, re-exported by the `batten_native` package.
 #[pymodule]
 #[pyo3(name = "_native")]
