@@ -253,13 +253,15 @@ impl BezierPiece {
     /// for the usual degrees).
     #[inline]
     fn with_work<R>(&self, f: impl FnOnce(&mut [DVec4]) -> R) -> R {
+        // The leading block of the stored array, copied whole: one copy, no zeroing first.
         if self.n <= SMALL_ORDER {
-            let mut work = [DVec4::ZERO; SMALL_ORDER];
-            work[..self.n].copy_from_slice(self.points());
+            let mut work: [DVec4; SMALL_ORDER] = *self
+                .cw
+                .first_chunk()
+                .expect("MAX_ORDER is at least SMALL_ORDER");
             f(&mut work)
         } else {
-            let mut work = [DVec4::ZERO; MAX_ORDER];
-            work[..self.n].copy_from_slice(self.points());
+            let mut work = self.cw;
             f(&mut work)
         }
     }

@@ -63,6 +63,15 @@ pub(crate) fn cut_curves(
 
 /// Edges that can bound a region: repeatedly drop edges with an end no other edge touches.
 pub(crate) fn prune_branches(brep: &Brep) -> Vec<bool> {
+    // Most networks have no dangling end: then every edge stays, and no adjacency is needed.
+    let mut ends = vec![0u32; brep.vertices.len()];
+    for e in &brep.edges {
+        ends[e.start.index()] += 1;
+        ends[e.end.index()] += 1;
+    }
+    if !ends.contains(&1) {
+        return vec![true; brep.edges.len()];
+    }
     let at = Adjacency::from_pairs(
         brep.vertices.len(),
         brep.edges

@@ -34,7 +34,6 @@ pub use linking::BRANCHING_TIP_DISTANCE;
 pub use node_kind::NodeKind;
 pub use topology::{BoundaryLoop, TopoFace, Topology};
 
-use crate::curve::BezierDecomposition;
 use crate::error::Error;
 use crate::network::Network;
 use crate::tolerance::Tolerance;
@@ -63,7 +62,7 @@ impl Topology {
     /// two nodes does not make a corner; a self-intersection makes no node; edges on dangling
     /// branches stay in `brep.edges` without half-edges.
     pub fn build(network: &Network, tolerance: Tolerance) -> Result<Topology, Error> {
-        let junctions = network.junctions(tolerance)?;
+        let (junctions, evals) = network.junctions_and_pieces(tolerance)?;
         let curves = network.curves();
         let mut diagnostics = junctions.diagnostics.clone();
 
@@ -74,10 +73,6 @@ impl Topology {
         };
         brep.edges = edges::cut_curves(curves, &junctions, &brep.vertices, tolerance);
         let core = edges::prune_branches(&brep);
-        let evals: Vec<BezierDecomposition> = curves
-            .iter()
-            .map(|c| c.curve.bezier_decomposition())
-            .collect();
         findings::loose_ends(curves, &junctions, &brep, &core, &mut diagnostics);
         let dirs = half_edges::add_half_edges(&mut brep, &core, &evals);
 

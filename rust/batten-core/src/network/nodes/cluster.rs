@@ -71,25 +71,55 @@ fn total_order_bits(x: f64) -> u64 {
     }
 }
 
-/// The pairs `(i, j)` of curve points within `tol` of each other, by a sweep along
-/// [`SWEEP`]: points within `tol` are within `tol` along any unit direction, so each point is
-/// compared only with those after it in the sweep until the sweep has moved past `tol`.
-fn pairs_within(points: &[CurvePoint], tol: f64) -> Vec<(usize, usize)> {
+/// Pairs `(i, j)` of curve points within `tol` of each other, enough to join every group of
+/// points that has a member within `tol` of another group's: the points from `first_pair` on
+/// come in pairs already joined (the two sides of a crossing), and each such pair, like each
+/// point before `first_pair`, is one group. A sweep along [`SWEEP`] over one point per group:
+/// points within `tol` are within `tol` along any unit direction, so two groups with members
+/// within `tol` have first points within `tol` plus both groups' spreads along it, and each
+/// group is compared only with those after it until the sweep has moved past that (half the
+/// points to sort as comparing every point).
+fn pairs_within(points: &[CurvePoint], first_pair: usize, tol: f64) -> Vec<(usize, usize)> {
     let along = SWEEP.normalize();
-    let key: Vec<f64> = points.iter().map(|c| c.point.dot(along)).collect();
+    let groups = first_pair + (points.len() - first_pair) / 2;
+    let members = |g: usize| -> &[CurvePoint] {
+        if g < first_pair {
+            &points[g..=g]
+        } else {
+            let i = first_pair + 2 * (g - first_pair);
+            &points[i..i + 2]
+        }
+    };
+    let first = |g: usize| {
+        if g < first_pair {
+            g
+        } else {
+            first_pair + 2 * (g - first_pair)
+        }
+    };
+    let spread = (first_pair..groups)
+        .map(|g| members(g)[0].point.distance(members(g)[1].point))
+        .fold(0.0, f64::max);
+    let reach = tol + 2.0 * spread;
+    let key: Vec<f64> = (0..groups)
+        .map(|g| members(g)[0].point.dot(along))
+        .collect();
     // Sorted by the keys' total order (as `f64::total_cmp`), then by index: as integers, which
     // sort faster than floats compared through a closure.
     let mut order: Vec<(u64, usize)> = key.iter().map(|&s| total_order_bits(s)).zip(0..).collect();
     order.sort_unstable();
     let mut pairs = Vec::new();
-    for (k, &(_, i)) in order.iter().enumerate() {
-        let (s, p) = (key[i], points[i].point);
-        for &(_, j) in &order[k + 1..] {
-            if key[j] - s > tol {
+    for (k, &(_, g)) in order.iter().enumerate() {
+        for &(_, h) in &order[k + 1..] {
+            if key[h] - key[g] > reach {
                 break;
             }
-            if (points[j].point - p).length() <= tol {
-                pairs.push((i, j));
+            // The first pair of members within the tolerance, if any, joins the two groups.
+            let close = (0..members(g).len())
+                .flat_map(|x| (0..members(h).len()).map(move |y| (x, y)))
+                .find(|&(x, y)| members(g)[x].point.distance(members(h)[y].point) <= tol);
+            if let Some((x, y)) = close {
+                pairs.push((first(g) + x, first(h) + y));
             }
         }
     }
@@ -137,6 +167,7 @@ pub(super) fn cluster(
         }
     }
     let mut uf = UnionFind::new(incs.len() + 2 * hits.len());
+    let first_pair = incs.len();
     for h in hits {
         let ia = incs.len();
         incs.push(CurvePoint {
@@ -150,7 +181,7 @@ pub(super) fn cluster(
         uf.union(ia, ia + 1);
     }
     // Any two curve points within the tolerance are one node.
-    for (i, j) in pairs_within(&incs, tol) {
+    for (i, j) in pairs_within(&incs, first_pair, tol) {
         uf.union(i, j);
     }
     // Groups, in order of their smallest member (curve ends come first, in curve order), as
@@ -283,6 +314,79 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The groups `pairs` join among `n` points whose points from `first_pair` on are joined
+    /// in pairs, each group by its smallest member.
+    fn groups(n: usize, first_pair: usize, pairs: &[(usize, usize)]) -> Vec<usize> {
+        let mut uf = UnionFind::new(n);
+        for i in (first_pair..n).step_by(2) {
+            uf.union(i, i + 1);
+        }
+        for &(i, j) in pairs {
+            uf.union(i, j);
+        }
+        let mut smallest = vec![usize::MAX; n];
+        for i in 0..n {
+            let r = uf.find(i);
+            smallest[r] = smallest[r].min(i);
+        }
+        (0..n).map(|i| smallest[uf.find(i)]).collect()
+    }
+
+    #[test]
+    fn the_sweep_joins_what_comparing_every_two_points_joins() {
+        // Points on a 0.5 mm lattice with jitter (many within the 1 mm tolerance of each
+        // other, many not); from point 40 on, crossings: pairs up to the tolerance apart.
+        let tol = 1e-3;
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut unit = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut points = Vec::new();
+        let at = |p: DVec3| CurvePoint {
+            incidence: Incidence { curve: 0, t: 0.0 },
+            point: p,
+        };
+        // A crossing whose second side is near a curve end its first side is not: along the
+        // sweep, the end lies 1.9 tolerances past the crossing's first point.
+        let sweep = SWEEP.normalize();
+        let crossing = DVec3::splat(0.5);
+        points.push(at(crossing + sweep * 1.9 * tol));
+        for _ in 0..40 {
+            let p = DVec3::new(unit(), unit(), unit()) * 5e-3;
+            points.push(at(p));
+        }
+        let first_pair = points.len();
+        points.push(at(crossing));
+        points.push(at(crossing + sweep * 0.95 * tol));
+        for _ in 0..60 {
+            let p = DVec3::new(unit(), unit(), unit()) * 5e-3;
+            let d = DVec3::new(unit() - 0.5, unit() - 0.5, unit() - 0.5).normalize() * tol * unit();
+            points.push(at(p));
+            points.push(at(p + d));
+        }
+        let n = points.len();
+        let every: Vec<(usize, usize)> = (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .filter(|&(i, j)| points[i].point.distance(points[j].point) <= tol)
+            .collect();
+        let swept = pairs_within(&points, first_pair, tol);
+        let expected = groups(n, first_pair, &every);
+        assert_eq!(
+            expected[first_pair], 0,
+            "the crossing joins the end its second side is near"
+        );
+        assert_eq!(groups(n, first_pair, &swept), expected, "the same groups");
+        let count = |g: &[usize]| (0..n).filter(|&i| g[i] == i).count();
+        assert!(
+            count(&expected) > 5 && count(&expected) < n / 2,
+            "a test with groups of several points: {} groups",
+            count(&expected)
+        );
     }
 
     #[test]

@@ -80,6 +80,26 @@ pub(super) struct PairOutcome<'o> {
     pub(super) joins: &'o mut Vec<Hit>,
 }
 
+/// The usual outcome for a pair of curves, one crossing within the tolerance: its join, moved
+/// to a curve end where the two stay within the tolerance up to it ([`snap_to_end`]). `None`
+/// for anything else, which [`sort_out_pair`] sorts out. It reads nothing but the two curves,
+/// so the narrow phase works it out in parallel.
+pub(super) fn single_crossing(
+    prepared: &[Prepared],
+    pair_hits: &[Hit],
+    tolerance: Tolerance,
+) -> Option<Hit> {
+    match pair_hits {
+        [h] if h.gap <= tolerance.get() && h.a != h.b => {
+            let mut h = *h;
+            snap_to_end(prepared, &mut h, tolerance, false);
+            snap_to_end(prepared, &mut h, tolerance, true);
+            Some(h)
+        }
+        _ => None,
+    }
+}
+
 /// Sort the approaches of one pair of curves into joins, tangential touches, overlaps,
 /// duplicates and near misses; pushes the joins that make nodes onto `out.joins`.
 pub(super) fn sort_out_pair(
@@ -103,11 +123,7 @@ pub(super) fn sort_out_pair(
             [y, x]
         }
     };
-    if pair_hits.len() == 1 && first.gap <= tol {
-        // The usual case, one crossing: only the end snapping applies.
-        let mut h = *first;
-        snap_to_end(prepared, &mut h, tolerance, false);
-        snap_to_end(prepared, &mut h, tolerance, true);
+    if let Some(h) = single_crossing(prepared, pair_hits, tolerance) {
         out.joins.push(h);
         return;
     }

@@ -11,6 +11,7 @@ mod narrow;
 
 use glam::DVec3;
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 use super::Network;
 use crate::curve::{BezierDecomposition, NurbsCurve};
@@ -104,6 +105,18 @@ impl Hit {
     }
 }
 
+/// The approaches the narrow phase finds for one pair of curves (most pairs cross once).
+type PairHits = SmallVec<[Hit; 2]>;
+
+/// What the narrow phase found for one pair of curves.
+enum PairFound {
+    /// One crossing, already sorted out ([`joins::single_crossing`]).
+    Join(Hit),
+    /// Anything else, for [`joins::sort_out_pair`] or [`joins::self_hits`] (on the heap: the
+    /// list of all pairs' findings stays the size of one join per pair).
+    Approaches(Vec<Hit>),
+}
+
 /// Sine of the angle between two tangent vectors (0 when one of them vanishes).
 fn sine_between(ta: DVec3, tb: DVec3) -> f64 {
     ta.cross(tb).length() / (ta.length() * tb.length()).max(f64::MIN_POSITIVE)
@@ -151,6 +164,15 @@ impl Network {
     /// on one curve only (see [`Junctions::suppressed`]). A tangential touch longer than
     /// 100 tolerances and 5 % of the shorter curve is reported as an overlap.
     pub fn junctions(&self, tolerance: Tolerance) -> Result<Junctions, Error> {
+        self.junctions_and_pieces(tolerance).map(|(j, _)| j)
+    }
+
+    /// [`Network::junctions`], with every curve's Bézier decomposition made on the way (the
+    /// topology evaluates the curves on them again).
+    pub(crate) fn junctions_and_pieces(
+        &self,
+        tolerance: Tolerance,
+    ) -> Result<(Junctions, Vec<BezierDecomposition>), Error> {
         let tol = tolerance.get();
         let near = tolerance.near_miss();
         let curves = self.curves();
@@ -175,7 +197,7 @@ impl Network {
         }
 
         let prepared: Vec<Prepared> = curves
-            .iter()
+            .par_iter()
             .map(|c| {
                 let decomposition = c.curve.bezier_decomposition();
                 let size = decomposition.hull_box().diagonal();
@@ -201,12 +223,12 @@ impl Network {
         // Narrow phase, one curve pair at a time: the pairs are independent, so they run in
         // parallel; what they found is then sorted out in pair order, as one thread would.
         let groups = pair_groups(&pairs);
-        let found: Vec<Vec<Hit>> = groups
+        let found: Vec<PairFound> = groups
             .par_iter()
             .with_min_len(NARROW_PAIRS_PER_TASK)
             .map(|&(k, end)| {
                 let (ca, cb) = (pairs[k].curve_a, pairs[k].curve_b);
-                let mut pair_hits = Vec::new();
+                let mut pair_hits = PairHits::new();
                 let mut narrow = narrow::Narrow {
                     a: &prepared[ca],
                     b: &prepared[cb],
@@ -232,16 +254,26 @@ impl Network {
                         0,
                     );
                 }
-                pair_hits
+                match joins::single_crossing(&prepared, &pair_hits, tolerance) {
+                    Some(join) => PairFound::Join(join),
+                    None => PairFound::Approaches(pair_hits.into_vec()),
+                }
             })
             .collect();
         let mut hits: Vec<Hit> = Vec::with_capacity(pairs.len());
-        for (&(k, _), pair_hits) in groups.iter().zip(&found) {
+        for (&(k, _), found) in groups.iter().zip(found) {
             let (ca, cb) = (pairs[k].curve_a, pairs[k].curve_b);
+            let pair_hits = match found {
+                PairFound::Join(join) => {
+                    hits.push(join);
+                    continue;
+                }
+                PairFound::Approaches(pair_hits) => pair_hits,
+            };
             if ca == cb {
                 joins::self_hits(
                     &prepared[ca],
-                    pair_hits,
+                    &pair_hits,
                     tolerance,
                     &mut diagnostics,
                     &curves[ca].name,
@@ -249,7 +281,7 @@ impl Network {
             } else {
                 joins::sort_out_pair(
                     &prepared,
-                    pair_hits,
+                    &pair_hits,
                     tolerance,
                     curves,
                     joins::PairOutcome {
@@ -267,6 +299,6 @@ impl Network {
 
         let mut out = cluster::cluster(self, &prepared, &hits, &excluded, tol, diagnostics);
         out.suppressed = suppressed;
-        Ok(out)
+        Ok((out, prepared.into_iter().map(|p| p.decomposition).collect()))
     }
 }

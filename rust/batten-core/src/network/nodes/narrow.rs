@@ -3,7 +3,7 @@
 //! of their chords.
 
 use super::super::approach::{closest_approach, Approach};
-use super::{sine_between, Hit, Prepared};
+use super::{sine_between, Hit, PairHits, Prepared};
 use crate::curve::{Aabb, BezierPiece, TangentCone};
 
 /// A segment pair is a leaf (handed to Newton) once their tangent cones are separated by more
@@ -57,7 +57,7 @@ pub(super) struct Narrow<'a, 'h> {
     pub(super) near: f64,
     pub(super) accuracy: f64,
     pub(super) leaves: usize,
-    pub(super) hits: &'h mut Vec<Hit>,
+    pub(super) hits: &'h mut PairHits,
 }
 
 impl Narrow<'_, '_> {
