@@ -1,6 +1,8 @@
 //! Lists per vertex kept in one flat array (compressed rows), so building the topology does
 //! not allocate a small vector for every node.
 
+use rayon::prelude::*;
+
 /// One list of items per row (vertex), stored back to back: row `r` is
 /// `items[start[r]..start[r + 1]]`.
 #[derive(Clone, Debug)]
@@ -44,12 +46,28 @@ impl<T: Copy> Adjacency<T> {
         }
     }
 
-    /// A list of the same shape with `f(row, item)` applied to every item.
-    pub(super) fn map_rows<U: Copy>(&self, f: impl Fn(usize, T) -> U) -> Adjacency<U> {
-        let mut items = Vec::with_capacity(self.items.len());
-        for r in 0..self.rows() {
-            items.extend(self.row(r).iter().map(|&x| f(r, x)));
+    /// A list of the same shape with `f(row, item)` applied to every item, the items worked
+    /// on in parallel (at least `min_items` per task).
+    pub(super) fn par_map_rows<U: Copy + Send>(
+        &self,
+        min_items: usize,
+        f: impl Fn(usize, T) -> U + Sync,
+    ) -> Adjacency<U>
+    where
+        T: Sync,
+    {
+        // Each item's row, so the items can be worked on as one indexed list.
+        let mut row_of = Vec::with_capacity(self.items.len());
+        for (r, w) in self.start.windows(2).enumerate() {
+            row_of.extend(std::iter::repeat_n(r, w[1] - w[0]));
         }
+        let mut items = Vec::new();
+        self.items
+            .par_iter()
+            .zip(row_of.par_iter())
+            .with_min_len(min_items)
+            .map(|(&x, &r)| f(r, x))
+            .collect_into_vec(&mut items);
         Adjacency {
             start: self.start.clone(),
             items,
@@ -66,9 +84,18 @@ impl<T: Copy> Adjacency<T> {
         &self.items[self.start[r]..self.start[r + 1]]
     }
 
-    /// The items of row `r`, to reorder in place.
-    pub(super) fn row_mut(&mut self, r: usize) -> &mut [T] {
-        &mut self.items[self.start[r]..self.start[r + 1]]
+    /// Every row's items, each to reorder in place (rows apart, so they can be worked on in
+    /// parallel).
+    pub(super) fn rows_mut(&mut self) -> Vec<&mut [T]> {
+        let Adjacency { start, items } = self;
+        let mut rows = Vec::with_capacity(start.len() - 1);
+        let mut rest: &mut [T] = items;
+        for w in start.windows(2) {
+            let (row, tail) = std::mem::take(&mut rest).split_at_mut(w[1] - w[0]);
+            rows.push(row);
+            rest = tail;
+        }
+        rows
     }
 }
 
@@ -87,7 +114,7 @@ mod tests {
         assert_eq!(adj.row(3), ['d']);
         let upper = adj.map(|c| c.to_ascii_uppercase());
         assert_eq!(upper.row(2), ['A', 'C']);
-        let tagged = adj.map_rows(|r, c| (r, c));
+        let tagged = adj.par_map_rows(1, |r, c| (r, c));
         assert_eq!(
             tagged.row(0),
             [(0, 'b'), (0, 'e')],
@@ -99,5 +126,12 @@ mod tests {
             "an empty row stays empty"
         );
         assert_eq!(tagged.row(3), [(3, 'd')], "the last row");
+        let mut sorted = adj.clone();
+        for row in sorted.rows_mut() {
+            row.sort_unstable_by(|a, b| b.cmp(a));
+        }
+        assert_eq!(sorted.row(0), ['e', 'b'], "each row reordered on its own");
+        assert_eq!(sorted.row(2), ['c', 'a'], "each row reordered on its own");
+        assert_eq!(sorted.row(3), ['d'], "a row of one stays");
     }
 }

@@ -4,6 +4,7 @@
 //! §3.1 loops and faces, §5.2 three-, four- and N-sided patches).
 
 use glam::DVec3;
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::brep::{Brep, EdgeId, HalfEdgeId, LoopId};
@@ -18,6 +19,9 @@ pub const CORNER_ANGLE_DEGREES: f64 = 15.0;
 const AREA_SAMPLES_PER_LOOP: usize = 8;
 /// …and per edge.
 const AREA_SAMPLES_PER_EDGE: usize = 2;
+
+/// Edges per parallel task in [`edge_areas`] at least (one curve evaluation each).
+const PAR_MIN_EDGES: usize = 512;
 
 /// One side of a face: the edges between two true corners, and the designer curves along it
 /// (H-rep paper §5.2: the system resolves "the number of edges bounding a patch").
@@ -144,13 +148,16 @@ pub(crate) fn orientation(
 
 /// Each edge's share `½ ∫ p × dp` of the vector area of any loop along it (forward
 /// direction), from the polyline through its end vertices and its middle point; zero for edges
-/// without half-edges. Shares of the edges of a loop add up to the loop's vector area, because
-/// the polylines of consecutive edges meet at the shared vertex.
-pub(crate) fn edge_areas(brep: &Brep, curves: &[BezierDecomposition]) -> Vec<DVec3> {
+/// that bound no region (`core[k]` false: they get no half-edges). Shares of the edges of a
+/// loop add up to the loop's vector area, because the polylines of consecutive edges meet at
+/// the shared vertex.
+pub(crate) fn edge_areas(brep: &Brep, core: &[bool], curves: &[BezierDecomposition]) -> Vec<DVec3> {
     brep.edges
-        .iter()
-        .map(|e| {
-            if e.half_edges.is_none() {
+        .par_iter()
+        .zip(core.par_iter())
+        .with_min_len(PAR_MIN_EDGES)
+        .map(|(e, &core)| {
+            if !core {
                 return DVec3::ZERO;
             }
             let a = brep.vertices[e.start.index()].position;
@@ -185,19 +192,19 @@ pub(crate) fn loop_orientation(
     (area, normal)
 }
 
-/// True when a loop runs along some edge on both sides (it then bounds no disk). `stamp` is a
-/// scratch array over the edges, `mark` a value not yet used in it.
-pub(crate) fn has_bridge(
-    brep: &Brep,
-    half_edges: &[HalfEdgeId],
-    stamp: &mut [u32],
-    mark: u32,
-) -> bool {
-    let mut bridge = false;
-    for &h in half_edges {
-        let e = brep.half_edge(h).edge.index();
-        bridge |= stamp[e] == mark;
-        stamp[e] = mark;
+/// Loops up to this many edges are checked for a repeated edge pair by pair; longer ones
+/// (boundary loops) through a sorted copy.
+const BRIDGE_PAIRWISE: usize = 16;
+
+/// True when a loop runs along some edge on both sides (it then bounds no disk).
+pub(crate) fn has_bridge(brep: &Brep, half_edges: &[HalfEdgeId]) -> bool {
+    let edge = |h: &HalfEdgeId| brep.half_edge(*h).edge;
+    if half_edges.len() <= BRIDGE_PAIRWISE {
+        let es: SmallVec<[EdgeId; BRIDGE_PAIRWISE]> = half_edges.iter().map(edge).collect();
+        es.iter().enumerate().any(|(i, e)| es[i + 1..].contains(e))
+    } else {
+        let mut es: Vec<EdgeId> = half_edges.iter().map(edge).collect();
+        es.sort_unstable();
+        es.windows(2).any(|w| w[0] == w[1])
     }
-    bridge
 }

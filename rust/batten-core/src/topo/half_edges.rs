@@ -3,34 +3,38 @@
 //! with the direction in which each leaves its origin.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
-use super::brep::{Brep, EdgeId, HalfEdge, HalfEdgeId, LoopId};
+use super::brep::{Brep, Edge, EdgeId, HalfEdge, HalfEdgeId, LoopId};
 use super::rotation::{leaving_direction, EvalCache};
 use crate::curve::BezierDecomposition;
 
-/// Give every edge with `core[k]` its two half-edges (the first runs along the edge's curve,
-/// from `t0` to `t1`, the second against it), each for now its own `next` and `prev`, in loop
-/// 0. Returns, per half-edge, the unit direction in which it leaves its origin.
-pub(crate) fn add_half_edges(
-    brep: &mut Brep,
+/// Half-edges per parallel run of direction evaluations.
+const PAR_HALF_EDGES: usize = 1024;
+
+/// The half-edges of a B-rep that has none yet: two for every edge with `core[k]` (the first
+/// runs along the edge's curve, from `t0` to `t1`, the second against it), each for now its
+/// own `next` and `prev`, in loop 0; and, per half-edge, the unit direction in which it leaves
+/// its origin. It only reads the edges, so the topology works out the edges' area shares
+/// beside it; [`attach`] then puts the half-edges in the B-rep.
+pub(crate) fn half_edges(
+    edges: &[Edge],
     core: &[bool],
     evals: &[BezierDecomposition],
-) -> Vec<DVec3> {
+) -> (Vec<HalfEdge>, Vec<DVec3>) {
     let core_edges = core.iter().filter(|&&c| c).count();
-    brep.half_edges.reserve_exact(2 * core_edges);
-    let mut dirs: Vec<DVec3> = Vec::with_capacity(2 * core_edges);
-    let mut cache = EvalCache::default();
-    for (k, e) in brep.edges.iter_mut().enumerate() {
+    let mut half_edges: Vec<HalfEdge> = Vec::with_capacity(2 * core_edges);
+    // Per half-edge: its curve and the stretch it leaves along, from → to.
+    let mut leaving: Vec<(usize, f64, f64)> = Vec::with_capacity(2 * core_edges);
+    for (k, e) in edges.iter().enumerate() {
         if !core[k] {
             continue;
         }
-        let curve = &evals[e.curve];
-        cache.on_curve(e.curve);
-        let a = HalfEdgeId::from_index(brep.half_edges.len());
-        let b = HalfEdgeId::from_index(brep.half_edges.len() + 1);
+        let a = HalfEdgeId::from_index(half_edges.len());
+        let b = HalfEdgeId::from_index(half_edges.len() + 1);
         for (h, origin, twin, from, to) in [(a, e.start, b, e.t0, e.t1), (b, e.end, a, e.t1, e.t0)]
         {
-            brep.half_edges.push(HalfEdge {
+            half_edges.push(HalfEdge {
                 origin,
                 twin,
                 next: h,
@@ -38,9 +42,30 @@ pub(crate) fn add_half_edges(
                 edge: EdgeId::from_index(k),
                 loop_id: LoopId(0),
             });
-            dirs.push(leaving_direction(curve, from, to, &mut cache));
+            leaving.push((e.curve, from, to));
         }
-        e.half_edges = Some([a, b]);
     }
-    dirs
+    // The directions, in parallel runs of consecutive half-edges (each run with its own cache:
+    // consecutive edges of one curve share their node's evaluation).
+    let dirs = leaving
+        .par_chunks(PAR_HALF_EDGES)
+        .flat_map_iter(|run| {
+            let mut cache = EvalCache::default();
+            run.iter().map(move |&(curve, from, to)| {
+                cache.on_curve(curve);
+                leaving_direction(&evals[curve], from, to, &mut cache)
+            })
+        })
+        .collect();
+    (half_edges, dirs)
+}
+
+/// Put the half-edges of [`half_edges`] into `brep` (which has none yet), each edge told its
+/// pair.
+pub(crate) fn attach(brep: &mut Brep, half_edges: Vec<HalfEdge>) {
+    debug_assert!(brep.half_edges.is_empty(), "a B-rep without half-edges");
+    for pair in half_edges.chunks_exact(2) {
+        brep.edges[pair[0].edge.index()].half_edges = Some([pair[1].twin, pair[0].twin]);
+    }
+    brep.half_edges = half_edges;
 }

@@ -5,6 +5,7 @@
 //! twin.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::adjacency::Adjacency;
 use super::brep::{Brep, HalfEdgeId};
@@ -24,6 +25,9 @@ pub const BRANCHING_TIP_DISTANCE: f64 = 0.6;
 /// this fraction of their parameter interval along (a quarter: far enough to bend apart, near
 /// enough to stay on the node's side of the edge).
 const TIE_BREAK_FRACTION: f64 = 0.25;
+
+/// Nodes per parallel task at least (the per-node work is a few microseconds).
+const PAR_MIN_NODES: usize = 256;
 
 /// What the rotation system leaves for the later steps.
 pub(crate) struct RotationSystem {
@@ -56,23 +60,30 @@ pub(crate) fn link(
             .map(|(i, he)| (he.origin.index(), HalfEdgeId::from_index(i))),
     );
 
-    let mut ts: Vec<DVec3> = Vec::new();
-    let mut branching: Vec<HalfEdgeId> = Vec::new();
-    let raw: Vec<Option<RawNormal>> = (0..outgoing.rows())
-        .map(|v| {
+    // Per vertex, in parallel: the raw normal, and whether the surface branches there.
+    let per_vertex: Vec<(Option<RawNormal>, bool)> = (0..outgoing.rows())
+        .into_par_iter()
+        .with_min_len(PAR_MIN_NODES)
+        .map_init(Vec::new, |ts: &mut Vec<DVec3>, v| {
             let hs = outgoing.row(v);
             ts.clear();
             ts.extend(hs.iter().map(|h| dirs[h.index()]));
-            let plane = tip_plane(&ts);
-            if off_plane(&ts, plane) > BRANCHING_TIP_DISTANCE {
-                branching.push(hs[0]);
-            }
-            raw_normal(&ts, plane).map(|normal| RawNormal {
+            let plane = tip_plane(ts);
+            let branches = off_plane(ts, plane) > BRANCHING_TIP_DISTANCE;
+            let raw = raw_normal(ts, plane).map(|normal| RawNormal {
                 normal,
-                confidence: confidence(&ts),
-            })
+                confidence: confidence(ts),
+            });
+            (raw, branches)
         })
         .collect();
+    let branching: Vec<HalfEdgeId> = per_vertex
+        .iter()
+        .enumerate()
+        .filter(|(_, &(_, branches))| branches)
+        .map(|(v, _)| outgoing.row(v)[0])
+        .collect();
+    let raw: Vec<Option<RawNormal>> = per_vertex.into_iter().map(|(raw, _)| raw).collect();
     let neighbours = outgoing.map(|h| brep.destination(h).index());
     let normals = orient_normals(&raw, &outgoing, |h| Step {
         to: brep.destination(h).index(),
@@ -80,34 +91,51 @@ pub(crate) fn link(
         arriving: -dirs[brep.half_edge(h).twin.index()],
     });
 
+    // Each node's half-edges sorted counter-clockwise, the nodes in parallel.
+    let brep_ref = &*brep;
+    outgoing
+        .rows_mut()
+        .into_par_iter()
+        .zip(normals.par_iter())
+        .with_min_len(PAR_MIN_NODES)
+        .for_each_init(
+            || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+            |(keys, order, hs, ts), (row, &normal)| {
+                if row.is_empty() {
+                    return;
+                }
+                hs.clear();
+                hs.extend_from_slice(row);
+                ts.clear();
+                ts.extend(hs.iter().map(|h: &HalfEdgeId| dirs[h.index()]));
+                // Edges leaving with the same tangent are told apart further along the edge.
+                let further = |i: usize| {
+                    let h: HalfEdgeId = hs[i];
+                    let he = &brep_ref.half_edges[h.index()];
+                    let e = &brep_ref.edges[he.edge.index()];
+                    let (from, to) = if he.origin == e.start {
+                        (e.t0, e.t1)
+                    } else {
+                        (e.t1, e.t0)
+                    };
+                    let c = &evals[e.curve];
+                    (c.point(from + TIE_BREAK_FRACTION * (to - from)) - c.point(from))
+                        .normalize_or_zero()
+                };
+                ccw_order(normal, ts, &further, keys, order);
+                for (slot, &k) in row.iter_mut().zip(order.iter()) {
+                    *slot = hs[k];
+                }
+            },
+        );
     let mut position_in_rotation = vec![0usize; brep.half_edges.len()];
-    let (mut keys, mut order, mut hs) = (Vec::new(), Vec::new(), Vec::new());
     for (v, &normal) in normals.iter().enumerate() {
-        if outgoing.row(v).is_empty() {
+        let row = outgoing.row(v);
+        if row.is_empty() {
             continue;
         }
-        hs.clear();
-        hs.extend_from_slice(outgoing.row(v));
-        ts.clear();
-        ts.extend(hs.iter().map(|h| dirs[h.index()]));
-        let d = &ts;
-        // Edges leaving with the same tangent are told apart further along the edge.
-        let further = |i: usize| {
-            let h = hs[i];
-            let e = &brep.edges[brep.half_edges[h.index()].edge.index()];
-            let (from, to) = if brep.half_edges[h.index()].origin == e.start {
-                (e.t0, e.t1)
-            } else {
-                (e.t1, e.t0)
-            };
-            let c = &evals[e.curve];
-            (c.point(from + TIE_BREAK_FRACTION * (to - from)) - c.point(from)).normalize_or_zero()
-        };
-        ccw_order(normal, d, &further, &mut keys, &mut order);
-        let row = outgoing.row_mut(v);
-        for (i, &k) in order.iter().enumerate() {
-            row[i] = hs[k];
-            position_in_rotation[hs[k].index()] = i;
+        for (i, h) in row.iter().enumerate() {
+            position_in_rotation[h.index()] = i;
         }
         brep.vertices[v].outgoing = Some(row[0]);
         brep.vertices[v].normal = normal;

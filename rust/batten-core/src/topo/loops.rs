@@ -4,6 +4,7 @@
 //! no edge twice is a face; the others are boundary loops.
 
 use glam::DVec3;
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 use super::brep::{Brep, Face, FaceId, HalfEdgeId, Loop, LoopId, ShellId};
@@ -41,57 +42,97 @@ pub(crate) fn trace_loops(brep: &mut Brep, shell_of: &[usize]) {
     }
 }
 
+/// Loops per parallel task at least in [`sort_loops`].
+const PAR_MIN_LOOPS: usize = 128;
+
+/// What [`sort_loops`] reads of the geometry, per half-edge, node and edge.
+pub(crate) struct LoopGeometry<'g> {
+    /// The unit direction in which each half-edge leaves its origin.
+    pub dirs: &'g [DVec3],
+    /// The oriented unit normal at each node.
+    pub normals: &'g [DVec3],
+    /// Each edge's share of the vector area of a loop along it ([`faces::edge_areas`]).
+    pub edge_areas: &'g [DVec3],
+}
+
 /// Sort the loops into faces (added to the B-rep and their shells, with their corners and
 /// sides counted from the leaving directions `dirs`) and boundary loops (added to their
 /// shells). A loop on the face side that runs along an edge twice bounds no disk: it becomes
 /// a boundary loop and is reported as [`Diagnostic::UnclosedRegion`].
+///
+/// The loops are told apart in parallel, then the faces are made in parallel straight into
+/// their list; the B-rep's face and shell lists are filled in loop order.
 pub(crate) fn sort_loops(
     brep: &mut Brep,
     curves: &[NetworkCurve],
     evals: &[BezierDecomposition],
-    dirs: &[DVec3],
-    normals: &[DVec3],
+    geometry: LoopGeometry,
     diagnostics: &mut Vec<Diagnostic>,
 ) -> (Vec<TopoFace>, Vec<BoundaryLoop>) {
-    let edge_areas = faces::edge_areas(brep, evals);
-    let mut topo_faces = Vec::with_capacity(brep.loops.len());
+    let LoopGeometry {
+        dirs,
+        normals,
+        edge_areas,
+    } = geometry;
+    let shared = &*brep;
+    // Per loop: (on the face side, runs along an edge twice).
+    let kinds: Vec<(bool, bool)> = (0..shared.loops.len())
+        .into_par_iter()
+        .with_min_len(PAR_MIN_LOOPS)
+        .map_init(Vec::new, |hs, li| {
+            let l = LoopId::from_index(li);
+            shared.loop_half_edges_into(l, hs);
+            let (area, normal) = faces::loop_orientation(shared, evals, edge_areas, normals, l, hs);
+            (area.dot(normal) > 0.0, faces::has_bridge(shared, hs))
+        })
+        .collect();
+    let face_loops: Vec<usize> = (0..kinds.len())
+        .filter(|&li| kinds[li].0 && !kinds[li].1)
+        .collect();
+    let mut topo_faces = Vec::new();
+    face_loops
+        .par_iter()
+        .with_min_len(PAR_MIN_LOOPS)
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(hs, corner_flags), &li| {
+                shared.loop_half_edges_into(LoopId::from_index(li), hs);
+                let (corners, sides) = faces::corners_and_sides(shared, dirs, hs, corner_flags);
+                TopoFace {
+                    edges: hs.iter().map(|&h| shared.half_edge(h).edge).collect(),
+                    forward: hs.iter().map(|&h| shared.is_forward(h)).collect(),
+                    corners,
+                    sides,
+                    curves: sorted_curves(shared, hs),
+                }
+            },
+        )
+        .collect_into_vec(&mut topo_faces);
     let mut boundary_loops = Vec::new();
-    let mut edge_stamp = vec![0u32; brep.edges.len()];
-    let (mut hs, mut corner_flags) = (Vec::new(), Vec::new());
-    for li in 0..brep.loops.len() {
+    let mut hs = Vec::new();
+    for (li, &(face_side, bridge)) in kinds.iter().enumerate() {
         let l = LoopId::from_index(li);
-        brep.loop_half_edges_into(l, &mut hs);
-        let (area, normal) = faces::loop_orientation(brep, evals, &edge_areas, normals, l, &hs);
-        let is_face_side = area.dot(normal) > 0.0;
-        let bridge = faces::has_bridge(brep, &hs, &mut edge_stamp, li as u32 + 1);
         let shell = brep.loops[li].shell;
-        let names = sorted_curves(brep, &hs);
-        if is_face_side && !bridge {
+        if face_side && !bridge {
             let f = FaceId::from_index(brep.faces.len());
             brep.faces.push(Face { outer: l, shell });
             brep.loops[li].face = Some(f);
             brep.shells[shell.index()].faces.push(f);
-            let (corners, sides) = faces::corners_and_sides(brep, dirs, &hs, &mut corner_flags);
-            topo_faces.push(TopoFace {
-                edges: hs.iter().map(|&h| brep.half_edge(h).edge).collect(),
-                forward: hs.iter().map(|&h| brep.is_forward(h)).collect(),
-                corners,
-                sides,
-                curves: names,
-            });
-        } else {
-            if is_face_side {
-                diagnostics.push(Diagnostic::UnclosedRegion {
-                    curves: names.iter().map(|&c| curves[c].name.clone()).collect(),
-                    location: brep.vertices[brep.half_edge(hs[0]).origin.index()].position,
-                });
-            }
-            brep.shells[shell.index()].boundaries.push(l);
-            boundary_loops.push(BoundaryLoop {
-                edges: hs.iter().map(|&h| brep.half_edge(h).edge).collect(),
-                curves: names.to_vec(),
+            continue;
+        }
+        brep.loop_half_edges_into(l, &mut hs);
+        let names = sorted_curves(brep, &hs);
+        if face_side {
+            diagnostics.push(Diagnostic::UnclosedRegion {
+                curves: names.iter().map(|&c| curves[c].name.clone()).collect(),
+                location: brep.vertices[brep.half_edge(hs[0]).origin.index()].position,
             });
         }
+        brep.shells[shell.index()].boundaries.push(l);
+        boundary_loops.push(BoundaryLoop {
+            edges: hs.iter().map(|&h| brep.half_edge(h).edge).collect(),
+            curves: names.to_vec(),
+        });
     }
     (topo_faces, boundary_loops)
 }

@@ -62,6 +62,15 @@ impl Topology {
     /// two nodes does not make a corner; a self-intersection makes no node; edges on dangling
     /// branches stay in `brep.edges` without half-edges.
     pub fn build(network: &Network, tolerance: Tolerance) -> Result<Topology, Error> {
+        rayon::scope(|_| Self::build_in_pool(network, tolerance))
+    }
+
+    /// [`Topology::build`] on a thread of rayon's pool (where `build` puts it). Called from
+    /// outside the pool, each parallel step would hand its work to the pool's threads and wait,
+    /// and between the steps those threads would spin on the cores the calling thread needs:
+    /// on two cores the 130 × 66 grid's narrow phase took 3.5 ms so, and 2.1 ms from inside the
+    /// pool.
+    fn build_in_pool(network: &Network, tolerance: Tolerance) -> Result<Topology, Error> {
         let (junctions, evals) = network.junctions_and_pieces(tolerance)?;
         let curves = network.curves();
         let mut diagnostics = junctions.diagnostics.clone();
@@ -74,7 +83,13 @@ impl Topology {
         brep.edges = edges::cut_curves(curves, &junctions, &brep.vertices, tolerance);
         let core = edges::prune_branches(&brep);
         findings::loose_ends(curves, &junctions, &brep, &core, &mut diagnostics);
-        let dirs = half_edges::add_half_edges(&mut brep, &core, &evals);
+        // The half-edges and their directions, and beside them each edge's share of the vector
+        // area of the loops along it (read in step 5).
+        let ((new_half_edges, dirs), edge_areas) = rayon::join(
+            || half_edges::half_edges(&brep.edges, &core, &evals),
+            || faces::edge_areas(&brep, &core, &evals),
+        );
+        half_edges::attach(&mut brep, new_half_edges);
 
         // 4. Normals, the rotation system and the next/prev links.
         let mut rotation = linking::link(&mut brep, &dirs, &evals);
@@ -95,8 +110,11 @@ impl Topology {
             &mut brep,
             curves,
             &evals,
-            &dirs,
-            &rotation.normals,
+            loops::LoopGeometry {
+                dirs: &dirs,
+                normals: &rotation.normals,
+                edge_areas: &edge_areas,
+            },
             &mut diagnostics,
         );
         shells::set_genus(&mut brep, &shell_of, &mut diagnostics);

@@ -21,6 +21,9 @@ use glam::DVec3;
 use super::adjacency::Adjacency;
 use super::rotation::RawNormal;
 
+/// Steps per parallel task at least when the steps are worked out.
+const PAR_MIN_STEPS: usize = 1024;
+
 /// An edge of the network seen from one end: the node at its other end, the unit direction in
 /// which the edge leaves this node and the unit direction of travel in which it arrives at the
 /// other (the opposite of its leaving direction there).
@@ -86,10 +89,10 @@ const CARRIED: u32 = 2;
 /// flipped when it points against the carried one. Nodes without a raw normal (all tangents
 /// parallel) take the carried normal. Returns one unit normal per node (zero for nodes
 /// without edges).
-pub(crate) fn orient_normals<T: Copy>(
+pub(crate) fn orient_normals<T: Copy + Sync>(
     raw: &[Option<RawNormal>],
     steps: &Adjacency<T>,
-    step: impl Fn(T) -> Step,
+    step: impl Fn(T) -> Step + Sync,
 ) -> Vec<DVec3> {
     let n = raw.len();
     // Between two nodes with raw normals: the raw normal carried along the step, against the
@@ -98,7 +101,7 @@ pub(crate) fn orient_normals<T: Copy>(
     // signs), so what it carries is that or its opposite: the agreement is this figure's size
     // and the far node is flipped when its sign differs from the near node's flip. NaN where
     // either node has no raw normal (carried as the search reaches it).
-    let signed: Adjacency<f64> = steps.map_rows(|u, x| {
+    let signed: Adjacency<f64> = steps.par_map_rows(PAR_MIN_STEPS, |u, x| {
         let s = step(x);
         match (raw[u], raw[s.to]) {
             (Some(a), Some(b)) => b.normal.dot(transport(a.normal, s.leaving, s.arriving)),
@@ -184,13 +187,15 @@ pub(crate) fn orient_normals<T: Copy>(
 /// starts from) gives its result exactly, without sorting the nodes or keeping a heap. None
 /// where some node has no raw normal, an agreement is zero or not a number, or two steps
 /// disagree (the maximum spanning tree then decides which one wins).
-fn consistent_orientation<T: Copy>(
+fn consistent_orientation<T: Copy + Sync>(
     raw: &[Option<RawNormal>],
     steps: &Adjacency<T>,
-    step: &impl Fn(T) -> Step,
+    step: &(impl Fn(T) -> Step + Sync),
     signed: &Adjacency<f64>,
 ) -> Option<Vec<DVec3>> {
     let n = raw.len();
+    // The node each step reaches, read once (the searches below walk the steps three times).
+    let targets = steps.par_map_rows(PAR_MIN_STEPS, |_, x| step(x).to);
     let mut flip = vec![false; n];
     let mut part = vec![usize::MAX; n];
     let mut oriented = vec![false; n];
@@ -207,8 +212,7 @@ fn consistent_orientation<T: Copy>(
         queue.push(seed);
         while let Some(u) = queue.pop() {
             members.push(u);
-            for &x in steps.row(u) {
-                let v = step(x).to;
+            for &v in targets.row(u) {
                 if part[v] == usize::MAX {
                     part[v] = seed;
                     queue.push(v);
@@ -223,7 +227,8 @@ fn consistent_orientation<T: Copy>(
                 (start, best) = (v, c);
             }
         }
-        // Flips by breadth-first search from the start, then every step checked.
+        // Flips by breadth-first search from the start; every step is checked on the way (a
+        // node's flip is final once it is queued, and the search walks every member's steps).
         queue.clear();
         queue.push(start);
         oriented[start] = true;
@@ -231,18 +236,16 @@ fn consistent_orientation<T: Copy>(
         while k < queue.len() {
             let u = queue[k];
             k += 1;
-            for (&x, &sign) in steps.row(u).iter().zip(signed.row(u)) {
-                let v = step(x).to;
+            for (&v, &sign) in targets.row(u).iter().zip(signed.row(u)) {
+                if sign.is_nan() || sign == 0.0 {
+                    return None;
+                }
+                let flip_v = (sign < 0.0) != flip[u];
                 if !oriented[v] {
                     oriented[v] = true;
-                    flip[v] = (sign < 0.0) != flip[u];
+                    flip[v] = flip_v;
                     queue.push(v);
-                }
-            }
-        }
-        for &u in &members {
-            for (&x, &sign) in steps.row(u).iter().zip(signed.row(u)) {
-                if sign.is_nan() || sign == 0.0 || ((sign < 0.0) != flip[u]) != flip[step(x).to] {
+                } else if flip[v] != flip_v {
                     return None;
                 }
             }
