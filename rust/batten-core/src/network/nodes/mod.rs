@@ -156,8 +156,8 @@ impl Network {
     /// near misses and not joined. Joins of curves meeting at a shallow angle are moved to a
     /// curve end or to a join with a third curve on the stretch where the two stay within
     /// tolerance. Curve points of all joins and all curve ends are clustered (union–find, with a
-    /// sweep along x for points within the tolerance) into nodes, so the result does not depend
-    /// on curve order, direction or sub-tolerance jitter.
+    /// sweep along a generic direction for points within the tolerance) into nodes, so the
+    /// result does not depend on curve order, direction or sub-tolerance jitter.
     ///
     /// Implementation note: a self-intersection is reported but does not make a node; a
     /// stretch where two curves overlap is reported, its two ends become nodes, and it is kept
