@@ -7,6 +7,7 @@
 //!
 //! The public API is flat: every type is re-exported here and the modules stay private.
 
+mod adjacency;
 mod curve;
 mod defaults;
 mod diagnostic;

@@ -1070,8 +1070,8 @@ pub(crate) fn reassemble(
     })
 }
 
-/// The report of assembled stages ([`assemble_welded`]), refused with [`Error::NoSurface`] when its
-/// figures overflow.
+/// The report of assembled stages ([`assemble_welded`]), refused with [`Error::NoSurface`]
+/// when its figures overflow.
 pub(crate) fn measure(
     network: &Network,
     options: &HullOptions,

@@ -2,8 +2,8 @@
 //! into edges, parameter intervals `[t0, t1]` of the curve (H-rep paper §3.1: the designer's
 //! curve stays the fundamental entity), and the edges that can bound a region.
 
-use super::adjacency::Adjacency;
 use super::brep::{Brep, Edge, Vertex, VertexId};
+use crate::adjacency::Adjacency;
 use crate::network::{Junctions, NetworkCurve};
 use crate::tolerance::Tolerance;
 

@@ -64,8 +64,9 @@ pub(crate) fn half_edges(
 /// pair.
 pub(crate) fn attach(brep: &mut Brep, half_edges: Vec<HalfEdge>) {
     debug_assert!(brep.half_edges.is_empty(), "a B-rep without half-edges");
-    for pair in half_edges.chunks_exact(2) {
-        brep.edges[pair[0].edge.index()].half_edges = Some([pair[1].twin, pair[0].twin]);
+    for (k, pair) in half_edges.chunks_exact(2).enumerate() {
+        let ids = [2 * k, 2 * k + 1].map(HalfEdgeId::from_index);
+        brep.edges[pair[0].edge.index()].half_edges = Some(ids);
     }
     brep.half_edges = half_edges;
 }

@@ -7,10 +7,10 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::adjacency::Adjacency;
 use super::brep::{Brep, HalfEdgeId};
 use super::orientation::{orient_normals, Step};
 use super::rotation::{ccw_order, confidence, off_plane, raw_normal, tip_plane, RawNormal};
+use crate::adjacency::Adjacency;
 use crate::curve::BezierDecomposition;
 
 /// A node whose unit edge tangents have a tip farther than this from the best plane through
@@ -85,7 +85,7 @@ pub(crate) fn link(
         .collect();
     let raw: Vec<Option<RawNormal>> = per_vertex.into_iter().map(|(raw, _)| raw).collect();
     let neighbours = outgoing.map(|h| brep.destination(h).index());
-    let normals = orient_normals(&raw, &outgoing, |h| Step {
+    let normals = orient_normals(&raw, &outgoing, &neighbours, |h| Step {
         to: brep.destination(h).index(),
         leaving: dirs[h.index()],
         arriving: -dirs[brep.half_edge(h).twin.index()],

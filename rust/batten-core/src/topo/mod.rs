@@ -7,7 +7,6 @@
 //! [`orientation`]) → [`shells`] and [`loops`] (faces and boundary loops) → [`findings`] (with
 //! the B-rep [`checks`]).
 
-mod adjacency;
 mod brep;
 mod checks;
 mod edges;

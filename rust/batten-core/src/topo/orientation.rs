@@ -18,8 +18,8 @@ use std::collections::BinaryHeap;
 
 use glam::DVec3;
 
-use super::adjacency::Adjacency;
 use super::rotation::RawNormal;
+use crate::adjacency::Adjacency;
 
 /// Steps per parallel task at least when the steps are worked out.
 const PAR_MIN_STEPS: usize = 1024;
@@ -83,15 +83,17 @@ const FLIP: u32 = 1;
 const CARRIED: u32 = 2;
 
 /// Orient the raw normals consistently over each connected part of the graph `steps` (per
-/// node, its edges, each made into a [`Step`] by `step`): each part starts at its most
-/// confident normal, taken as it is, and grows by the candidate edge whose far node's raw
-/// normal agrees best with the normal carried to it ([`transport`]); that node's normal is
-/// flipped when it points against the carried one. Nodes without a raw normal (all tangents
-/// parallel) take the carried normal. Returns one unit normal per node (zero for nodes
-/// without edges).
+/// node, its edges, each made into a [`Step`] by `step`; `targets` holds, in the same shape,
+/// the node each step reaches, `step(x).to`, which the caller has at hand): each part starts
+/// at its most confident normal, taken as it is, and grows by the candidate edge whose far
+/// node's raw normal agrees best with the normal carried to it ([`transport`]); that node's
+/// normal is flipped when it points against the carried one. Nodes without a raw normal (all
+/// tangents parallel) take the carried normal. Returns one unit normal per node (zero for
+/// nodes without edges).
 pub(crate) fn orient_normals<T: Copy + Sync>(
     raw: &[Option<RawNormal>],
     steps: &Adjacency<T>,
+    targets: &Adjacency<usize>,
     step: impl Fn(T) -> Step + Sync,
 ) -> Vec<DVec3> {
     let n = raw.len();
@@ -108,7 +110,7 @@ pub(crate) fn orient_normals<T: Copy + Sync>(
             _ => f64::NAN,
         }
     });
-    if let Some(out) = consistent_orientation(raw, steps, &step, &signed) {
+    if let Some(out) = consistent_orientation(raw, targets, &signed) {
         return out;
     }
     let mut out = vec![DVec3::ZERO; n];
@@ -187,22 +189,19 @@ pub(crate) fn orient_normals<T: Copy + Sync>(
 /// starts from) gives its result exactly, without sorting the nodes or keeping a heap. None
 /// where some node has no raw normal, an agreement is zero or not a number, or two steps
 /// disagree (the maximum spanning tree then decides which one wins).
-fn consistent_orientation<T: Copy + Sync>(
+fn consistent_orientation(
     raw: &[Option<RawNormal>],
-    steps: &Adjacency<T>,
-    step: &(impl Fn(T) -> Step + Sync),
+    targets: &Adjacency<usize>,
     signed: &Adjacency<f64>,
 ) -> Option<Vec<DVec3>> {
     let n = raw.len();
-    // The node each step reaches, read once (the searches below walk the steps three times).
-    let targets = steps.par_map_rows(PAR_MIN_STEPS, |_, x| step(x).to);
     let mut flip = vec![false; n];
     let mut part = vec![usize::MAX; n];
     let mut oriented = vec![false; n];
     let mut queue: Vec<usize> = Vec::new();
     let mut members: Vec<usize> = Vec::new();
     for seed in 0..n {
-        if part[seed] != usize::MAX || steps.row(seed).is_empty() {
+        if part[seed] != usize::MAX || targets.row(seed).is_empty() {
             continue;
         }
         // The part of `seed`, then its most confident node (lowest index among equals).
@@ -314,16 +313,16 @@ mod tests {
                 .zip([a, b, c])
                 .all(|(got, want)| (*got - want).length() < 1e-12)
         };
-        let out = orient_normals(&normals, &steps, |s| s);
+        let out = orient_normals(&normals, &steps, &steps.map(|s| s.to), |s| s);
         assert!(near(&out), "{out:?}");
         // With b's normal turned round, the cycle still disagrees: b is flipped back.
         normals[1].as_mut().expect("a normal").normal *= -1.0;
-        let out = orient_normals(&normals, &steps, |s| s);
+        let out = orient_normals(&normals, &steps, &steps.map(|s| s.to), |s| s);
         assert!(near(&out), "{out:?}");
         // Where the signs agree (c's plane tilted the other way) every path gives the same.
         let c2 = DVec3::new(1.0, 0.0, 0.2).normalize();
         normals[2].as_mut().expect("a normal").normal = -c2;
-        let out = orient_normals(&normals, &steps, |s| s);
+        let out = orient_normals(&normals, &steps, &steps.map(|s| s.to), |s| s);
         assert!((out[2] - c2).length() < 1e-12, "{out:?}");
     }
 
@@ -367,7 +366,7 @@ mod tests {
         );
         let mut normals = vec![raw(DVec3::Z), raw(-outward)];
         normals[1].as_mut().expect("a normal").confidence = 0.5;
-        let out = orient_normals(&normals, &steps, |s| s);
+        let out = orient_normals(&normals, &steps, &steps.map(|s| s.to), |s| s);
         assert!(
             (out[0] - DVec3::Z).length() < 1e-12,
             "start kept: {}",

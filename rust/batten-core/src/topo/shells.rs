@@ -4,10 +4,10 @@
 
 use glam::DVec3;
 
-use super::adjacency::Adjacency;
 use super::brep::{Brep, LoopId, Shell};
 use super::faces;
 use super::rotation::RawNormal;
+use crate::adjacency::Adjacency;
 use crate::curve::BezierDecomposition;
 use crate::diagnostic::Diagnostic;
 

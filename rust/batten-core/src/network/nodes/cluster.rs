@@ -82,27 +82,22 @@ fn total_order_bits(x: f64) -> u64 {
 fn pairs_within(points: &[CurvePoint], first_pair: usize, tol: f64) -> Vec<(usize, usize)> {
     let along = SWEEP.normalize();
     let groups = first_pair + (points.len() - first_pair) / 2;
-    let members = |g: usize| -> &[CurvePoint] {
-        if g < first_pair {
-            &points[g..=g]
-        } else {
-            let i = first_pair + 2 * (g - first_pair);
-            &points[i..i + 2]
-        }
-    };
-    let first = |g: usize| {
-        if g < first_pair {
+    // Group `g`: the index of its first point, and its points.
+    let group = |g: usize| {
+        let i = if g < first_pair {
             g
         } else {
             first_pair + 2 * (g - first_pair)
-        }
+        };
+        (i, &points[i..i + usize::from(g >= first_pair) + 1])
     };
-    let spread = (first_pair..groups)
-        .map(|g| members(g)[0].point.distance(members(g)[1].point))
+    let spread = points[first_pair..]
+        .chunks_exact(2)
+        .map(|p| p[0].point.distance(p[1].point))
         .fold(0.0, f64::max);
     let reach = tol + 2.0 * spread;
     let key: Vec<f64> = (0..groups)
-        .map(|g| members(g)[0].point.dot(along))
+        .map(|g| points[group(g).0].point.dot(along))
         .collect();
     // Sorted by the keys' total order (as `f64::total_cmp`), then by index: as integers, which
     // sort faster than floats compared through a closure.
@@ -115,11 +110,12 @@ fn pairs_within(points: &[CurvePoint], first_pair: usize, tol: f64) -> Vec<(usiz
                 break;
             }
             // The first pair of members within the tolerance, if any, joins the two groups.
-            let close = (0..members(g).len())
-                .flat_map(|x| (0..members(h).len()).map(move |y| (x, y)))
-                .find(|&(x, y)| members(g)[x].point.distance(members(h)[y].point) <= tol);
+            let ((i, gs), (j, hs)) = (group(g), group(h));
+            let close = (0..gs.len())
+                .flat_map(|x| (0..hs.len()).map(move |y| (x, y)))
+                .find(|&(x, y)| gs[x].point.distance(hs[y].point) <= tol);
             if let Some((x, y)) = close {
-                pairs.push((first(g) + x, first(h) + y));
+                pairs.push((i + x, j + y));
             }
         }
     }

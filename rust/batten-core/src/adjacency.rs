@@ -1,5 +1,6 @@
-//! Lists per vertex kept in one flat array (compressed rows), so building the topology does
-//! not allocate a small vector for every node.
+//! Lists per row kept in one flat array (compressed rows): the topology's lists per vertex,
+//! without a small vector for every node, and the node search's candidate pairs counted out
+//! by curve.
 
 use rayon::prelude::*;
 
@@ -14,7 +15,7 @@ pub(crate) struct Adjacency<T> {
 impl<T: Copy> Adjacency<T> {
     /// Rows `0..rows` holding the items of `pairs` (`(row, item)`), each row in the order the
     /// pairs come. `pairs` is walked twice: once to count, once to fill.
-    pub(super) fn from_pairs<I>(rows: usize, pairs: I) -> Self
+    pub(crate) fn from_pairs<I>(rows: usize, pairs: I) -> Self
     where
         I: Iterator<Item = (usize, T)> + Clone,
     {
@@ -39,7 +40,7 @@ impl<T: Copy> Adjacency<T> {
     }
 
     /// A list of the same shape (row lengths) with `f` applied to every item.
-    pub(super) fn map<U: Copy>(&self, f: impl Fn(T) -> U) -> Adjacency<U> {
+    pub(crate) fn map<U: Copy>(&self, f: impl Fn(T) -> U) -> Adjacency<U> {
         Adjacency {
             start: self.start.clone(),
             items: self.items.iter().map(|&x| f(x)).collect(),
@@ -48,7 +49,7 @@ impl<T: Copy> Adjacency<T> {
 
     /// A list of the same shape with `f(row, item)` applied to every item, the items worked
     /// on in parallel (at least `min_items` per task).
-    pub(super) fn par_map_rows<U: Copy + Send>(
+    pub(crate) fn par_map_rows<U: Copy + Send>(
         &self,
         min_items: usize,
         f: impl Fn(usize, T) -> U + Sync,
@@ -75,18 +76,23 @@ impl<T: Copy> Adjacency<T> {
     }
 
     /// Number of rows.
-    pub(super) fn rows(&self) -> usize {
+    pub(crate) fn rows(&self) -> usize {
         self.start.len() - 1
     }
 
     /// The items of row `r`.
-    pub(super) fn row(&self, r: usize) -> &[T] {
+    pub(crate) fn row(&self, r: usize) -> &[T] {
         &self.items[self.start[r]..self.start[r + 1]]
+    }
+
+    /// The items, row after row.
+    pub(crate) fn into_items(self) -> Vec<T> {
+        self.items
     }
 
     /// Every row's items, each to reorder in place (rows apart, so they can be worked on in
     /// parallel).
-    pub(super) fn rows_mut(&mut self) -> Vec<&mut [T]> {
+    pub(crate) fn rows_mut(&mut self) -> Vec<&mut [T]> {
         let Adjacency { start, items } = self;
         let mut rows = Vec::with_capacity(start.len() - 1);
         let mut rest: &mut [T] = items;
