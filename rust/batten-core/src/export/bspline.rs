@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::curve::{basis_funs, find_span, NurbsCurve, MAX_ORDER};
+use crate::curve::{basis_funs, ders_basis_funs, find_span, NurbsCurve, MAX_ORDER};
 
 /// Degree of every exported curve and surface in both directions (cubic: C² inside a patch,
 /// and what every CAD reader takes).
@@ -57,6 +57,37 @@ impl BsplineSurface {
                 .map(|(c, &w)| *c * w)
                 .sum();
             out += acc * na;
+        }
+        out
+    }
+
+    /// The surface point and its first partial derivatives `[S, S_u, S_v]` at `(u, v)`
+    /// (clamped into `[0, 1]²`), from the basis functions' derivatives (Piegl & Tiller A3.6).
+    pub fn eval_derivs(&self, u: f64, v: f64) -> [DVec3; 3] {
+        let p = EXPORT_DEGREE;
+        let ders = |knots: &[f64], count: usize, t: f64| {
+            let t = t.clamp(0.0, 1.0);
+            let span = find_span(knots, p, count, t);
+            let mut d = [[0.0; MAX_ORDER]; 4];
+            ders_basis_funs(knots, span, t, p, 1, &mut d);
+            (span, d)
+        };
+        let (su, du) = ders(&self.knots_u, self.count_u, u);
+        let (sv, dv) = ders(&self.knots_v, self.count_v, v);
+        let mut out = [DVec3::ZERO; 3];
+        for (a, (&n, &dn)) in du[0][..=p].iter().zip(&du[1][..=p]).enumerate() {
+            let row = (su - p + a) * self.count_v + sv - p;
+            let (mut s, mut s_v) = (DVec3::ZERO, DVec3::ZERO);
+            for (c, (&m, &dm)) in self.control[row..=row + p]
+                .iter()
+                .zip(dv[0][..=p].iter().zip(&dv[1][..=p]))
+            {
+                s += *c * m;
+                s_v += *c * dm;
+            }
+            out[0] += s * n;
+            out[1] += s * dn;
+            out[2] += s_v * n;
         }
         out
     }
@@ -246,6 +277,44 @@ mod tests {
         let r = sub_curve(&c, 0.8, 0.2).unwrap();
         let d = (r.point(0.0) - c.point(0.8)).length() + (r.point(1.0) - c.point(0.2)).length();
         assert!(d < 1e-12, "reversed piece ends off by {d}");
+    }
+
+    #[test]
+    fn surface_derivatives_are_the_slopes_of_the_surface() {
+        let (nu, nv) = (6, 5);
+        let control = (0..nu)
+            .flat_map(|i| {
+                (0..nv).map(move |j| {
+                    let (x, y) = (i as f64, j as f64);
+                    DVec3::new(x + 0.3 * y, y - 0.2 * x * x, (x * y).sin())
+                })
+            })
+            .collect();
+        let s = BsplineSurface {
+            knots_u: clamped(&[0.3, 0.5]),
+            knots_v: clamped(&[0.6]),
+            count_u: nu,
+            count_v: nv,
+            control,
+        };
+        let h = 1e-6;
+        for &(u, v) in &[(0.1, 0.2), (0.4, 0.7), (0.55, 0.95), (0.9, 0.6)] {
+            let [p, su, sv] = s.eval_derivs(u, v);
+            assert!(
+                (p - s.eval(u, v)).length() < 1e-12,
+                "the point at ({u}, {v})"
+            );
+            let du = (s.eval(u + h, v) - s.eval(u - h, v)) / (2.0 * h);
+            let dv = (s.eval(u, v + h) - s.eval(u, v - h)) / (2.0 * h);
+            assert!(
+                (su - du).length() < 1e-6 * du.length().max(1.0),
+                "S_u {su} vs {du}"
+            );
+            assert!(
+                (sv - dv).length() < 1e-6 * dv.length().max(1.0),
+                "S_v {sv} vs {dv}"
+            );
+        }
     }
 
     #[test]

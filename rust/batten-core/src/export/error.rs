@@ -9,9 +9,13 @@ use thiserror::Error;
 pub struct UnfittedFace {
     /// The patch's face in the topology.
     pub face: usize,
-    /// The smallest largest deviation (m) the fits reached (infinite where its boundary
-    /// curves could not be fitted or represented at all).
+    /// The largest deviation (m) its last fits reached (infinite where its boundary curves
+    /// could not be fitted or represented at all).
     pub deviation: f64,
+    /// Whether its fits turned over (folded in their own tangent plane) somewhere: they follow
+    /// a fold of the patch (one the build's mesh may step over) that no unfolded face smooths
+    /// over within the tolerance.
+    pub turned: bool,
 }
 
 /// The faces of [`ExportError::NotConverged`], each with what its fit reached.
@@ -23,7 +27,16 @@ impl fmt::Display for UnfittedFaces {
         for (k, u) in self.0.iter().enumerate() {
             let sep = if k == 0 { "" } else { ", " };
             if u.deviation.is_finite() {
-                write!(f, "{sep}face {} (reached {:.3e} m)", u.face, u.deviation)?;
+                let turned = if u.turned {
+                    ", turning over where the patch folds in its own tangent plane"
+                } else {
+                    ""
+                };
+                write!(
+                    f,
+                    "{sep}face {} (reached {:.3e} m{turned})",
+                    u.face, u.deviation
+                )?;
             } else {
                 write!(
                     f,

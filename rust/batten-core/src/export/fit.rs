@@ -44,8 +44,32 @@ pub const MAX_SURFACE_CELLS: usize = 8192;
 /// system was singular (the deviation reached so far is given).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FitFailed {
-    /// The largest deviation of the last fit (m), infinite when no fit was made.
+    /// The largest deviation of the best fit (m), infinite when no fit was made.
     pub(crate) deviation: f64,
+    /// Whether the last fit turned over somewhere (a face only; see [`turned_over`]).
+    pub(crate) turned: bool,
+}
+
+impl FitFailed {
+    /// Nothing could be fitted (a boundary curve f64 cannot hold, a singular system at once).
+    pub(crate) const NOTHING: FitFailed = FitFailed::short(f64::INFINITY);
+
+    /// A fit that did not get within its tolerance.
+    const fn short(deviation: f64) -> FitFailed {
+        FitFailed {
+            deviation,
+            turned: false,
+        }
+    }
+
+    /// The worse of two failures of one patch's fits: the larger deviation, turned if either
+    /// turned.
+    pub(crate) fn worse(self, other: FitFailed) -> FitFailed {
+        FitFailed {
+            deviation: self.deviation.max(other.deviation),
+            turned: self.turned || other.turned,
+        }
+    }
 }
 
 /// The distinct knots of a clamped knot vector (span ends, 0 and 1 included).
@@ -143,12 +167,12 @@ pub(crate) fn fit_curve(
             rows.push(interior_row(span, &n, count));
             rhs.push(r);
         }
-        let inner = solve_interior(&rows, &rhs, count).ok_or(FitFailed { deviation })?;
+        let inner = solve_interior(&rows, &rhs, count).ok_or(FitFailed::short(deviation))?;
         let mut points = Vec::with_capacity(count);
         points.push(start);
         points.extend(inner);
         points.push(end);
-        let c = curve(knots, points).ok_or(FitFailed { deviation })?;
+        let c = curve(knots, points).ok_or(FitFailed::short(deviation))?;
         let mut over = vec![false; breaks.len() - 1];
         deviation = 0.0;
         for (k, t) in span_samples(&breaks, &CHECK_FRACTIONS, true) {
@@ -160,10 +184,188 @@ pub(crate) fn fit_curve(
             return Ok((c, deviation));
         }
         if breaks.len() > MAX_CURVE_SPANS {
-            return Err(FitFailed { deviation });
+            return Err(FitFailed::short(deviation));
         }
         knots_in = bisected(&knots_in, &breaks, &over);
     }
+}
+
+/// Gauss–Newton steps [`deviation_at`] takes towards the foot point: from the sample's own
+/// parameters, a few steps reach it to rounding where the surface is within a few tolerances.
+const FOOT_STEPS: usize = 6;
+
+/// How a fitted face compares with its target at one check sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Sample {
+    /// The distance (m) from the target's point to a point of the face (never less than the
+    /// distance to the face).
+    distance: f64,
+    /// The face's normal `S_u × S_v` at the sample's own parameters (not unit).
+    normal: DVec3,
+    /// Whether the face's point at the sample's parameters is more than the tolerance from
+    /// the target's (the distance is then to another point of the face).
+    slid: bool,
+}
+
+/// How far the fitted `surface` lies from the target's point `p = target(u, v)`: `|S(u, v) − p|`
+/// where that is within `tol`; else the distance from `p` to the nearest point of the surface
+/// found by Gauss–Newton steps from `(u, v)` (Piegl & Tiller §6.1, point inversion), so that a
+/// face is judged by its shape, not by how its parameters run. A patch's parameters can run
+/// unevenly where its surface is smooth (Kato's side-blended patch near its corners, whose
+/// blend is continuous but not smooth in the parameters; a Gregory patch across a T-joint of
+/// its side): a cubic follows the shape there but not the parameters. Every distance is from
+/// `p` to an actual point of the surface, so never less than the true distance.
+///
+/// Sliding lets a face fold in its own tangent plane and still lie close to the target, so
+/// the fit also checks that the face does not turn over ([`turned_over`]).
+fn deviation_at(
+    surface: &BsplineSurface,
+    target: &impl Fn(f64, f64) -> DVec3,
+    u: f64,
+    v: f64,
+    tol: f64,
+) -> Sample {
+    let p = target(u, v);
+    let (mut a, mut b) = (u, v);
+    let mut best = f64::INFINITY;
+    let mut normal = DVec3::ZERO;
+    let mut slid = false;
+    for step in 0..=FOOT_STEPS {
+        let [s, su, sv] = surface.eval_derivs(a, b);
+        if step == 0 {
+            normal = su.cross(sv);
+        }
+        let r = p - s;
+        best = best.min(r.length());
+        if step == 0 {
+            slid = best > tol;
+        }
+        if step == FOOT_STEPS || !slid {
+            break;
+        }
+        let (uu, uv, vv) = (su.dot(su), su.dot(sv), sv.dot(sv));
+        let det = uu * vv - uv * uv;
+        if det.is_nan() || det <= 0.0 {
+            break;
+        }
+        let (gu, gv) = (su.dot(r), sv.dot(r));
+        let next = (
+            (a + (vv * gu - uv * gv) / det).clamp(0.0, 1.0),
+            (b + (uu * gv - uv * gu) / det).clamp(0.0, 1.0),
+        );
+        if next == (a, b) {
+            break;
+        }
+        (a, b) = next;
+    }
+    Sample {
+        distance: best,
+        normal,
+        slid,
+    }
+}
+
+/// Whether a face turns over between two neighbouring check samples where it has slid along
+/// the target: their normals point away from each other, and at least one of them is more
+/// than the tolerance from the target's point at its parameters. Check samples lie a
+/// sixteenth of a span apart, and a smooth face turns by far less than a right angle over
+/// that; one that turns over there has folded (a zero normal, at a singular point, decides
+/// nothing). Where the face keeps to the target's parameters, it turns only where the target
+/// does (a patch may fold thinly, as at a T-joint of its side), and follows it faithfully.
+fn turned_over(a: &Sample, b: &Sample) -> bool {
+    (a.slid || b.slid) && a.normal.dot(b.normal) < 0.0
+}
+
+/// What [`check`] found of a fitted face.
+#[derive(Clone, Debug, PartialEq)]
+struct Check {
+    /// The largest distance from a target sample to the face (m).
+    deviation: f64,
+    /// The cells (`i` along `u` times the spans along `v`, plus `j`) over the tolerance or
+    /// where the face turns over.
+    failing: Vec<bool>,
+    /// Whether the face turns over anywhere.
+    turned: bool,
+}
+
+/// The fitted `surface` against `target` at the check samples of every cell between the
+/// breakpoints `bu` × `bv`: each sample's distance ([`deviation_at`]), and whether the face
+/// turns over between neighbouring samples ([`turned_over`]; both cells of such a pair fail).
+fn check(
+    surface: &BsplineSurface,
+    target: &impl Fn(f64, f64) -> DVec3,
+    bu: &[f64],
+    bv: &[f64],
+    tol: f64,
+) -> Check {
+    let cells_v = bv.len() - 1;
+    let mut out = Check {
+        deviation: 0.0,
+        failing: vec![false; (bu.len() - 1) * cells_v],
+        turned: false,
+    };
+    let (cu, cv) = (
+        span_samples(bu, &CHECK_FRACTIONS, true),
+        span_samples(bv, &CHECK_FRACTIONS, true),
+    );
+    // The row of samples before (along v), to compare with their neighbours.
+    let mut previous: Vec<Sample> = Vec::with_capacity(cv.len());
+    let mut row: Vec<Sample> = Vec::with_capacity(cv.len());
+    for (a, &(i, u)) in cu.iter().enumerate() {
+        row.clear();
+        for (b, &(j, v)) in cv.iter().enumerate() {
+            let sample = deviation_at(surface, target, u, v, tol);
+            out.deviation = out.deviation.max(sample.distance);
+            let fold_u = a > 0 && turned_over(&previous[b], &sample);
+            let fold_v = b > 0 && turned_over(&row[b - 1], &sample);
+            if sample.distance > tol || fold_u || fold_v {
+                out.failing[i * cells_v + j] = true;
+            }
+            // At a span's start the neighbour before lies in the cell before.
+            if fold_u {
+                out.failing[cu[a - 1].0 * cells_v + j] = true;
+            }
+            if fold_v {
+                out.failing[i * cells_v + cv[b - 1].0] = true;
+            }
+            out.turned |= fold_u || fold_v;
+            row.push(sample);
+        }
+        std::mem::swap(&mut previous, &mut row);
+    }
+    out
+}
+
+/// Which directions of the cell `[u0, u1] × [v0, v1]` of a face over the tolerance to halve:
+/// the direction(s) along which the target bends most off its tangent plane across the cell.
+/// The error of a cubic span of width `h` grows as `h⁴` times the fourth derivative along it;
+/// the fourth difference of five target points across the cell's middle line, taken along
+/// the surface normal (the parameters' own unevenness is not an error, see [`deviation_at`]),
+/// estimates it in each direction. A direction is halved when its estimate is at least half
+/// the other's, so both are where they are alike, and both where neither bends (the cell is
+/// over for another reason: a kink, a singular corner).
+fn directions_to_refine(
+    surface: &BsplineSurface,
+    target: &impl Fn(f64, f64) -> DVec3,
+    [u0, u1]: [f64; 2],
+    [v0, v1]: [f64; 2],
+) -> (bool, bool) {
+    let (um, vm) = (0.5 * (u0 + u1), 0.5 * (v0 + v1));
+    let [_, su, sv] = surface.eval_derivs(um, vm);
+    let normal = su.cross(sv).normalize_or_zero();
+    let fourth = |point: &dyn Fn(f64) -> DVec3| {
+        let f: [DVec3; 5] = std::array::from_fn(|k| point(k as f64 / 4.0));
+        (f[0] - 4.0 * f[1] + 6.0 * f[2] - 4.0 * f[3] + f[4])
+            .dot(normal)
+            .abs()
+    };
+    let along_u = fourth(&|t| target(u0 + t * (u1 - u0), vm));
+    let along_v = fourth(&|t| target(um, v0 + t * (v1 - v0)));
+    let largest = along_u.max(along_v);
+    if largest.is_nan() || largest <= 0.0 || normal == DVec3::ZERO {
+        return (true, true);
+    }
+    (along_u >= 0.5 * largest, along_v >= 0.5 * largest)
 }
 
 /// The four boundary curves of a quad, each on `[0, 1]`: `bottom` (`v = 0`) and `top`
@@ -187,12 +389,17 @@ fn bases(knots: &[f64], count: usize, ts: &[(usize, f64)]) -> Vec<(usize, [f64; 
 }
 
 /// The bicubic surface inside `boundary` that approximates `target` within `tol` at every
-/// check sample (or, where refining cannot get there — a singular system near a degenerate
-/// corner, or [`MAX_SURFACE_SPANS`] or [`MAX_SURFACE_CELLS`] reached —, the last fit if it is within `limit`): boundary rows and columns from the curves (knot vectors the union of the
-/// opposite curves', refined by exact knot insertion), interior control points by least
-/// squares on a grid of samples, solved along `u` then along `v` (the tensor-product system
-/// separates); spans over the tolerance are halved in both directions and the fit is made
-/// again. Returns the surface and its measured deviation.
+/// check sample ([`deviation_at`]: the distance from the target's point to the surface, the
+/// surface never turned over against the target), or — where refining cannot get there: a
+/// singular system near a degenerate corner, [`MAX_SURFACE_SPANS`] or [`MAX_SURFACE_CELLS`]
+/// reached — the best fit that did not turn over, if it is within `limit`.
+///
+/// Boundary rows and columns come from the curves (knot vectors the union of the opposite
+/// curves', refined by exact knot insertion), interior control points from least squares on a
+/// grid of samples, solved along `u` then along `v` (the tensor-product system separates).
+/// Every cell over the tolerance has its spans halved along the direction(s) it bends in
+/// ([`directions_to_refine`]), and the fit is made again. Returns the surface and its measured
+/// deviation.
 pub(crate) fn fit_surface(
     target: impl Fn(f64, f64) -> DVec3,
     boundary: &QuadBoundary,
@@ -200,9 +407,9 @@ pub(crate) fn fit_surface(
     limit: f64,
 ) -> Result<(BsplineSurface, f64), FitFailed> {
     let mut best: Option<(BsplineSurface, f64)> = None;
-    let give_up = |best: Option<(BsplineSurface, f64)>, deviation: f64| match best {
+    let give_up = |best: Option<(BsplineSurface, f64)>, last: FitFailed| match best {
         Some((s, d)) if d <= limit => Ok((s, d)),
-        _ => Err(FitFailed { deviation }),
+        _ => Err(last),
     };
     let mut ku = knot_union(
         interior(boundary.bottom.knots()),
@@ -212,7 +419,7 @@ pub(crate) fn fit_surface(
         interior(boundary.left.knots()),
         interior(boundary.right.knots()),
     );
-    let mut deviation = f64::INFINITY;
+    let mut last = FitFailed::short(f64::INFINITY);
     loop {
         let (knots_u, knots_v) = (clamped(&ku), clamped(&kv));
         let (nu, nv) = (ku.len() + EXPORT_DEGREE + 1, kv.len() + EXPORT_DEGREE + 1);
@@ -223,7 +430,7 @@ pub(crate) fn fit_surface(
             refined_points(&boundary.right, &kv),
         ];
         let [Some(bottom), Some(top), Some(left), Some(right)] = rows else {
-            return give_up(best, deviation);
+            return give_up(best, last);
         };
         let mut control = vec![DVec3::ZERO; nu * nv];
         for j in 1..nv - 1 {
@@ -273,51 +480,49 @@ pub(crate) fn fit_surface(
             let rhs: Vec<DVec3> = residual.iter().map(|r| r[b]).collect();
             match solve_interior(&rows_u, &rhs, nu) {
                 Some(col) => y.push(col),
-                None => return give_up(best, deviation),
+                None => return give_up(best, last),
             }
         }
         // Along v for every interior column.
         for i in 1..nu - 1 {
             let rhs: Vec<DVec3> = y.iter().map(|yb| yb[i - 1]).collect();
             let Some(x) = solve_interior(&rows_v, &rhs, nv) else {
-                return give_up(best, deviation);
+                return give_up(best, last);
             };
             for (j, p) in x.into_iter().enumerate() {
                 surface.control[i * nv + j + 1] = p;
             }
         }
         if !surface.control.iter().all(|p| p.is_finite()) {
-            return give_up(best, deviation);
+            return give_up(best, last);
         }
+        let Check {
+            deviation,
+            failing,
+            turned,
+        } = check(&surface, &target, &bu, &bv, tol);
         let (mut over_u, mut over_v) = (vec![false; bu.len() - 1], vec![false; bv.len() - 1]);
-        deviation = 0.0;
-        let (cu, cv) = (
-            span_samples(&bu, &CHECK_FRACTIONS, true),
-            span_samples(&bv, &CHECK_FRACTIONS, true),
-        );
-        for &(ku_span, u) in &cu {
-            for &(kv_span, v) in &cv {
-                let d = (surface.eval(u, v) - target(u, v)).length();
-                deviation = deviation.max(d);
-                if d > tol {
-                    over_u[ku_span] = true;
-                    over_v[kv_span] = true;
-                }
-            }
-        }
-        if !over_u.contains(&true) {
+        if !failing.contains(&true) {
             return Ok((surface, deviation));
         }
-        if best.as_ref().is_none_or(|b| deviation < b.1) {
+        for (cell, _) in failing.iter().enumerate().filter(|(_, &f)| f) {
+            let (i, j) = (cell / over_v.len(), cell % over_v.len());
+            let (along_u, along_v) =
+                directions_to_refine(&surface, &target, [bu[i], bu[i + 1]], [bv[j], bv[j + 1]]);
+            over_u[i] |= along_u;
+            over_v[j] |= along_v;
+        }
+        if !turned && best.as_ref().is_none_or(|b| deviation < b.1) {
             best = Some((surface, deviation));
         }
+        last = FitFailed { deviation, turned };
         let (su, sv) = (bu.len() - 1, bv.len() - 1);
         let (nu_next, nv_next) = (
             su + over_u.iter().filter(|&&o| o).count(),
             sv + over_v.iter().filter(|&&o| o).count(),
         );
         if nu_next.max(nv_next) > MAX_SURFACE_SPANS || nu_next * nv_next > MAX_SURFACE_CELLS {
-            return give_up(best, deviation);
+            return give_up(best, last);
         }
         ku = bisected(&ku, &bu, &over_u);
         kv = bisected(&kv, &bv, &over_v);
@@ -342,6 +547,137 @@ mod tests {
             assert_eq!(c.point(0.0), f(0.0), "start interpolated");
             assert_eq!(c.point(1.0), f(1.0), "end interpolated");
         }
+    }
+
+    /// The boundary curves of `s` on the unit square, each fitted to a quarter of `tol`.
+    fn boundary_of(s: &dyn Fn(f64, f64) -> DVec3, tol: f64) -> QuadBoundary {
+        let fit = |g: &dyn Fn(f64) -> DVec3| fit_curve(g, &[], 0.25 * tol).expect("edge").0;
+        QuadBoundary {
+            bottom: fit(&|t| s(t, 0.0)),
+            top: fit(&|t| s(t, 1.0)),
+            left: fit(&|t| s(0.0, t)),
+            right: fit(&|t| s(1.0, t)),
+        }
+    }
+
+    #[test]
+    fn a_face_is_judged_by_its_shape_not_by_how_its_parameters_run() {
+        // A tilted plane whose parameter u runs four times as fast on its first quarter as
+        // after it (a kink in the parameters, as at a T-joint), inside straight sides that
+        // run evenly: one cubic span lies in the plane but cannot follow the kink.
+        let plane = |x: f64, y: f64| DVec3::new(x, y, 0.2 * x + 0.1 * y);
+        let kinked = |u: f64| {
+            if u < 0.25 {
+                2.0 * u
+            } else {
+                0.5 + (u - 0.25) * 2.0 / 3.0
+            }
+        };
+        let target = |u: f64, v: f64| plane(kinked(u), v);
+        let tol = 1e-6;
+        let boundary = boundary_of(&|u, v| plane(u, v), tol);
+        let (surf, dev) = fit_surface(target, &boundary, 0.5 * tol, tol).expect("a fit");
+        assert!(dev <= 0.5 * tol, "deviation {dev}");
+        assert_eq!(
+            (surf.count_u, surf.count_v),
+            (4, 4),
+            "one span each way: the shape needs no more"
+        );
+        let slide = (0..=40)
+            .map(|a| {
+                let u = a as f64 / 40.0;
+                (surf.eval(u, 0.5) - target(u, 0.5)).length()
+            })
+            .fold(0.0, f64::max);
+        assert!(
+            slide > 1e3 * tol,
+            "its parameters slide along the plane by {slide}"
+        );
+        for a in 0..=40 {
+            for b in 0..=40 {
+                let p = surf.eval(a as f64 / 40.0, b as f64 / 40.0);
+                let off = (p.z - 0.2 * p.x - 0.1 * p.y).abs();
+                assert!(off < 1e-12, "off the plane by {off}");
+                assert!(
+                    (-1e-12..=1.0 + 1e-12).contains(&p.x) && (-1e-12..=1.0 + 1e-12).contains(&p.y),
+                    "inside the face's sides: {p}"
+                );
+            }
+        }
+    }
+
+    /// The face `(x(u), v, 0)` over the unit square as a bicubic of one span in `v` and
+    /// `spans` in `u`, its control points' `x` from `x` at the Greville abscissae (exact for a
+    /// cubic `x`).
+    fn sheet(x: impl Fn(f64) -> f64, spans: usize) -> BsplineSurface {
+        let interior: Vec<f64> = (1..spans).map(|k| k as f64 / spans as f64).collect();
+        let knots_u = clamped(&interior);
+        let count_u = spans + EXPORT_DEGREE;
+        let control = (0..count_u)
+            .flat_map(|i| {
+                let greville = knots_u[i + 1..i + 1 + EXPORT_DEGREE].iter().sum::<f64>() / 3.0;
+                let xi = x(greville);
+                (0..4).map(move |j| DVec3::new(xi, j as f64 / 3.0, 0.0))
+            })
+            .collect();
+        BsplineSurface {
+            knots_u,
+            knots_v: clamped(&[]),
+            count_u,
+            count_v: 4,
+            control,
+        }
+    }
+
+    #[test]
+    fn a_face_that_folds_in_its_plane_fails_where_it_slid_and_turned_over() {
+        let tol = 1e-6;
+        let square = |u: f64, v: f64| DVec3::new(u, v, 0.0);
+        let breaks = [0.0, 0.5, 1.0];
+        // A sheet in the square's plane, its parameter running back over the middle (a fold
+        // in the plane): it turns over twice.
+        let folded = sheet(|u| u + 0.3 * (2.0 * std::f64::consts::PI * u).sin(), 8);
+        let c = check(&folded, &square, &breaks, &breaks, tol);
+        assert!(c.turned, "turned over: {c:?}");
+        assert!(
+            c.failing.iter().all(|&f| f),
+            "in every cell: {:?}",
+            c.failing
+        );
+        // Running unevenly but the same way all along: only slid, nothing fails.
+        let uneven = sheet(|u| u * u * (3.0 - 2.0 * u), 8);
+        let c = check(&uneven, &square, &breaks, &breaks, tol);
+        assert!(c.deviation < 1e-12 && !c.turned, "{c:?}");
+        assert!(!c.failing.contains(&true), "{c:?}");
+        // The target folds, the face does not: the face is kept.
+        let target_folds =
+            |u: f64, v: f64| square(u + 0.3 * (2.0 * std::f64::consts::PI * u).sin(), v);
+        let c = check(&sheet(|u| u, 1), &target_folds, &breaks, &breaks, tol);
+        assert!(c.deviation < 1e-12 && !c.turned, "{c:?}");
+        // The face folds where the target does, keeping to its parameters: it follows the
+        // target faithfully, and is kept.
+        let same = |u: f64, v: f64| folded.eval(u, v);
+        let c = check(&folded, &same, &breaks, &breaks, tol);
+        assert!(c.deviation < 1e-12 && !c.turned, "{c:?}");
+        // Off the plane: the distance to the face, not between the parameters.
+        let lifted = |u: f64, v: f64| DVec3::new(u, v, 3e-3);
+        let c = check(&uneven, &lifted, &breaks, &breaks, tol);
+        assert!((c.deviation - 3e-3).abs() < 1e-12, "{c:?}");
+    }
+
+    #[test]
+    fn a_face_is_refined_only_across_the_direction_it_bends_in() {
+        // Quadratic along u (one cubic span holds it exactly), a sine wave along v.
+        let s = |u: f64, v: f64| DVec3::new(u, v, 0.4 * u * (1.0 - u) * (9.0 * v).sin());
+        let tol = 1e-6;
+        let (surf, dev) = fit_surface(s, &boundary_of(&s, tol), 0.5 * tol, tol).expect("a fit");
+        assert!(dev <= 0.5 * tol, "deviation {dev}");
+        assert_eq!(surf.count_u, 4, "one span along u");
+        assert!(
+            surf.count_v > 8,
+            "refined along v: {} control points",
+            surf.count_v
+        );
     }
 
     #[test]

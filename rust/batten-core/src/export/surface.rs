@@ -59,7 +59,8 @@ pub struct CadFace {
     pub quad: usize,
     /// The surface.
     pub surface: BsplineSurface,
-    /// Its largest deviation from the patch at the check samples (m).
+    /// Its largest distance from the patch at the check samples (m): from each sample point of
+    /// the patch to the face (see the `fit` module's `deviation_at`).
     pub deviation: f64,
 }
 
@@ -146,9 +147,9 @@ fn side_curve(
     for (k, s) in layout.iter().enumerate() {
         let c = edges[s.edge]
             .as_ref()
-            .ok_or(f64::INFINITY)?
+            .ok_or(FitFailed::NOTHING)?
             .as_ref()
-            .map_err(|&d| d)?;
+            .map_err(|&e| e)?;
         curves.push(if s.forward { c.clone() } else { c.reversed() });
         breaks.push(if k + 1 == layout.len() {
             1.0
@@ -156,7 +157,7 @@ fn side_curve(
             patch.segment_side_parameter(side, k, 1.0)
         });
     }
-    join(&curves, &breaks).ok_or(f64::INFINITY)
+    join(&curves, &breaks).ok_or(FitFailed::NOTHING)
 }
 
 /// The spokes of an N-sided patch: from the fitted side's midpoint to the centre, through the
@@ -197,9 +198,9 @@ fn quad_boundary(quad: &Quad, sides: &[NurbsCurve], spokes: &[NurbsCurve]) -> Op
     })
 }
 
-/// A fitted curve or face, or the largest deviation (m) its best fit reached (infinite where
-/// there was nothing to fit, e.g. a boundary curve f64 could not represent).
-type Fitted<T> = Result<T, f64>;
+/// A fitted curve or face, or what its fits reached ([`FitFailed::NOTHING`] where there was
+/// nothing to fit, e.g. a boundary curve f64 could not represent).
+type Fitted<T> = Result<T, FitFailed>;
 
 /// What one patch needs fitted before its quads: its side curves and spokes.
 struct PatchCurves {
@@ -217,8 +218,10 @@ struct PatchCurves {
 ///    an edge hold the same curve there, whatever the rest of their sides.
 /// 3. Every quad is fitted inside its four side curves ([`fit_surface`]) to [`FACE_SHARE`] of
 ///    the tolerance (the whole tolerance where refining cannot get there, e.g. at a repaired
-///    degenerate corner): its boundary rows are the side curves' control points after exact knot
-///    insertion, and neighbours therefore meet exactly (to rounding) on the shared curve.
+///    degenerate corner), measured as the distance from the patch's points to the face (its
+///    parameters may run otherwise than the patch's; it may not fold): its boundary rows are
+///    the side curves' control points after exact knot insertion, and neighbours therefore
+///    meet exactly (to rounding) on the shared curve.
 ///
 /// Edges, patches and quads are fitted in parallel. Errors: holes in the build (unless
 /// `allow_holes`), a tolerance that is not a positive finite number, patches that could not
@@ -258,7 +261,7 @@ pub fn cad_surface_with(
     let boundary_tol = BOUNDARY_SHARE * tol;
     let edges: Vec<Option<Fitted<NurbsCurve>>> = edge_owners(surface)
         .into_par_iter()
-        .map(|owner| owner.map(|o| fit_edge(patches, o, boundary_tol).map_err(|e| e.deviation)))
+        .map(|owner| owner.map(|o| fit_edge(patches, o, boundary_tol)))
         .collect();
     let curves: Vec<Fitted<PatchCurves>> = patches
         .par_iter()
@@ -267,7 +270,7 @@ pub fn cad_surface_with(
             let sides = (0..patch.sides())
                 .map(|si| side_curve(patch, si, &layout[si], &edges))
                 .collect::<Fitted<Vec<_>>>()?;
-            let spokes = spokes(patch, &sides, boundary_tol).map_err(|e| e.deviation)?;
+            let spokes = spokes(patch, &sides, boundary_tol)?;
             Ok(PatchCurves { sides, spokes })
         })
         .collect();
@@ -294,12 +297,12 @@ pub fn cad_surface_with(
         .filter(|_| !failed.load(Ordering::Relaxed) && !stopped.load(Ordering::Relaxed))
         .map(|(p, k, quad)| {
             let fit = || {
-                let c = curves[p].as_ref().map_err(|&d| d)?;
-                let boundary = quad_boundary(&quad, &c.sides, &c.spokes).ok_or(f64::INFINITY)?;
+                let c = curves[p].as_ref().map_err(|&e| e)?;
+                let boundary =
+                    quad_boundary(&quad, &c.sides, &c.spokes).ok_or(FitFailed::NOTHING)?;
                 let patch = &patches[p];
                 let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
-                let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol, tol)
-                    .map_err(|e| e.deviation)?;
+                let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol, tol)?;
                 Ok(CadFace {
                     patch: p,
                     face: surface.patch_faces[p],
@@ -325,21 +328,23 @@ pub fn cad_surface_with(
     if stopped.load(Ordering::Relaxed) {
         return Ok(None);
     }
-    let mut unfitted: Vec<Option<f64>> = curves.iter().map(|c| c.as_ref().err().copied()).collect();
+    let mut unfitted: Vec<Option<FitFailed>> =
+        curves.iter().map(|c| c.as_ref().err().copied()).collect();
     let mut faces = Vec::with_capacity(fitted.len());
     for (p, f) in fitted {
         match f {
             Ok(face) => faces.push(face),
-            Err(d) => unfitted[p] = Some(unfitted[p].map_or(d, |e| e.max(d))),
+            Err(e) => unfitted[p] = Some(unfitted[p].map_or(e, |u| u.worse(e))),
         }
     }
     let unfitted: Vec<UnfittedFace> = unfitted
         .into_iter()
         .enumerate()
-        .filter_map(|(p, d)| {
-            d.map(|deviation| UnfittedFace {
+        .filter_map(|(p, e)| {
+            e.map(|e| UnfittedFace {
                 face: surface.patch_faces[p],
-                deviation,
+                deviation: e.deviation,
+                turned: e.turned,
             })
         })
         .collect();
