@@ -7,7 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
-use super::folds::{face_mesh_folds, MeshFolds, FOLD_ANGLE_DEGREES};
+use super::folds::{face_mesh_folds, in_plane_folds, MeshFolds, FOLD_ANGLE_DEGREES};
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings, MeshShares};
@@ -143,7 +143,9 @@ fn face_warning(
 fn patch_warning(topology: &Topology, fi: usize, label: &str, w: &PatchWarning) -> Warning {
     let kind = match w {
         PatchWarning::CornerAngle { .. } => WarningKind::DegenerateCorner,
-        PatchWarning::SideBlended { .. } => WarningKind::SideBlended,
+        PatchWarning::SideBlended { .. } | PatchWarning::FlatSideBlended { .. } => {
+            WarningKind::SideBlended
+        }
     };
     face_warning(topology, fi, kind, format!("{label}: {w}"), None)
 }
@@ -287,7 +289,10 @@ fn unfolded(
     }
     let need = refinement(&patch, &mesh, resolution);
     if need.folds.pairs == 0 {
-        return (patch, Some(mesh), need);
+        return match flat_unfolded(plan, &patch, opts, resolution) {
+            Some((blended, mesh, need)) => (blended, Some(mesh), need),
+            None => (patch, Some(mesh), need),
+        };
     }
     let Some(blended) = side_blend(plan, opts) else {
         return (patch, Some(mesh), need);
@@ -311,6 +316,35 @@ fn unfolded(
         Some(blended) => (blended, Some(other), other_need),
         None => (patch, Some(mesh), need),
     }
+}
+
+/// For a flat face whose patch folds within its plane ([`in_plane_folds`]; its mesh shows
+/// nothing), the side-blended patch of the same boundary and ribbons, its mesh and need, where
+/// that one neither folds within the plane nor on its mesh; None otherwise (nothing to replace,
+/// or nothing better).
+fn flat_unfolded(
+    plan: &FacePlan,
+    patch: &Patch,
+    opts: &PatchOptions,
+    resolution: usize,
+) -> Option<(Patch, FaceMesh, Need)> {
+    let cells = in_plane_folds(patch, opts.tolerance);
+    if cells == 0 {
+        return None;
+    }
+    let blended = side_blend(plan, opts)?;
+    let mesh = blended.face_mesh(resolution);
+    if !mesh.is_finite() || in_plane_folds(&blended, opts.tolerance) > 0 {
+        return None;
+    }
+    let need = refinement(&blended, &mesh, resolution);
+    (need.folds.pairs == 0).then(|| {
+        let blended = blended.with_warning(PatchWarning::FlatSideBlended {
+            replaced: patch.kind(),
+            cells,
+        });
+        (blended, mesh, need)
+    })
 }
 
 /// The side-blended patch ([`PatchKind::SideBlend`]) of `plan`'s boundary and ribbons, None

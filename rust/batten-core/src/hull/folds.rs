@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use super::knuckles::Knuckle;
 use super::patched::PatchedFace;
 use super::warning::{Warning, WarningKind};
-use crate::patch::{FaceMesh, SurfaceMesh};
+use crate::patch::{FaceMesh, Patch, SurfaceMesh};
 use crate::tolerance::Tolerance;
 use crate::topo::Topology;
 
@@ -83,6 +83,83 @@ pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
     }
     out.worst = least_cos.acos().to_degrees();
     out
+}
+
+/// Cells along each axis of the grid [`in_plane_folds`] lays over a patch's domain: fine
+/// enough to see the thin turned-over strips of KCS's shaft-boss end and KVLCC2's transom (3
+/// and 17 cells at 96, none at 48), about 2 ms a face.
+pub(crate) const IN_PLANE_GRID: usize = 128;
+
+/// Boundary samples per side for the plane of [`in_plane_folds`] (ends included).
+const PLANE_SAMPLES: usize = 8;
+
+/// How many cells of a fine grid over the domain of a flat patch of other than 4 sides turn
+/// over in its plane (0 for a patch that is not flat within `tolerance`, or has 4 sides).
+///
+/// A flat face (a transom, a shaft boss's end) gets a flat patch, but its interpolant can
+/// still fold within the plane: a thin strip of the domain maps onto the surface turned over,
+/// which the fold search's mesh steps over and no normal shows (every normal is the plane's,
+/// one way or the other). The grid's cells ([`IN_PLANE_GRID`] across the domain's square)
+/// are triangles of evaluated points; one whose signed area in the plane has the minority's
+/// sign has turned over. Only patches of 3, 5 or more sides are looked at: those are the
+/// Charrot–Gregory patches whose corners fold so, and the check costs a few thousand
+/// evaluations.
+pub(crate) fn in_plane_folds(patch: &Patch, tolerance: Tolerance) -> usize {
+    let n = patch.sides();
+    if n == 4 {
+        return 0;
+    }
+    let boundary: Vec<DVec3> = (0..n)
+        .flat_map(|i| {
+            (0..PLANE_SAMPLES).map(move |k| patch.side_point(i, k as f64 / PLANE_SAMPLES as f64))
+        })
+        .collect();
+    let normal = polygon_normal(
+        |v| boundary[v as usize],
+        &(0..boundary.len() as u32).collect::<Vec<_>>(),
+    );
+    let centre = boundary.iter().sum::<DVec3>() / boundary.len() as f64;
+    if normal == DVec3::ZERO
+        || boundary
+            .iter()
+            .any(|&b| (b - centre).dot(normal).abs() > tolerance.get())
+    {
+        return 0;
+    }
+    let domain = patch.domain();
+    let m = IN_PLANE_GRID;
+    let at = |i: usize, j: usize| {
+        [
+            -1.0 + 2.0 * i as f64 / m as f64,
+            -1.0 + 2.0 * j as f64 / m as f64,
+        ]
+    };
+    let grid: Vec<Option<DVec3>> = (0..=m)
+        .flat_map(|i| (0..=m).map(move |j| (i, j)))
+        .map(|(i, j)| {
+            let x = at(i, j);
+            domain.contains(x).then(|| patch.eval(x))
+        })
+        .collect();
+    let (mut ahead, mut behind) = (0usize, 0usize);
+    for i in 0..m {
+        for j in 0..m {
+            let cell = (
+                grid[i * (m + 1) + j],
+                grid[(i + 1) * (m + 1) + j],
+                grid[i * (m + 1) + j + 1],
+            );
+            if let (Some(a), Some(b), Some(c)) = cell {
+                let area = (b - a).cross(c - a).dot(normal);
+                if area > 0.0 {
+                    ahead += 1;
+                } else if area < 0.0 {
+                    behind += 1;
+                }
+            }
+        }
+    }
+    ahead.min(behind)
 }
 
 /// How badly one patch's mesh folds.
@@ -330,4 +407,66 @@ fn box_warnings(
         ));
     }
     warnings
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::NurbsCurve;
+    use crate::patch::{FaceBoundary, PatchKind, PatchOptions, Side, SideSegment};
+
+    /// The patch (`kind`) of the triangle `(0, 0)`, `(1, 0)`, `(0.05, 0.2)` whose first side
+    /// waves by `wave` across its line (a cubic with its inner control points `±wave` off it),
+    /// lifted by `lift(x, y)` in z.
+    fn triangle(wave: f64, lift: impl Fn(f64, f64) -> f64, kind: PatchKind) -> Patch {
+        let at = |x: f64, y: f64| DVec3::new(x, y, lift(x, y));
+        let cubic = |pts: [(f64, f64); 4]| {
+            let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+            NurbsCurve::try_new(3, knots, pts.map(|(x, y)| at(x, y)).to_vec(), None)
+                .expect("a cubic")
+        };
+        let line = |(x0, y0): (f64, f64), (x1, y1): (f64, f64)| {
+            cubic(
+                [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0].map(|t| (x0 + t * (x1 - x0), y0 + t * (y1 - y0))),
+            )
+        };
+        let (a, b, c) = ((0.0, 0.0), (1.0, 0.0), (0.05, 0.2));
+        let sides = [
+            cubic([a, (0.3, wave), (0.6, -wave), b]),
+            line(b, c),
+            line(c, a),
+        ]
+        .into_iter()
+        .map(|curve| Side::single(SideSegment::whole(curve)))
+        .collect();
+        let options = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        Patch::try_new(&FaceBoundary::new(sides), &[], &options).expect("a patch")
+    }
+
+    #[test]
+    fn a_flat_patch_turned_over_in_its_plane_is_found() {
+        let flat = |_: f64, _: f64| 0.0;
+        let tol = Tolerance::DEFAULT;
+        assert_eq!(
+            in_plane_folds(&triangle(0.0, flat, PatchKind::Auto), tol),
+            0,
+            "a plain triangle"
+        );
+        let folds = in_plane_folds(&triangle(0.15, flat, PatchKind::Auto), tol);
+        assert!(
+            folds > 100,
+            "a waving side folds the Charrot–Gregory patch: {folds} cells"
+        );
+        let blended = in_plane_folds(&triangle(0.15, flat, PatchKind::SideBlend), tol);
+        assert_eq!(blended, 0, "the side-blended patch does not fold");
+        // Out of the plane by more than the tolerance: not looked at.
+        let bent = |x: f64, y: f64| 0.05 * x * y;
+        assert_eq!(
+            in_plane_folds(&triangle(0.15, bent, PatchKind::Auto), tol),
+            0
+        );
+    }
 }

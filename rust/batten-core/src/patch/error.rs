@@ -203,6 +203,14 @@ pub enum PatchWarning {
         /// Its largest angle between neighbouring mesh polygons, degrees.
         degrees: f64,
     },
+    /// The face is flat and its corner-based patch folds within the plane, in strips too thin
+    /// for the mesh to show; the side-blended patch, which does not, is used instead.
+    FlatSideBlended {
+        /// The corner-based patch that folded.
+        replaced: crate::PatchKind,
+        /// The cells of a fine grid over its domain that turned over.
+        cells: usize,
+    },
 }
 
 impl std::fmt::Display for PatchWarning {
@@ -232,6 +240,18 @@ impl std::fmt::Display for PatchWarning {
                     "its {name} patch folds ({replaced_pairs} pair(s) of neighbouring mesh faces \
                      at up to {replaced_degrees:.1}°); the side-blended patch is used \
                      ({pairs} pair(s), up to {degrees:.1}°)"
+                )
+            }
+            PatchWarning::FlatSideBlended { replaced, cells } => {
+                let name = match replaced {
+                    crate::PatchKind::Gregory => "Gregory",
+                    _ => "Charrot–Gregory",
+                };
+                write!(
+                    f,
+                    "the face is flat and its {name} patch folds within its plane ({cells} cell(s) \
+                     of a fine grid turned over, too thin for the mesh); the side-blended patch, \
+                     which does not, is used"
                 )
             }
         }
