@@ -273,7 +273,8 @@ const FALLBACK_GAIN: f64 = 0.5;
 /// ribbons folds clearly less ([`FALLBACK_GAIN`]) — that one ([`PatchKind::SideBlend`]). Both
 /// are judged on meshes fine enough for the tighter of their turns, so a patch whose coarse
 /// mesh only cuts a tight turn short is kept, and a fallback whose coarse mesh steps over a
-/// fold of its own is not taken for that.
+/// fold of its own is not taken for that. A flat face whose mesh shows no fold is also looked
+/// at within its plane ([`flat_unfolded`]).
 fn unfolded(
     plan: &FacePlan,
     patch: Patch,

@@ -90,7 +90,8 @@ pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
 /// and 17 cells at 96, none at 48), about 2 ms a face.
 pub(crate) const IN_PLANE_GRID: usize = 128;
 
-/// Boundary samples per side for the plane of [`in_plane_folds`] (ends included).
+/// Boundary samples per side for the plane of [`in_plane_folds`] (from its start; its end is
+/// the next side's start).
 const PLANE_SAMPLES: usize = 8;
 
 /// How many cells of a fine grid over the domain of a flat patch of other than 4 sides turn
@@ -98,11 +99,10 @@ const PLANE_SAMPLES: usize = 8;
 ///
 /// A flat face (a transom, a shaft boss's end) gets a flat patch, but its interpolant can
 /// still fold within the plane: a thin strip of the domain maps onto the surface turned over,
-/// which the fold search's mesh steps over and no normal shows (every normal is the plane's,
-/// one way or the other). The grid's cells ([`IN_PLANE_GRID`] across the domain's square)
+/// and the fold search's mesh steps over it. The grid's cells ([`IN_PLANE_GRID`] across the domain's square)
 /// are triangles of evaluated points; one whose signed area in the plane has the minority's
 /// sign has turned over. Only patches of 3, 5 or more sides are looked at: those are the
-/// Charrot–Gregory patches whose corners fold so, and the check costs a few thousand
+/// Charrot–Gregory patches whose corners fold so, and the check costs some 10 000
 /// evaluations.
 pub(crate) fn in_plane_folds(patch: &Patch, tolerance: Tolerance) -> usize {
     let n = patch.sides();
