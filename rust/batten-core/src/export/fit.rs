@@ -44,7 +44,7 @@ pub const MAX_SURFACE_CELLS: usize = 8192;
 /// system was singular (the deviation reached so far is given).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FitFailed {
-    /// The largest deviation of the best fit (m), infinite when no fit was made.
+    /// The largest deviation of the last fit measured (m), infinite when no fit was made.
     pub(crate) deviation: f64,
     /// Whether the last fit turned over somewhere (a face only; see [`turned_over`]).
     pub(crate) turned: bool,
@@ -232,12 +232,10 @@ fn deviation_at(
     let mut slid = false;
     for step in 0..=FOOT_STEPS {
         let [s, su, sv] = surface.eval_derivs(a, b);
-        if step == 0 {
-            normal = su.cross(sv);
-        }
         let r = p - s;
         best = best.min(r.length());
         if step == 0 {
+            normal = su.cross(sv);
             slid = best > tol;
         }
         if step == FOOT_STEPS || !slid {
@@ -389,10 +387,11 @@ fn bases(knots: &[f64], count: usize, ts: &[(usize, f64)]) -> Vec<(usize, [f64; 
 }
 
 /// The bicubic surface inside `boundary` that approximates `target` within `tol` at every
-/// check sample ([`deviation_at`]: the distance from the target's point to the surface, the
-/// surface never turned over against the target), or — where refining cannot get there: a
-/// singular system near a degenerate corner, [`MAX_SURFACE_SPANS`] or [`MAX_SURFACE_CELLS`]
-/// reached — the best fit that did not turn over, if it is within `limit`.
+/// check sample ([`deviation_at`]: the distance from the target's point to the surface; and
+/// the surface not turned over where it slid along the target, [`turned_over`]), or — where
+/// refining cannot get there: a singular system near a degenerate corner, [`MAX_SURFACE_SPANS`]
+/// or [`MAX_SURFACE_CELLS`] reached — the best fit that did not turn over, if it is within
+/// `limit`.
 ///
 /// Boundary rows and columns come from the curves (knot vectors the union of the opposite
 /// curves', refined by exact knot insertion), interior control points from least squares on a
