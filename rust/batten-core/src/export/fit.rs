@@ -289,13 +289,15 @@ struct Check {
 /// The fitted `surface` against `target` at the check samples of every cell between the
 /// breakpoints `bu` × `bv`: each sample's distance ([`deviation_at`]), and whether the face
 /// turns over between neighbouring samples ([`turned_over`]; both cells of such a pair fail).
+/// `None` once `go_on` (asked before each row of samples) says to stop.
 fn check(
     surface: &BsplineSurface,
     target: &impl Fn(f64, f64) -> DVec3,
     bu: &[f64],
     bv: &[f64],
     tol: f64,
-) -> Check {
+    go_on: &dyn Fn() -> bool,
+) -> Option<Check> {
     let cells_v = bv.len() - 1;
     let mut out = Check {
         deviation: 0.0,
@@ -310,6 +312,9 @@ fn check(
     let mut previous: Vec<Sample> = Vec::with_capacity(cv.len());
     let mut row: Vec<Sample> = Vec::with_capacity(cv.len());
     for (a, &(i, u)) in cu.iter().enumerate() {
+        if !go_on() {
+            return None;
+        }
         row.clear();
         for (b, &(j, v)) in cv.iter().enumerate() {
             let sample = deviation_at(surface, target, u, v, tol);
@@ -331,7 +336,7 @@ fn check(
         }
         std::mem::swap(&mut previous, &mut row);
     }
-    out
+    Some(out)
 }
 
 /// Which directions of the cell `[u0, u1] × [v0, v1]` of a face over the tolerance to halve:
@@ -398,16 +403,20 @@ fn bases(knots: &[f64], count: usize, ts: &[(usize, f64)]) -> Vec<(usize, [f64; 
 /// grid of samples, solved along `u` then along `v` (the tensor-product system separates).
 /// Every cell over the tolerance has its spans halved along the direction(s) it bends in
 /// ([`directions_to_refine`]), and the fit is made again. Returns the surface and its measured
-/// deviation.
+/// deviation, or `None` once `go_on` (asked at each fit and each row of its check) says to
+/// stop: a face that can be fitted at all takes milliseconds, but one that cannot may take
+/// seconds to refine to its most spans, and an export that another face has already failed,
+/// or that the designer cancelled, need not wait for it.
 pub(crate) fn fit_surface(
     target: impl Fn(f64, f64) -> DVec3,
     boundary: &QuadBoundary,
     tol: f64,
     limit: f64,
-) -> Result<(BsplineSurface, f64), FitFailed> {
+    go_on: &dyn Fn() -> bool,
+) -> Result<Option<(BsplineSurface, f64)>, FitFailed> {
     let mut best: Option<(BsplineSurface, f64)> = None;
     let give_up = |best: Option<(BsplineSurface, f64)>, last: FitFailed| match best {
-        Some((s, d)) if d <= limit => Ok((s, d)),
+        Some((s, d)) if d <= limit => Ok(Some((s, d))),
         _ => Err(last),
     };
     let mut ku = knot_union(
@@ -420,6 +429,9 @@ pub(crate) fn fit_surface(
     );
     let mut last = FitFailed::short(f64::INFINITY);
     loop {
+        if !go_on() {
+            return Ok(None);
+        }
         let (knots_u, knots_v) = (clamped(&ku), clamped(&kv));
         let (nu, nv) = (ku.len() + EXPORT_DEGREE + 1, kv.len() + EXPORT_DEGREE + 1);
         let rows = [
@@ -495,14 +507,17 @@ pub(crate) fn fit_surface(
         if !surface.control.iter().all(|p| p.is_finite()) {
             return give_up(best, last);
         }
-        let Check {
+        let Some(Check {
             deviation,
             failing,
             turned,
-        } = check(&surface, &target, &bu, &bv, tol);
+        }) = check(&surface, &target, &bu, &bv, tol, go_on)
+        else {
+            return Ok(None);
+        };
         let (mut over_u, mut over_v) = (vec![false; bu.len() - 1], vec![false; bv.len() - 1]);
         if !failing.contains(&true) {
-            return Ok((surface, deviation));
+            return Ok(Some((surface, deviation)));
         }
         for (cell, _) in failing.iter().enumerate().filter(|(_, &f)| f) {
             let (i, j) = (cell / over_v.len(), cell % over_v.len());
@@ -575,7 +590,9 @@ mod tests {
         let target = |u: f64, v: f64| plane(kinked(u), v);
         let tol = 1e-6;
         let boundary = boundary_of(&|u, v| plane(u, v), tol);
-        let (surf, dev) = fit_surface(target, &boundary, 0.5 * tol, tol).expect("a fit");
+        let (surf, dev) = fit_surface(target, &boundary, 0.5 * tol, tol, &|| true)
+            .expect("a fit")
+            .expect("not stopped");
         assert!(dev <= 0.5 * tol, "deviation {dev}");
         assert_eq!(
             (surf.count_u, surf.count_v),
@@ -636,7 +653,7 @@ mod tests {
         // A sheet in the square's plane, its parameter running back over the middle (a fold
         // in the plane): it turns over twice.
         let folded = sheet(|u| u + 0.3 * (2.0 * std::f64::consts::PI * u).sin(), 8);
-        let c = check(&folded, &square, &breaks, &breaks, tol);
+        let c = check(&folded, &square, &breaks, &breaks, tol, &|| true).expect("not stopped");
         assert!(c.turned, "turned over: {c:?}");
         assert!(
             c.failing.iter().all(|&f| f),
@@ -645,22 +662,30 @@ mod tests {
         );
         // Running unevenly but the same way all along: only slid, nothing fails.
         let uneven = sheet(|u| u * u * (3.0 - 2.0 * u), 8);
-        let c = check(&uneven, &square, &breaks, &breaks, tol);
+        let c = check(&uneven, &square, &breaks, &breaks, tol, &|| true).expect("not stopped");
         assert!(c.deviation < 1e-12 && !c.turned, "{c:?}");
         assert!(!c.failing.contains(&true), "{c:?}");
         // The target folds, the face does not: the face is kept.
         let target_folds =
             |u: f64, v: f64| square(u + 0.3 * (2.0 * std::f64::consts::PI * u).sin(), v);
-        let c = check(&sheet(|u| u, 1), &target_folds, &breaks, &breaks, tol);
+        let c = check(
+            &sheet(|u| u, 1),
+            &target_folds,
+            &breaks,
+            &breaks,
+            tol,
+            &|| true,
+        )
+        .expect("not stopped");
         assert!(c.deviation < 1e-12 && !c.turned, "{c:?}");
         // The face folds where the target does, keeping to its parameters: it follows the
         // target faithfully, and is kept.
         let same = |u: f64, v: f64| folded.eval(u, v);
-        let c = check(&folded, &same, &breaks, &breaks, tol);
+        let c = check(&folded, &same, &breaks, &breaks, tol, &|| true).expect("not stopped");
         assert!(c.deviation < 1e-12 && !c.turned, "{c:?}");
         // Off the plane: the distance to the face, not between the parameters.
         let lifted = |u: f64, v: f64| DVec3::new(u, v, 3e-3);
-        let c = check(&uneven, &lifted, &breaks, &breaks, tol);
+        let c = check(&uneven, &lifted, &breaks, &breaks, tol, &|| true).expect("not stopped");
         assert!((c.deviation - 3e-3).abs() < 1e-12, "{c:?}");
     }
 
@@ -669,7 +694,9 @@ mod tests {
         // Quadratic along u (one cubic span holds it exactly), a sine wave along v.
         let s = |u: f64, v: f64| DVec3::new(u, v, 0.4 * u * (1.0 - u) * (9.0 * v).sin());
         let tol = 1e-6;
-        let (surf, dev) = fit_surface(s, &boundary_of(&s, tol), 0.5 * tol, tol).expect("a fit");
+        let (surf, dev) = fit_surface(s, &boundary_of(&s, tol), 0.5 * tol, tol, &|| true)
+            .expect("a fit")
+            .expect("not stopped");
         assert!(dev <= 0.5 * tol, "deviation {dev}");
         assert_eq!(surf.count_u, 4, "one span along u");
         assert!(
@@ -690,7 +717,9 @@ mod tests {
             left: fit(&|t| s(0.0, t)),
             right: fit(&|t| s(1.0, t)),
         };
-        let (surf, dev) = fit_surface(s, &boundary, 0.5 * tol, tol).expect("a fit");
+        let (surf, dev) = fit_surface(s, &boundary, 0.5 * tol, tol, &|| true)
+            .expect("a fit")
+            .expect("not stopped");
         assert!(dev <= 0.5 * tol, "deviation {dev}");
         for a in 0..=41 {
             for b in 0..=37 {

@@ -286,24 +286,30 @@ pub fn cad_surface_with(
         })
         .collect();
     // A face that cannot be fitted refines up to MAX_SURFACE_CELLS (seconds each): once one
-    // has failed, the quads not yet started are left, so a failing export ends soon; so are
-    // they once the caller asked to stop.
+    // has failed, the quads not yet started are left and those being fitted stop, so a
+    // failing export ends soon; so do they once the caller asked to stop. A stopped fit is
+    // neither a face nor a failure.
     let failed = AtomicBool::new(false);
     let stopped = AtomicBool::new(false);
+    let go_on = || !failed.load(Ordering::Relaxed) && !stopped.load(Ordering::Relaxed);
     let done = AtomicUsize::new(0);
     let total = jobs.len();
     let fitted: Vec<(usize, Fitted<CadFace>)> = jobs
         .into_par_iter()
-        .filter(|_| !failed.load(Ordering::Relaxed) && !stopped.load(Ordering::Relaxed))
-        .map(|(p, k, quad)| {
-            let fit = || {
+        .filter(|_| go_on())
+        .filter_map(|(p, k, quad)| {
+            let fit = || -> Fitted<Option<CadFace>> {
                 let c = curves[p].as_ref().map_err(|&e| e)?;
                 let boundary =
                     quad_boundary(&quad, &c.sides, &c.spokes).ok_or(FitFailed::NOTHING)?;
                 let patch = &patches[p];
                 let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
-                let (fitted, deviation) = fit_surface(target, &boundary, FACE_SHARE * tol, tol)?;
-                Ok(CadFace {
+                let Some((fitted, deviation)) =
+                    fit_surface(target, &boundary, FACE_SHARE * tol, tol, &go_on)?
+                else {
+                    return Ok(None);
+                };
+                Ok(Some(CadFace {
                     patch: p,
                     face: surface.patch_faces[p],
                     quad: k,
@@ -313,16 +319,20 @@ pub fn cad_surface_with(
                         fitted.reversed_u()
                     },
                     deviation,
-                })
+                }))
             };
-            let result = fit();
-            if result.is_err() {
-                failed.store(true, Ordering::Relaxed);
-            }
+            let result = match fit() {
+                Ok(None) => return None,
+                Ok(Some(face)) => Ok(face),
+                Err(e) => {
+                    failed.store(true, Ordering::Relaxed);
+                    Err(e)
+                }
+            };
             if !face_done(done.fetch_add(1, Ordering::Relaxed) + 1, total) {
                 stopped.store(true, Ordering::Relaxed);
             }
-            (p, result)
+            Some((p, result))
         })
         .collect();
     if stopped.load(Ordering::Relaxed) {
