@@ -18,7 +18,7 @@
 
 use glam::DVec3;
 
-use super::basis::{basis_funs, find_span, MAX_ORDER};
+use super::basis::{basis_funs, ders_basis_funs, find_span, MAX_ORDER};
 use super::error::CurveError;
 use super::nurbs::NurbsCurve;
 
@@ -129,7 +129,35 @@ impl NurbsCurve {
     /// the control points cannot all meet ([`CurveError::TargetsDependent`]), a result that
     /// f64 cannot hold.
     pub fn through(&self, targets: &[(f64, DVec3)]) -> Result<NurbsCurve, CurveError> {
+        self.through_with_tangents(targets, &[])
+    }
+
+    /// [`NurbsCurve::through`] that also gives the curve the first derivative `C'(t) = d` at
+    /// each of `tangents` `(t, d)` (each at the parameter of a target, where the target's knot
+    /// gives it control points to move): Fowler & Bartels' derivative constraints, in the same
+    /// least move. The wireframe import turns the tangents of the curves through a smooth node
+    /// into one plane with them (H-rep §3.2.3, Ye & Nowacki 1995). A polynomial curve only:
+    /// a rational one's derivative is not linear in its control points.
+    ///
+    /// Errors: as [`NurbsCurve::through`]; a tangent at a parameter that is not a target's, or
+    /// on a rational curve, is [`CurveError::TargetsDependent`]; a non-finite one as a point.
+    pub fn through_with_tangents(
+        &self,
+        targets: &[(f64, DVec3)],
+        tangents: &[(f64, DVec3)],
+    ) -> Result<NurbsCurve, CurveError> {
         let (start, end) = self.domain();
+        for &(t, d) in tangents {
+            if !t.is_finite() {
+                return Err(CurveError::NonFiniteParameter(t));
+            }
+            if !d.is_finite() {
+                return Err(CurveError::NonFiniteQuery);
+            }
+            if self.is_rational() || !targets.iter().any(|&(u, _)| u == t) {
+                return Err(CurveError::TargetsDependent);
+            }
+        }
         let mut sorted: Vec<(f64, DVec3)> = Vec::with_capacity(targets.len());
         for &(t, q) in targets {
             if !t.is_finite() {
@@ -173,12 +201,12 @@ impl NurbsCurve {
                 curve = curve.insert_knot(at, 1)?;
             }
         }
-        match constrained_move(&curve, &unique) {
+        match constrained_move(&curve, &unique, tangents) {
             // A knot put mid-span can leave two targets in one span, and then more targets near
             // there than control points to meet them: a knot halfway between any two
             // neighbours with none between them gives every target a span of its own.
             Err(CurveError::TargetsDependent) => {
-                constrained_move(&separated(curve, &unique)?, &unique)
+                constrained_move(&separated(curve, &unique)?, &unique, tangents)
             }
             moved => moved,
         }
@@ -198,14 +226,35 @@ fn separated(mut curve: NurbsCurve, targets: &[(f64, DVec3)]) -> Result<NurbsCur
     Ok(curve)
 }
 
+/// The `(first index, values)` of the derivative basis `N_i'(t)` of a polynomial curve that is
+/// non-zero at `t` (Piegl & Tiller A2.3; at a knot, the span that starts there): how a change of
+/// the control points moves `C'(t)`.
+fn derivative_basis(curve: &NurbsCurve, t: f64) -> (usize, [f64; MAX_ORDER]) {
+    let p = curve.degree();
+    let n = curve.control_point_count();
+    let span = find_span(curve.knots(), p, n, t);
+    let mut ders = [[0.0; MAX_ORDER]; 4];
+    ders_basis_funs(curve.knots(), span, t, p, 1, &mut ders);
+    (span - p, ders[1])
+}
+
 /// Fowler & Bartels' least move of the control points of `curve` (its knots as they are) that
-/// meets the sorted, distinct `targets`, keeping its smooth joints smooth.
-fn constrained_move(curve: &NurbsCurve, unique: &[(f64, DVec3)]) -> Result<NurbsCurve, CurveError> {
+/// meets the sorted, distinct `targets` and the first derivatives `tangents` (a polynomial
+/// curve's), keeping its smooth joints smooth.
+fn constrained_move(
+    curve: &NurbsCurve,
+    unique: &[(f64, DVec3)],
+    tangents: &[(f64, DVec3)],
+) -> Result<NurbsCurve, CurveError> {
     let mut rows: Vec<(usize, [f64; MAX_ORDER])> = unique
         .iter()
         .map(|&(t, _)| rational_basis(curve, t))
         .collect();
     let mut residual: Vec<DVec3> = unique.iter().map(|&(t, q)| q - curve.point(t)).collect();
+    for &(t, d) in tangents {
+        rows.push(derivative_basis(curve, t));
+        residual.push(d - curve.derivs(t).d1);
+    }
     for row in smooth_joint_rows(curve) {
         rows.push(row);
         residual.push(DVec3::ZERO);
@@ -386,5 +435,59 @@ mod tests {
         ));
         // The same target twice is one target.
         assert!(c.through(&[(0.5, p), (0.5, p)]).is_ok());
+    }
+    #[test]
+    fn a_tangent_target_turns_the_derivative_and_keeps_the_point() {
+        let c = cubic();
+        let (t, end) = (0.3, 1.0);
+        let q = c.point(t);
+        // Turn the derivative by 0.5° about the z axis at an interior target and at the end.
+        let turn = glam::DQuat::from_rotation_z(0.5f64.to_radians());
+        let (d, e) = (turn * c.derivs(t).d1, turn * c.derivs(end).d1);
+        let moved = c
+            .through_with_tangents(&[(t, q), (end, c.point(end))], &[(t, d), (end, e)])
+            .expect("through with tangents");
+        assert!(moved.point(t).distance(q) < 1e-12);
+        assert!(moved.point(end).distance(c.point(end)) < 1e-12);
+        assert!((moved.derivs(t).d1 - d).length() < 1e-9 * d.length());
+        assert!((moved.derivs(end).d1 - e).length() < 1e-9 * e.length());
+        // The turn is a small change: the curve moves by a fraction of its span's tangent turn.
+        let most = (0..=100)
+            .map(|i| {
+                moved
+                    .point(i as f64 / 100.0)
+                    .distance(c.point(i as f64 / 100.0))
+            })
+            .fold(0.0, f64::max);
+        assert!(most > 1e-4 && most < 0.02, "largest change {most}");
+        // Positions alone leave the derivative as it was.
+        let plain = c.through(&[(t, q)]).expect("through");
+        assert!((plain.derivs(t).d1 - c.derivs(t).d1).length() < 1e-9);
+    }
+
+    #[test]
+    fn a_tangent_needs_a_target_there_and_a_polynomial_curve() {
+        let c = cubic();
+        let q = c.point(0.3);
+        let d = c.derivs(0.3).d1;
+        assert!(matches!(
+            c.through_with_tangents(&[(0.3, q)], &[(0.4, d)]),
+            Err(CurveError::TargetsDependent)
+        ));
+        assert!(matches!(
+            c.through_with_tangents(&[(0.3, q)], &[(0.3, DVec3::splat(f64::NAN))]),
+            Err(CurveError::NonFiniteQuery)
+        ));
+        let rational = NurbsCurve::try_new(
+            3,
+            c.knots().to_vec(),
+            c.control_points(),
+            Some(vec![1.0, 2.0, 1.0, 1.0, 1.0]),
+        )
+        .expect("rational");
+        assert!(matches!(
+            rational.through_with_tangents(&[(0.3, rational.point(0.3))], &[(0.3, d)]),
+            Err(CurveError::TargetsDependent)
+        ));
     }
 }
