@@ -1091,10 +1091,13 @@ def import_sections(
     lines across it and on to that station, role ``free``), then move the
     curves, as little as possible, through the nodes where they meet (where two curves come
     within ``SECTION_CAPTURE_FACTOR`` × ``tolerance`` of each other they are one node, and both
-    pass exactly through it), and draw them as NURBS curve objects in a new collection, with
-    roles from the curve kinds. So curves that cross in the data meet exactly, and the network
-    builds at the default model tolerance. All curves are fitted before anything is created. A
-    file that cannot be read, or holds no curves, raises NetworkFileError naming it.
+    pass exactly through it; where three or more curves meet at a smooth node, their tangents
+    are turned into the one plane they are closest to, by at most
+    ``MAX_TANGENT_TURN_DEGREES``, so the surface is G1 there), and draw them as NURBS curve
+    objects in a new collection, with roles from the curve kinds. So curves that cross in the
+    data meet exactly, and the network builds at the default model tolerance. All curves are
+    fitted before anything is created. A file that cannot be read, or holds no curves, raises
+    NetworkFileError naming it.
 
     Returns ``(collection, reports)``, one report per curve (see :func:`fair_curves`; a
     chine's report has ``kind`` ``"chine"`` and ``points``, the knuckles it joins; a flat end's
@@ -1103,7 +1106,9 @@ def import_sections(
     through), ``nodes`` (nodes the curve was moved through),
     ``skipped_nodes`` (nodes it leaves out because meeting them would take one of its points
     past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
-    distance to a node before the move), ``max_deviation`` and ``max_deviation_index``
+    distance to a node before the move), ``tangent_nodes`` and ``tangent_turn_deg`` (smooth
+    nodes where its tangent was turned into the node's plane, and the largest turn in degrees),
+    ``max_deviation`` and ``max_deviation_index``
     measured after the move (``rms_deviation`` is the fit's), and ``fit_tolerance``: a curve
     that leaves nodes out is fitted again closer (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS``
     times) and the nodes found again. ``dropped_points`` lists the indices of the file's points
@@ -1202,6 +1207,8 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         report["nodes"] = snap["nodes"]
         report["skipped_nodes"] = snap["skipped"]
         report["snap_move"] = snap["max_move"]
+        report["tangent_nodes"] = snap["tangent_nodes"]
+        report["tangent_turn_deg"] = snap["max_tangent_turn"]
         report["fit_tolerance"] = w
         report["max_deviation"] = snap["max_deviation"]
         report["max_deviation_index"] = snap["max_deviation_index"]

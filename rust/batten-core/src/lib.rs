@@ -98,5 +98,5 @@ pub use topo::{
 };
 pub use wireframe::{
     chines_from_knuckles, nodes_from_data, snap_to_nodes, CurveSnap, DataNode, NodedPoints,
-    SnapData, SnappedNetwork,
+    SmoothNodeReport, SnapData, SnappedNetwork, MAX_TANGENT_TURN_DEGREES,
 };

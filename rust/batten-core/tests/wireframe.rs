@@ -266,3 +266,118 @@ fn a_duplicate_follows_the_curve_it_duplicates() {
         "{kinds:?}"
     );
 }
+
+/// A fine stem: the profile in the centreplane raked 30°, a station in the plane x = 0 leaving
+/// the stem with a slope of 1/20 off the centreplane, and a waterline in z = 0 leaving it at
+/// 4° (with the profile and the station, three curves at one node, as at KCS's stem where
+/// st20 and the design waterline meet the profile). Returns them with the station's slope off
+/// the plane of the other two, in degrees.
+fn stem(slope: f64, role: Role) -> (Vec<NetworkCurve>, f64) {
+    let (rake, entrance) = (30f64.to_radians(), 4f64.to_radians());
+    let p = DVec3::new(rake.sin(), 0.0, rake.cos());
+    let mut profile = cubic(
+        "profile",
+        [
+            (-p).to_array(),
+            (-p / 3.0).to_array(),
+            (p / 3.0).to_array(),
+            p.to_array(),
+        ],
+    );
+    profile.role = role;
+    let s = DVec3::new(0.0, slope, 1.0).normalize();
+    let station = cubic(
+        "st20",
+        [
+            [0.0, 0.0, 0.0],
+            (s / 3.0).to_array(),
+            [0.0, 0.2, 0.66],
+            [0.0, 0.4, 1.0],
+        ],
+    );
+    let w = DVec3::new(-entrance.cos(), entrance.sin(), 0.0);
+    let wl = cubic(
+        "wl",
+        [
+            [0.0, 0.0, 0.0],
+            (w / 3.0).to_array(),
+            [-0.66, 0.15, 0.0],
+            [-1.0, 0.3, 0.0],
+        ],
+    );
+    let off = s.dot(p.cross(w).normalize()).abs().asin().to_degrees();
+    (vec![profile, station, wl], off)
+}
+
+fn unit_tangent(c: &NetworkCurve, at: DVec3) -> DVec3 {
+    let n = c.curve.nearest(at, 1e-12).expect("nearest");
+    assert!(n.distance < 1e-9, "{} passes the node", c.name);
+    c.curve.derivs(n.t).d1.normalize()
+}
+
+#[test]
+fn the_tangents_at_a_smooth_node_are_turned_into_one_plane() {
+    let (curves, off) = stem(0.05, Role::Free);
+    assert!(
+        (0.2..1.0).contains(&off),
+        "the station is {off}° off the plane"
+    );
+    let net = Network::try_new("stem", curves).expect("network");
+    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
+    let node = DVec3::ZERO;
+    let t: Vec<DVec3> = s
+        .network
+        .curves()
+        .iter()
+        .map(|c| unit_tangent(c, node))
+        .collect();
+    let triple = t[0].dot(t[1].cross(t[2])).abs();
+    assert!(triple < 1e-9, "tangents {triple:e} off one plane");
+    assert_eq!(s.smooth_nodes.len(), 1);
+    let report = &s.smooth_nodes[0];
+    assert!(report.position.length() < 1e-12);
+    assert_eq!(report.curves.len(), 3);
+    // The least-squares plane turns each tangent by less than the station's whole slope.
+    assert!(report.turn_degrees > 0.05 * off && report.turn_degrees < off);
+    for (idx, (snap, c)) in s.snaps.iter().zip(net.curves()).enumerate() {
+        assert_eq!(snap.tangent_nodes, 1, "{}", c.name);
+        assert!((snap.max_tangent_turn - report.turn_degrees).abs() < 1e-12);
+        // Each turned by at most the node's turn, and moved little away from the node.
+        let before = unit_tangent(c, node);
+        let after = unit_tangent(&s.network.curves()[idx], node);
+        assert!(before.angle_between(after).to_degrees() <= report.turn_degrees + 1e-9);
+    }
+    // The change is local: the station's far end stays.
+    let far = s.network.curves()[1].curve.point(1.0);
+    assert!(
+        far.distance(net.curves()[1].curve.point(1.0)) < 1e-12,
+        "the far end stays"
+    );
+}
+
+#[test]
+fn a_knuckle_node_or_one_far_off_a_plane_is_left_as_it_is() {
+    // A chine through the node: its two sides have their own tangent planes.
+    let (curves, _) = stem(0.05, Role::Knuckle);
+    let net = Network::try_new("chine", curves).expect("network");
+    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
+    assert!(s.smooth_nodes.is_empty());
+    assert!(s.snaps.iter().all(|c| c.tangent_nodes == 0));
+    // A station leaving the stem 5° off the others' plane: a crease in the data, not noise.
+    let (curves, off) = stem(0.15, Role::Free);
+    assert!(off > batten_core::MAX_TANGENT_TURN_DEGREES * 1.5, "{off}");
+    let net = Network::try_new("crease", curves).expect("network");
+    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
+    assert!(s.smooth_nodes.is_empty());
+    for (a, b) in s.network.curves().iter().zip(net.curves()) {
+        // Already through the node: the same shape (a knot inserted there at most).
+        let moved = (0..=20)
+            .map(|i| {
+                a.curve
+                    .point(i as f64 / 20.0)
+                    .distance(b.curve.point(i as f64 / 20.0))
+            })
+            .fold(0.0, f64::max);
+        assert!(moved < 1e-12, "{} moved {moved:e}", a.name);
+    }
+}

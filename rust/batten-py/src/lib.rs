@@ -62,6 +62,10 @@ fn batten_native(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "SECTION_CAPTURE_FACTOR",
         batten_core::SECTION_CAPTURE_FACTOR,
     )?;
+    m.add(
+        "MAX_TANGENT_TURN_DEGREES",
+        batten_core::MAX_TANGENT_TURN_DEGREES,
+    )?;
     m.add("ROLES", batten_core::Role::ALL.map(|r| r.name()).to_vec())?;
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(network::network_to_json, m)?)?;

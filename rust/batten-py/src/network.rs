@@ -70,7 +70,9 @@ pub(crate) fn check_lengths(
 /// it was fitted to) and `tolerance`, a curve leaves out the nodes that would take one of its
 /// points farther than `tolerance`. Returns `([Curve, ...], [report, ...])`, curve for curve in
 /// order, each report a dict `curve`, `nodes` (nodes it passes through), `skipped` (nodes left
-/// out), `max_move` (m, the largest distance to a node before the move) and, with points,
+/// out), `max_move` (m, the largest distance to a node before the move), `tangent_nodes`
+/// (smooth nodes at which its tangent was turned into the plane of every curve's tangent
+/// there), `max_tangent_turn` (degrees, the largest such turn) and, with points,
 /// `max_deviation` (m) and `max_deviation_index`. The GIL is released.
 #[pyfunction]
 #[pyo3(signature = (curves, capture, points=None, tolerance=None))]
@@ -119,6 +121,8 @@ pub(crate) fn snap_to_nodes<'py>(
                 d.set_item("max_deviation", dev)?;
                 d.set_item("max_deviation_index", i)?;
             }
+            d.set_item("tangent_nodes", s.tangent_nodes)?;
+            d.set_item("max_tangent_turn", s.max_tangent_turn)?;
             Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;

@@ -34,6 +34,7 @@ mod lsq;
 // The CAD export fits its B-spline control points with the same banded least squares.
 pub(crate) use lsq::BandedQr;
 mod metrics;
+pub(crate) use metrics::best_fit_normal;
 mod param;
 mod piece;
 

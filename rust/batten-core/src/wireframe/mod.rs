@@ -8,12 +8,14 @@
 //! - [`chines`]: knuckle curves joining the knuckles of consecutive sections; [`transom`]
 //!   carries a chain lying in one plane (a transom's edge) on to that plane's other knuckles.
 //! - [`snap`]: find the nodes of the network at the data's capture distance and move every
-//!   curve, as little as possible, through the nodes its data allow.
+//!   curve, as little as possible, through the nodes its data allow, with its tangent at each
+//!   smooth node turned into the plane of every tangent there ([`tangents`]).
 
 mod chines;
 mod data_nodes;
 mod needles;
 mod snap;
+mod tangents;
 #[cfg(test)]
 mod test_curves;
 mod transom;
@@ -25,7 +27,8 @@ use crate::tolerance::Tolerance;
 
 pub use chines::chines_from_knuckles;
 pub use data_nodes::{DataNode, NodedPoints};
-pub use snap::{snap_to_nodes, CurveSnap, SnapData, SnappedNetwork};
+pub use snap::{snap_to_nodes, CurveSnap, SmoothNodeReport, SnapData, SnappedNetwork};
+pub use tangents::MAX_TANGENT_TURN_DEGREES;
 
 /// The point curves `points` with the nodes where they meet among their points, and the
 /// nodes (H-rep paper §3.2.3, Ye & Nowacki 1995: found on the polylines before any fit,

@@ -19,6 +19,8 @@ use crate::network::{Network, NetworkCurve};
 use crate::tolerance::Tolerance;
 use crate::topo::Topology;
 
+use super::tangents::smooth_nodes;
+
 /// What snapping did to one curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CurveSnap {
@@ -34,6 +36,23 @@ pub struct CurveSnap {
     /// With data: the largest distance (m) of a data point from the moved curve, and the
     /// point's index; `None` without data.
     pub max_deviation: Option<(f64, usize)>,
+    /// Smooth nodes at which the curve's tangent was turned into the node's tangent plane.
+    pub tangent_nodes: usize,
+    /// The largest of those turns (degrees), 0 at none.
+    pub max_tangent_turn: f64,
+}
+
+/// One smooth node whose curves' tangents were turned into one plane.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SmoothNodeReport {
+    /// Where the node is.
+    pub position: DVec3,
+    /// Unit normal of its tangent plane.
+    pub normal: DVec3,
+    /// The names of the curves through it.
+    pub curves: Vec<String>,
+    /// The largest turn (degrees) of a curve's tangent into the plane.
+    pub turn_degrees: f64,
 }
 
 /// A network whose curves pass through their nodes, and what it took.
@@ -43,6 +62,9 @@ pub struct SnappedNetwork {
     pub network: Network,
     /// One entry per curve, in the same order.
     pub snaps: Vec<CurveSnap>,
+    /// The smooth nodes whose tangents were made coplanar, with the change at each (module
+    /// doc).
+    pub smooth_nodes: Vec<SmoothNodeReport>,
 }
 
 /// The points each curve was fitted to and how close the moved curve must stay to them.
@@ -57,7 +79,10 @@ pub struct SnapData<'a> {
 /// Move every curve of `network` through the nodes the topology finds at the `capture`
 /// distance (ends and crossings closer than it are one node, at the cluster's position). With
 /// `data`, a curve leaves out the nodes that would take one of its points farther than the
-/// tolerance (module doc).
+/// tolerance (module doc). Then, at every smooth node (the `tangents` module), the curves'
+/// tangents are turned into one plane, in the same least move from the curve as given (a
+/// curve whose data that would take past the tolerance keeps its move through the nodes
+/// alone).
 ///
 /// Errors: the topology's own errors, data for a different number of curves or with a
 /// non-finite point ([`Error::InvalidInput`]), a data tolerance that is not positive and finite
@@ -79,7 +104,8 @@ pub fn snap_to_nodes(
             targets[e.curve].push((t, brep.vertices[v.index()].position));
         }
     }
-    let moved: Vec<(NetworkCurve, CurveSnap)> = network
+    let points_of = |i: usize| data.map(|d| (d.points[i].as_slice(), d.tolerance));
+    let moved: Vec<Snapped> = network
         .curves()
         .par_iter()
         .zip(targets)
@@ -87,11 +113,70 @@ pub fn snap_to_nodes(
         .map(|(i, (c, mut at))| {
             at.sort_by(|a, b| a.0.total_cmp(&b.0));
             at.dedup_by(|a, b| a.0 == b.0);
-            let points = data.map(|d| (d.points[i].as_slice(), d.tolerance));
-            let (curve, snap) = snap_curve(&c.curve, at, points).map_err(|e| e.named(&c.name))?;
+            let (curve, snap, kept) =
+                snap_curve(&c.curve, at, points_of(i)).map_err(|e| e.named(&c.name))?;
             let snap = CurveSnap {
                 curve: c.name.clone(),
                 ..snap
+            };
+            Ok((curve, snap, kept))
+        })
+        .collect::<Result<_, Error>>()?;
+    let kept_t: Vec<Vec<f64>> = moved
+        .iter()
+        .map(|(_, _, k)| k.iter().map(|&(t, _)| t).collect())
+        .collect();
+    let moved_curves: Vec<NurbsCurve> = moved.iter().map(|(c, _, _)| c.clone()).collect();
+    let nodes = smooth_nodes(
+        network.curves(),
+        &topology,
+        &moved_curves,
+        &kept_t,
+        capture.get(),
+    );
+    let mut tangents: Vec<Vec<(f64, DVec3, usize)>> = vec![Vec::new(); moved.len()];
+    for (k, node) in nodes.iter().enumerate() {
+        for &(c, t, d) in &node.tangents {
+            tangents[c].push((t, d, k));
+        }
+    }
+    let turned: Vec<(NetworkCurve, CurveSnap)> = network
+        .curves()
+        .par_iter()
+        .zip(moved)
+        .zip(&tangents)
+        .enumerate()
+        .map(|(i, ((c, (curve, snap, kept)), at))| {
+            let (curve, snap) = if at.is_empty() {
+                (curve, snap)
+            } else {
+                let derivs: Vec<(f64, DVec3)> = at.iter().map(|&(t, d, _)| (t, d)).collect();
+                let turned = c
+                    .curve
+                    .through_with_tangents(&kept, &derivs)
+                    .map_err(|e| e.named(&c.name))?;
+                let worst = match points_of(i) {
+                    Some((points, tol)) => {
+                        Some(worst_point(&turned, points, tol).map_err(|e| e.named(&c.name))?)
+                    }
+                    None => None,
+                };
+                match (worst, points_of(i)) {
+                    (Some((d, _, _)), Some((_, tol))) if d > tol => (curve, snap),
+                    _ => {
+                        let turn = at
+                            .iter()
+                            .map(|&(_, _, k)| nodes[k].turn_degrees)
+                            .fold(0.0, f64::max);
+                        let snap = CurveSnap {
+                            max_deviation: worst.map(|(d, i, _)| (d, i)),
+                            tangent_nodes: at.len(),
+                            max_tangent_turn: turn,
+                            ..snap
+                        };
+                        (turned, snap)
+                    }
+                }
             };
             let curve = NetworkCurve {
                 name: c.name.clone(),
@@ -101,11 +186,31 @@ pub fn snap_to_nodes(
             Ok((curve, snap))
         })
         .collect::<Result<_, Error>>()?;
-    let (mut curves, snaps): (Vec<NetworkCurve>, Vec<_>) = moved.into_iter().unzip();
+    let (mut curves, snaps): (Vec<NetworkCurve>, Vec<_>) = turned.into_iter().unzip();
+    let smooth_nodes = nodes
+        .iter()
+        .enumerate()
+        .filter(|(k, n)| {
+            n.tangents.iter().all(|&(c, _, _)| {
+                tangents[c].iter().any(|&(_, _, j)| j == *k) && snaps[c].tangent_nodes > 0
+            })
+        })
+        .map(|(_, n)| SmoothNodeReport {
+            position: n.position,
+            normal: n.normal,
+            curves: n
+                .tangents
+                .iter()
+                .map(|&(c, _, _)| network.curves()[c].name.clone())
+                .collect(),
+            turn_degrees: n.turn_degrees,
+        })
+        .collect();
     follow_duplicates(&topology, network, &mut curves)?;
     Ok(SnappedNetwork {
         network: Network::try_new(network.name.clone(), curves)?,
         snaps,
+        smooth_nodes,
     })
 }
 
@@ -166,6 +271,10 @@ fn check_data(network: &Network, d: SnapData<'_>) -> Result<(), Error> {
     Ok(())
 }
 
+/// A curve moved through its nodes, what that took, and the targets (node parameters and
+/// positions) it passes through.
+type Snapped = (NurbsCurve, CurveSnap, Vec<(f64, DVec3)>);
+
 /// Accuracy (fraction of the tolerance) of the closest points that measure the data's
 /// distance from a moved curve.
 const DEVIATION_ACCURACY: f64 = 1e-3;
@@ -177,7 +286,7 @@ fn snap_curve(
     curve: &NurbsCurve,
     mut targets: Vec<(f64, DVec3)>,
     data: Option<(&[DVec3], f64)>,
-) -> Result<(NurbsCurve, CurveSnap), CurveError> {
+) -> Result<Snapped, CurveError> {
     let move_of = |at: &[(f64, DVec3)]| {
         at.iter()
             .map(|&(t, q)| curve.point(t).distance(q))
@@ -197,6 +306,8 @@ fn snap_curve(
                 skipped: all - targets.len(),
                 max_move: move_of(targets),
                 max_deviation: worst.map(|(d, i, _)| (d, i)),
+                tangent_nodes: 0,
+                max_tangent_turn: 0.0,
             };
             (moved, snap)
         };
@@ -211,7 +322,10 @@ fn snap_curve(
                     .unwrap_or(0);
                 targets.remove(k);
             }
-            _ => return Ok(snap(moved, &targets)),
+            _ => {
+                let (moved, snap) = snap(moved, &targets);
+                return Ok((moved, snap, targets));
+            }
         }
     }
 }

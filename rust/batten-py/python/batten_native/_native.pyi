@@ -22,6 +22,7 @@ __all__ = [
     "MAX_RESOLUTION",
     "ROLES",
     "SECTION_CAPTURE_FACTOR",
+    "MAX_TANGENT_TURN_DEGREES",
     "__version__",
     "_panic_for_tests",
     "build_surface",
@@ -60,6 +61,7 @@ DEFAULT_CORNER_ANGLE_DEG: Final[float]
 DEFAULT_FAIR_DEGREE: Final[int]
 ROLES: Final[list[str]]
 SECTION_CAPTURE_FACTOR: Final[float]
+MAX_TANGENT_TURN_DEGREES: Final[float]
 DEFAULT_CUT_TOLERANCE: Final[float]
 DEFAULT_EXPORT_TOLERANCE: Final[float]
 
