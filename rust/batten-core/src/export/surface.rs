@@ -202,10 +202,10 @@ fn quad_boundary(quad: &Quad, sides: &[NurbsCurve], spokes: &[NurbsCurve]) -> Op
 /// nothing to fit, e.g. a boundary curve f64 could not represent).
 type Fitted<T> = Result<T, FitFailed>;
 
-/// What one patch needs fitted before its quads: its side curves and spokes.
+/// What one patch needs before its quads are fitted: each quad with its boundary curves (from
+/// the patch's side curves and spokes).
 struct PatchCurves {
-    sides: Vec<NurbsCurve>,
-    spokes: Vec<NurbsCurve>,
+    quads: Vec<(Quad, QuadBoundary)>,
 }
 
 /// Approximate each patch of `surface` by bicubic B-spline faces within `options.tolerance`
@@ -226,10 +226,11 @@ struct PatchCurves {
 /// Edges, patches and quads are fitted in parallel. Errors: holes in the build (unless
 /// `allow_holes`), a tolerance that is not a positive finite number, patches that could not
 /// be fitted within [`MAX_SURFACE_SPANS`](super::fit::MAX_SURFACE_SPANS) spans a side or
-/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells, with what each fit reached:
+/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells (or more for a face whose sides
+/// start it near there), with what each fit reached:
 /// every patch whose boundary curves could not be fitted (a patch whose shared edge could not
-/// be fitted fails with it), and of the faces those fitted before the first failing face
-/// stopped the rest.
+/// be fitted fails with it; no face is fitted then), else the faces that failed before the
+/// first failing face stopped the rest.
 pub fn cad_surface(
     surface: &HullSurface,
     options: &ExportOptions,
@@ -271,25 +272,33 @@ pub fn cad_surface_with(
                 .map(|si| side_curve(patch, si, &layout[si], &edges))
                 .collect::<Fitted<Vec<_>>>()?;
             let spokes = spokes(patch, &sides, boundary_tol)?;
-            Ok(PatchCurves { sides, spokes })
+            let quads = quads(patch.domain())
+                .into_iter()
+                .map(|q| {
+                    let boundary = quad_boundary(&q, &sides, &spokes).ok_or(FitFailed::NOTHING)?;
+                    Ok((q, boundary))
+                })
+                .collect::<Fitted<Vec<_>>>()?;
+            Ok(PatchCurves { quads })
         })
         .collect();
-    let jobs: Vec<(usize, usize, Quad)> = patches
+    let jobs: Vec<(usize, usize, &Quad, &QuadBoundary)> = curves
         .iter()
         .enumerate()
-        .filter(|&(p, _)| curves[p].is_ok())
-        .flat_map(|(p, patch)| {
-            quads(patch.domain())
-                .into_iter()
+        .filter_map(|(p, c)| c.as_ref().ok().map(|c| (p, c)))
+        .flat_map(|(p, c)| {
+            c.quads
+                .iter()
                 .enumerate()
-                .map(move |(k, q)| (p, k, q))
+                .map(move |(k, (q, b))| (p, k, q, b))
         })
         .collect();
-    // A face that cannot be fitted refines up to MAX_SURFACE_CELLS (seconds each): once one
-    // has failed, the quads not yet started are left and those being fitted stop, so a
-    // failing export ends soon; so do they once the caller asked to stop. A stopped fit is
-    // neither a face nor a failure.
-    let failed = AtomicBool::new(false);
+    // A face that cannot be fitted refines to its most cells (seconds, up to minutes on a real
+    // ship's dense faces): once one has failed (or a patch's boundary curves already have),
+    // the quads not yet started are left and those being fitted stop, so a failing export
+    // ends soon; so do they once the caller asked to stop. A stopped fit is neither a face
+    // nor a failure.
+    let failed = AtomicBool::new(curves.iter().any(Result::is_err));
     let stopped = AtomicBool::new(false);
     let go_on = || !failed.load(Ordering::Relaxed) && !stopped.load(Ordering::Relaxed);
     let done = AtomicUsize::new(0);
@@ -297,15 +306,12 @@ pub fn cad_surface_with(
     let fitted: Vec<(usize, Fitted<CadFace>)> = jobs
         .into_par_iter()
         .filter(|_| go_on())
-        .filter_map(|(p, k, quad)| {
+        .filter_map(|(p, k, quad, boundary)| {
             let fit = || -> Fitted<Option<CadFace>> {
-                let c = curves[p].as_ref().map_err(|&e| e)?;
-                let boundary =
-                    quad_boundary(&quad, &c.sides, &c.spokes).ok_or(FitFailed::NOTHING)?;
                 let patch = &patches[p];
                 let target = |u: f64, v: f64| patch.eval_v(quad.domain_point(u, v));
                 let Some((fitted, deviation)) =
-                    fit_surface(target, &boundary, FACE_SHARE * tol, tol, &go_on)?
+                    fit_surface(target, boundary, FACE_SHARE * tol, tol, &go_on)?
                 else {
                     return Ok(None);
                 };
