@@ -363,6 +363,23 @@ fn a_knuckle_node_or_one_far_off_a_plane_is_left_as_it_is() {
     let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
     assert!(s.smooth_nodes.is_empty());
     assert!(s.snaps.iter().all(|c| c.tangent_nodes == 0));
+    // A station whose data allow it no turn: it keeps its shape, and the node is not reported
+    // (the other two may still turn, towards it).
+    let (curves, _) = stem(0.05, Role::Free);
+    let points: Vec<Vec<DVec3>> = curves
+        .iter()
+        .map(|c| (0..=20).map(|i| c.curve.point(i as f64 / 20.0)).collect())
+        .collect();
+    let net = Network::try_new("held", curves).expect("network");
+    let tight = SnapData {
+        points: &points,
+        tolerance: 1e-9,
+    };
+    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), Some(tight))
+        .expect("snap");
+    assert_eq!(s.snaps[1].tangent_nodes, 0, "the station is held by its data");
+    assert!(s.snaps[1].max_deviation.expect("data").0 <= 1e-9);
+    assert!(s.smooth_nodes.is_empty());
     // A station leaving the stem 5° off the others' plane: a crease in the data, not noise.
     let (curves, off) = stem(0.15, Role::Free);
     assert!(off > batten_core::MAX_TANGENT_TURN_DEGREES * 1.5, "{off}");

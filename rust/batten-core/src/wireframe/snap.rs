@@ -147,55 +147,55 @@ pub fn snap_to_nodes(
         .zip(&tangents)
         .enumerate()
         .map(|(i, ((c, (curve, snap, kept)), at))| {
-            let (curve, snap) = if at.is_empty() {
-                (curve, snap)
-            } else {
+            // The turn is an improvement, not a condition of meeting: where the move cannot
+            // be made, or takes a data point past the tolerance, the curve keeps its move
+            // through the nodes alone.
+            let turn = || -> Option<(NurbsCurve, Option<(f64, usize)>)> {
                 let derivs: Vec<(f64, DVec3)> = at.iter().map(|&(t, d, _)| (t, d)).collect();
-                let turned = c
-                    .curve
-                    .through_with_tangents(&kept, &derivs)
-                    .map_err(|e| e.named(&c.name))?;
+                let turned = c.curve.through_with_tangents(&kept, &derivs).ok()?;
                 let worst = match points_of(i) {
                     Some((points, tol)) => {
-                        Some(worst_point(&turned, points, tol).map_err(|e| e.named(&c.name))?)
+                        let (d, k, _) = worst_point(&turned, points, tol).ok()?;
+                        (d <= tol).then_some(Some((d, k)))?
                     }
                     None => None,
                 };
-                match (worst, points_of(i)) {
-                    (Some((d, _, _)), Some((_, tol))) if d > tol => (curve, snap),
-                    _ => {
-                        let turn = at
-                            .iter()
-                            .map(|&(_, _, k)| nodes[k].turn_degrees)
-                            .fold(0.0, f64::max);
-                        let snap = CurveSnap {
-                            max_deviation: worst.map(|(d, i, _)| (d, i)),
-                            tangent_nodes: at.len(),
-                            max_tangent_turn: turn,
-                            ..snap
-                        };
-                        (turned, snap)
-                    }
+                Some((turned, worst))
+            };
+            let turned = if at.is_empty() { None } else { turn() };
+            let (curve, snap) = match turned {
+                Some((turned, worst)) => {
+                    let most = at
+                        .iter()
+                        .map(|&(_, _, k)| nodes[k].turn_degrees)
+                        .fold(0.0, f64::max);
+                    let snap = CurveSnap {
+                        max_deviation: worst,
+                        tangent_nodes: at.len(),
+                        max_tangent_turn: most,
+                        ..snap
+                    };
+                    (turned, snap)
                 }
+                None => (curve, snap),
             };
             let curve = NetworkCurve {
                 name: c.name.clone(),
                 role: c.role,
                 curve,
             };
-            Ok((curve, snap))
+            (curve, snap)
         })
-        .collect::<Result<_, Error>>()?;
+        .collect();
     let (mut curves, snaps): (Vec<NetworkCurve>, Vec<_>) = turned.into_iter().unzip();
     let smooth_nodes = nodes
         .iter()
-        .enumerate()
-        .filter(|(k, n)| {
-            n.tangents.iter().all(|&(c, _, _)| {
-                tangents[c].iter().any(|&(_, _, j)| j == *k) && snaps[c].tangent_nodes > 0
-            })
+        .filter(|n| {
+            n.tangents
+                .iter()
+                .all(|&(c, _, _)| snaps[c].tangent_nodes > 0)
         })
-        .map(|(_, n)| SmoothNodeReport {
+        .map(|n| SmoothNodeReport {
             position: n.position,
             normal: n.normal,
             curves: n
