@@ -375,9 +375,16 @@ fn a_knuckle_node_or_one_far_off_a_plane_is_left_as_it_is() {
         points: &points,
         tolerance: 1e-9,
     };
-    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), Some(tight))
-        .expect("snap");
-    assert_eq!(s.snaps[1].tangent_nodes, 0, "the station is held by its data");
+    let s = snap_to_nodes(
+        &net,
+        Tolerance::try_new(0.01).expect("capture"),
+        Some(tight),
+    )
+    .expect("snap");
+    assert_eq!(
+        s.snaps[1].tangent_nodes, 0,
+        "the station is held by its data"
+    );
     assert!(s.snaps[1].max_deviation.expect("data").0 <= 1e-9);
     assert!(s.smooth_nodes.is_empty());
     // A station leaving the stem 5° off the others' plane: a crease in the data, not noise.
