@@ -15,6 +15,33 @@ pub const EXPORT_DEGREE: usize = 3;
 /// this times its parameter speed (1e-12 m on a 1 m edge), and no sliver span is made.
 pub const KNOT_MERGE: f64 = 1e-12;
 
+/// The non-zero cubic basis functions of one parameter of a surface and their first
+/// derivatives (Piegl & Tiller A2.3): `n[a]` and `dn[a]` belong to control row (or column)
+/// `span − degree + a`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Basis {
+    span: usize,
+    n: [f64; EXPORT_DEGREE + 1],
+    dn: [f64; EXPORT_DEGREE + 1],
+}
+
+impl Basis {
+    /// The basis of the clamped `knots` (for `count` control points) at `t` (clamped into
+    /// `[0, 1]`).
+    fn at(knots: &[f64], count: usize, t: f64) -> Basis {
+        let p = EXPORT_DEGREE;
+        let t = t.clamp(0.0, 1.0);
+        let span = find_span(knots, p, count, t);
+        let mut d = [[0.0; MAX_ORDER]; 4];
+        ders_basis_funs(knots, span, t, p, 1, &mut d);
+        Basis {
+            span,
+            n: std::array::from_fn(|a| d[0][a]),
+            dn: std::array::from_fn(|a| d[1][a]),
+        }
+    }
+}
+
 /// A polynomial tensor-product B-spline surface of [`EXPORT_DEGREE`] in `u` and `v` on
 /// `[0, 1]²`: control point `(i, j)` (`i` along `u`) is `control[i * count_v + j]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -64,23 +91,32 @@ impl BsplineSurface {
     /// The surface point and its first partial derivatives `[S, S_u, S_v]` at `(u, v)`
     /// (clamped into `[0, 1]²`), from the basis functions' derivatives (Piegl & Tiller A3.6).
     pub fn eval_derivs(&self, u: f64, v: f64) -> [DVec3; 3] {
+        self.eval_derivs_at(&self.basis_u(u), &self.basis_v(v))
+    }
+
+    /// The basis functions along `u` at `u` (clamped into `[0, 1]`) and their derivatives: what
+    /// [`BsplineSurface::eval_derivs_at`] needs, computed once for every sample on a line
+    /// `u = const`.
+    pub(crate) fn basis_u(&self, u: f64) -> Basis {
+        Basis::at(&self.knots_u, self.count_u, u)
+    }
+
+    /// The basis functions along `v` at `v` (see [`BsplineSurface::basis_u`]).
+    pub(crate) fn basis_v(&self, v: f64) -> Basis {
+        Basis::at(&self.knots_v, self.count_v, v)
+    }
+
+    /// [`BsplineSurface::eval_derivs`] from the bases of its two parameters: a grid of samples
+    /// takes one basis per row and per column instead of two per sample.
+    pub(crate) fn eval_derivs_at(&self, bu: &Basis, bv: &Basis) -> [DVec3; 3] {
         let p = EXPORT_DEGREE;
-        let ders = |knots: &[f64], count: usize, t: f64| {
-            let t = t.clamp(0.0, 1.0);
-            let span = find_span(knots, p, count, t);
-            let mut d = [[0.0; MAX_ORDER]; 4];
-            ders_basis_funs(knots, span, t, p, 1, &mut d);
-            (span, d)
-        };
-        let (su, du) = ders(&self.knots_u, self.count_u, u);
-        let (sv, dv) = ders(&self.knots_v, self.count_v, v);
         let mut out = [DVec3::ZERO; 3];
-        for (a, (&n, &dn)) in du[0][..=p].iter().zip(&du[1][..=p]).enumerate() {
-            let row = (su - p + a) * self.count_v + sv - p;
+        for (a, (&n, &dn)) in bu.n.iter().zip(&bu.dn).enumerate() {
+            let row = (bu.span - p + a) * self.count_v + bv.span - p;
             let (mut s, mut s_v) = (DVec3::ZERO, DVec3::ZERO);
             for (c, (&m, &dm)) in self.control[row..=row + p]
                 .iter()
-                .zip(dv[0][..=p].iter().zip(&dv[1][..=p]))
+                .zip(bv.n.iter().zip(&bv.dn))
             {
                 s += *c * m;
                 s_v += *c * dm;

@@ -207,7 +207,7 @@ struct Sample {
     slid: bool,
 }
 
-/// How far the fitted `surface` lies from the target's point `p = target(u, v)`: `|S(u, v) − p|`
+/// How far the fitted `surface` lies from the target's point `p` at `(u, v)`: `|S(u, v) − p|`
 /// where that is within `tol`; else the distance from `p` to the nearest point of the surface
 /// found by Gauss–Newton steps from `(u, v)` (Piegl & Tiller §6.1, point inversion), so that a
 /// face is judged by its shape, not by how its parameters run. A patch's parameters can run
@@ -218,20 +218,26 @@ struct Sample {
 ///
 /// Sliding lets a face fold in its own tangent plane and still lie close to the target, so
 /// the fit also checks that the face does not turn over ([`turned_over`]).
+///
+/// `first` is the face's point and first derivatives at `(u, v)`, where the search starts
+/// ([`check`] evaluates them from one basis per row and column of its samples).
 fn deviation_at(
     surface: &BsplineSurface,
-    target: &impl Fn(f64, f64) -> DVec3,
-    u: f64,
-    v: f64,
+    p: DVec3,
+    (u, v): (f64, f64),
+    first: [DVec3; 3],
     tol: f64,
 ) -> Sample {
-    let p = target(u, v);
     let (mut a, mut b) = (u, v);
     let mut best = f64::INFINITY;
     let mut normal = DVec3::ZERO;
     let mut slid = false;
     for step in 0..=FOOT_STEPS {
-        let [s, su, sv] = surface.eval_derivs(a, b);
+        let [s, su, sv] = if step == 0 {
+            first
+        } else {
+            surface.eval_derivs(a, b)
+        };
         let r = p - s;
         best = best.min(r.length());
         if step == 0 {
@@ -308,6 +314,7 @@ fn check(
         span_samples(bu, &CHECK_FRACTIONS, true),
         span_samples(bv, &CHECK_FRACTIONS, true),
     );
+    let basis_v: Vec<_> = cv.iter().map(|&(_, v)| surface.basis_v(v)).collect();
     // The row of samples before (along v), to compare with their neighbours.
     let mut previous: Vec<Sample> = Vec::with_capacity(cv.len());
     let mut row: Vec<Sample> = Vec::with_capacity(cv.len());
@@ -316,8 +323,10 @@ fn check(
             return None;
         }
         row.clear();
+        let basis_u = surface.basis_u(u);
         for (b, &(j, v)) in cv.iter().enumerate() {
-            let sample = deviation_at(surface, target, u, v, tol);
+            let first = surface.eval_derivs_at(&basis_u, &basis_v[b]);
+            let sample = deviation_at(surface, target(u, v), (u, v), first, tol);
             out.deviation = out.deviation.max(sample.distance);
             let fold_u = a > 0 && turned_over(&previous[b], &sample);
             let fold_v = b > 0 && turned_over(&row[b - 1], &sample);
