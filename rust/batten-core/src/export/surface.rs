@@ -204,9 +204,7 @@ type Fitted<T> = Result<T, FitFailed>;
 
 /// What one patch needs before its quads are fitted: each quad with its boundary curves (from
 /// the patch's side curves and spokes).
-struct PatchCurves {
-    quads: Vec<(Quad, QuadBoundary)>,
-}
+type QuadBoundaries = Vec<(Quad, QuadBoundary)>;
 
 /// Approximate each patch of `surface` by bicubic B-spline faces within `options.tolerance`
 /// (a 4-sided patch by one face, an N-sided one by N quads, see the `quads` module), so that
@@ -226,8 +224,7 @@ struct PatchCurves {
 /// Edges, patches and quads are fitted in parallel. Errors: holes in the build (unless
 /// `allow_holes`), a tolerance that is not a positive finite number, patches that could not
 /// be fitted within [`MAX_SURFACE_SPANS`](super::fit::MAX_SURFACE_SPANS) spans a side or
-/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells (or more for a face whose sides
-/// start it near there), with what each fit reached:
+/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells, with what each fit reached:
 /// every patch whose boundary curves could not be fitted (a patch whose shared edge could not
 /// be fitted fails with it; no face is fitted then), else the faces that failed before the
 /// first failing face stopped the rest.
@@ -264,7 +261,7 @@ pub fn cad_surface_with(
         .into_par_iter()
         .map(|owner| owner.map(|o| fit_edge(patches, o, boundary_tol)))
         .collect();
-    let curves: Vec<Fitted<PatchCurves>> = patches
+    let boundaries: Vec<Fitted<QuadBoundaries>> = patches
         .par_iter()
         .zip(&surface.layouts)
         .map(|(patch, layout)| {
@@ -272,33 +269,26 @@ pub fn cad_surface_with(
                 .map(|si| side_curve(patch, si, &layout[si], &edges))
                 .collect::<Fitted<Vec<_>>>()?;
             let spokes = spokes(patch, &sides, boundary_tol)?;
-            let quads = quads(patch.domain())
+            quads(patch.domain())
                 .into_iter()
                 .map(|q| {
                     let boundary = quad_boundary(&q, &sides, &spokes).ok_or(FitFailed::NOTHING)?;
                     Ok((q, boundary))
                 })
-                .collect::<Fitted<Vec<_>>>()?;
-            Ok(PatchCurves { quads })
+                .collect()
         })
         .collect();
-    let jobs: Vec<(usize, usize, &Quad, &QuadBoundary)> = curves
+    let jobs: Vec<(usize, usize, &Quad, &QuadBoundary)> = boundaries
         .iter()
         .enumerate()
-        .filter_map(|(p, c)| c.as_ref().ok().map(|c| (p, c)))
-        .flat_map(|(p, c)| {
-            c.quads
-                .iter()
-                .enumerate()
-                .map(move |(k, (q, b))| (p, k, q, b))
-        })
+        .filter_map(|(p, b)| b.as_ref().ok().map(|b| (p, b)))
+        .flat_map(|(p, b)| b.iter().enumerate().map(move |(k, (q, b))| (p, k, q, b)))
         .collect();
-    // A face that cannot be fitted refines to its most cells (seconds, up to minutes on a real
-    // ship's dense faces): once one has failed (or a patch's boundary curves already have),
-    // the quads not yet started are left and those being fitted stop, so a failing export
-    // ends soon; so do they once the caller asked to stop. A stopped fit is neither a face
-    // nor a failure.
-    let failed = AtomicBool::new(curves.iter().any(Result::is_err));
+    // A face that cannot be fitted refines to its most cells (seconds each): once one has
+    // failed (or a patch's boundary curves already have), the quads not yet started are left
+    // and those being fitted stop, so a failing export ends soon; so do they once the caller
+    // asked to stop. A stopped fit is neither a face nor a failure.
+    let failed = AtomicBool::new(boundaries.iter().any(Result::is_err));
     let stopped = AtomicBool::new(false);
     let go_on = || !failed.load(Ordering::Relaxed) && !stopped.load(Ordering::Relaxed);
     let done = AtomicUsize::new(0);
@@ -344,8 +334,10 @@ pub fn cad_surface_with(
     if stopped.load(Ordering::Relaxed) {
         return Ok(None);
     }
-    let mut unfitted: Vec<Option<FitFailed>> =
-        curves.iter().map(|c| c.as_ref().err().copied()).collect();
+    let mut unfitted: Vec<Option<FitFailed>> = boundaries
+        .iter()
+        .map(|b| b.as_ref().err().copied())
+        .collect();
     let mut faces = Vec::with_capacity(fitted.len());
     for (p, f) in fitted {
         match f {

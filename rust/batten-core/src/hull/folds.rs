@@ -101,9 +101,9 @@ const PLANE_SAMPLES: usize = 8;
 /// still fold within the plane: a thin strip of the domain maps onto the surface turned over,
 /// and the fold search's mesh steps over it. The grid's cells ([`IN_PLANE_GRID`] across the
 /// domain's square) are triangles of evaluated points; one whose signed area in the plane has
-/// the minority's sign has turned over. Only patches of 3, 5 or more sides are looked at: those are the
-/// Charrot–Gregory patches whose corners fold so, and the check costs some 10 000
-/// evaluations.
+/// the minority's sign has turned over. Only patches of 3, 5 or more sides are looked at:
+/// those are the Charrot–Gregory patches whose corners fold so, and the check costs up to
+/// (`IN_PLANE_GRID` + 1)² evaluations (those inside the domain).
 pub(crate) fn in_plane_folds(patch: &Patch, tolerance: Tolerance) -> usize {
     let n = patch.sides();
     if n == 4 {

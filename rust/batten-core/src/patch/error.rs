@@ -213,6 +213,14 @@ pub enum PatchWarning {
     },
 }
 
+/// The name of the corner-based patch a side-blended one replaced, for its warning.
+fn corner_patch_name(kind: crate::PatchKind) -> &'static str {
+    match kind {
+        crate::PatchKind::Gregory => "Gregory",
+        _ => "Charrot–Gregory",
+    }
+}
+
 impl std::fmt::Display for PatchWarning {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -231,10 +239,7 @@ impl std::fmt::Display for PatchWarning {
                 pairs,
                 degrees,
             } => {
-                let name = match replaced {
-                    crate::PatchKind::Gregory => "Gregory",
-                    _ => "Charrot–Gregory",
-                };
+                let name = corner_patch_name(*replaced);
                 write!(
                     f,
                     "its {name} patch folds ({replaced_pairs} pair(s) of neighbouring mesh faces \
@@ -243,10 +248,7 @@ impl std::fmt::Display for PatchWarning {
                 )
             }
             PatchWarning::FlatSideBlended { replaced, cells } => {
-                let name = match replaced {
-                    crate::PatchKind::Gregory => "Gregory",
-                    _ => "Charrot–Gregory",
-                };
+                let name = corner_patch_name(*replaced);
                 write!(
                     f,
                     "the face is flat and its {name} patch folds within its plane ({cells} cell(s) \

@@ -122,18 +122,9 @@ pub fn snap_to_nodes(
             Ok((curve, snap, kept))
         })
         .collect::<Result<_, Error>>()?;
-    let kept_t: Vec<Vec<f64>> = moved
-        .iter()
-        .map(|(_, _, k)| k.iter().map(|&(t, _)| t).collect())
-        .collect();
-    let moved_curves: Vec<NurbsCurve> = moved.iter().map(|(c, _, _)| c.clone()).collect();
-    let nodes = smooth_nodes(
-        network.curves(),
-        &topology,
-        &moved_curves,
-        &kept_t,
-        capture.get(),
-    );
+    let views: Vec<(&NurbsCurve, &[(f64, DVec3)])> =
+        moved.iter().map(|(c, _, k)| (c, k.as_slice())).collect();
+    let nodes = smooth_nodes(network.curves(), &topology, &views, capture.get());
     let mut tangents: Vec<Vec<(f64, DVec3, usize)>> = vec![Vec::new(); moved.len()];
     for (k, node) in nodes.iter().enumerate() {
         for &(c, t, d) in &node.tangents {

@@ -55,8 +55,8 @@ fn joint_near(curve: &NurbsCurve, at: DVec3, reach: f64) -> bool {
 }
 
 /// The smooth nodes of `topology` (found on `network`) with the derivatives the curves `moved`
-/// (the network's curves moved through their nodes, in its order) are to have there, given the
-/// nodes each curve still passes through (`kept`: per curve, its targets' parameters). A node is
+/// (the network's curves moved through their nodes, in its order, each with the targets it
+/// still passes through) are to have there. A node is
 /// smooth when at least three curves meet there, each once and through a kept target, none a
 /// knuckle (role), rational, or with a corner or joint within `reach` (m, the capture
 /// distance) of it, two of them at least [`MIN_CROSSING_ANGLE_DEGREES`] apart, and no curve's
@@ -64,8 +64,7 @@ fn joint_near(curve: &NurbsCurve, at: DVec3, reach: f64) -> bool {
 pub(crate) fn smooth_nodes(
     network: &[NetworkCurve],
     topology: &Topology,
-    moved: &[NurbsCurve],
-    kept: &[Vec<f64>],
+    moved: &[(&NurbsCurve, &[(f64, DVec3)])],
     reach: f64,
 ) -> Vec<SmoothNode> {
     let brep = &topology.brep;
@@ -91,16 +90,19 @@ pub(crate) fn smooth_nodes(
             continue;
         }
         let eligible = curves.iter().all(|&(c, t)| {
-            let curve = &moved[c];
+            let (curve, kept) = moved[c];
             network[c].role != Role::Knuckle
                 && !curve.is_rational()
-                && kept[c].contains(&t)
+                && kept.iter().any(|&(u, _)| u == t)
                 && !joint_near(curve, position, reach)
         });
         if !eligible {
             continue;
         }
-        let derivs: Vec<DVec3> = curves.iter().map(|&(c, t)| moved[c].derivs(t).d1).collect();
+        let derivs: Vec<DVec3> = curves
+            .iter()
+            .map(|&(c, t)| moved[c].0.derivs(t).d1)
+            .collect();
         let units: Vec<DVec3> = derivs.iter().map(|d| d.normalize_or_zero()).collect();
         if units.contains(&DVec3::ZERO) {
             continue;
