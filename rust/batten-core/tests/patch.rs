@@ -1200,3 +1200,96 @@ fn a_normal_field_turning_100_degrees_between_its_nodes_turns_with_its_curve() {
         );
     }
 }
+
+/// A planar quad whose lower side has a corner inside it (two cubic pieces meeting at 26.6°,
+/// no node there), as a waterline curling round a forefoot has in section data.
+fn cornered_quad() -> Vec<NurbsCurve> {
+    let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    let third = 1.0 / 3.0;
+    vec![
+        NurbsCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0],
+            vec![
+                p(0.0, 0.0),
+                p(2.0 * third, 0.0),
+                p(4.0 * third, 0.0),
+                p(2.0, 0.0),
+                p(2.0 + 2.0 * third, third),
+                p(2.0 + 4.0 * third, 2.0 * third),
+                p(4.0, 1.0),
+            ],
+            None,
+        )
+        .expect("valid curve"),
+        bezier(&[p(4.0, 1.0), p(4.0, 3.0)]),
+        bezier(&[p(4.0, 3.0), p(0.0, 3.0)]),
+        bezier(&[p(0.0, 3.0), p(0.0, 0.0)]),
+    ]
+}
+
+#[test]
+fn a_ribbon_runs_on_continuously_past_a_corner_inside_its_side() {
+    let curves = cornered_quad();
+    let corner = curves[0].corner_parameters(1f64.to_radians());
+    assert_eq!(corner, vec![1.0], "the side has its corner");
+    let boundary = single_sides(&curves);
+    for kind in [PatchKind::Gregory, PatchKind::SideBlend] {
+        let opts = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        let patch = Patch::try_new(&boundary, &[], &opts).expect("patch");
+        // Where the corner is along the side: half way in the curve's parameter, which a
+        // one-segment side runs through in proportion.
+        let at = 0.5;
+        let (before, after) = (
+            patch.side_point(0, at - 1e-9),
+            patch.side_point(0, at + 1e-9),
+        );
+        assert!(
+            (before - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-6,
+            "{before}"
+        );
+        assert!(
+            (after - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-6,
+            "{after}"
+        );
+        // The ribbon on either side of the corner: without the turn its frame turns with the
+        // side's tangent, 26.6°, and so does the ribbon.
+        let (r0, r1) = (patch.ribbon(0, at - 1e-9), patch.ribbon(0, at + 1e-9));
+        let jump = r0.angle_between(r1).to_degrees();
+        assert!(
+            jump < 1e-4,
+            "{kind:?}: the ribbon turns {jump}° at the corner"
+        );
+        // Continuous everywhere, in the plane, and pointing into the face.
+        let n = 4000;
+        let mut last = patch.ribbon(0, 0.0);
+        let mut largest: f64 = 0.0;
+        for j in 1..=n {
+            let s = j as f64 / n as f64;
+            let r = patch.ribbon(0, s);
+            assert!(r.z.abs() < 1e-12, "{kind:?}: out of the plane at {s}: {r}");
+            assert!(r.y > 0.0, "{kind:?}: not into the face at {s}: {r}");
+            largest = largest.max(r.angle_between(last).to_degrees());
+            last = r;
+        }
+        assert!(
+            largest < 0.2,
+            "{kind:?}: the ribbon turns {largest}° in one step"
+        );
+        // The turn is nothing at the face's corners: the ribbon there is the neighbour's
+        // tangent (Gregory's corner condition), here the left side's d/ds, down 3 m.
+        let start = patch.ribbon(0, 0.0);
+        assert!(
+            (start - DVec3::new(0.0, 3.0, 0.0)).length() < 1e-9 || kind == PatchKind::SideBlend,
+            "{kind:?}: {start}"
+        );
+        let (worst, _) = fold_figures(&patch);
+        assert!(
+            worst < 30.0,
+            "{kind:?}: neighbouring mesh faces at {worst}°"
+        );
+    }
+}

@@ -19,6 +19,10 @@
 //! condition is what the Gregory and Charrot–Gregory corner interpolants (eqs. 2–4) need to
 //! reproduce both boundary curves and their cross derivatives.
 //!
+//! Where a side's tangent jumps inside the side (a corner of its curve that is no node, or a
+//! joint between two of its segments), `ĉ` and `T̂` jump with it; the ribbon is turned in the
+//! tangent plane to run on continuously through such a corner ([`Turn`]).
+//!
 //! A segment without crossing curves gets the face's default ribbon: the normal at each end
 //! corner is `ĉ × a` with `a` the neighbouring side's tangent there (the face's own corner),
 //! blended linearly and normalised along the side.
@@ -500,11 +504,123 @@ pub(crate) struct PreparedRibbon {
     face_normal: DVec3,
     alpha: [f64; 2],
     beta: [f64; 2],
+    /// The side's corners, where the ribbon is turned to run on continuously.
+    turns: Vec<Turn>,
     /// The ribbon's scale at [`WIDTH_SAMPLES`] + 1 even steps of `s`, with its Hermite slopes
     /// and its smallest value, where a side-blended patch's narrow face shortens it
     /// ([`width_scale`]); `None` where it is 1 throughout (always, for the corner-based
     /// patches).
     scale: Option<WidthScale>,
+}
+
+/// A side's tangent turning by more than this at one point inside the side (a corner of its
+/// curve, or a joint between two of its segments) turns its ribbon there as well ([`Turn`]).
+const MIN_TURN_DEGREES: f64 = 0.05;
+
+/// The farthest, in side parameter, a [`Turn`]'s blend reaches either side of its corner; it
+/// reaches at most half way to the side's nearer end, so the face's corners keep their
+/// ribbons and a blend never spans a whole short stretch between a corner and a face corner.
+const TURN_HALF_WIDTH: f64 = 0.25;
+
+/// A corner inside a side, where the side's tangent `ĉ` (and with it the frame `ĉ, T̂` of the
+/// ribbon `R = αĉ + βT̂`) turns by `angle` in the tangent plane: a waterline curling round a
+/// forefoot in section data, a station with a knuckle point that is not a node. `R` would jump
+/// by that angle, and a patch on a jumping ribbon folds. So `R` is turned back in the tangent
+/// plane by the part of the corner's angle that a smoothstep blend across `[s − half,
+/// s + half]` has not yet reached: half the angle on either side at the corner itself, where
+/// the two sides' ribbons then meet, and nothing at the blend's ends and the face's corners.
+/// The normal, and so G1 with the neighbouring face, is unchanged.
+#[derive(Clone, Copy, Debug)]
+struct Turn {
+    /// Side parameter of the corner.
+    s: f64,
+    /// Half the blend's width, in side parameter.
+    half: f64,
+    /// Signed angle (radians) from the frame before the corner to the frame after it, about
+    /// the surface normal there.
+    angle: f64,
+    /// The segment holding the corner, or before the joint.
+    segment: usize,
+    /// The curve parameter of a corner inside `segment`, and whether the segment runs with
+    /// increasing parameter; `None` for the joint after `segment`.
+    at: Option<(f64, bool)>,
+}
+
+impl Turn {
+    /// The turn of the ribbon at side parameter `s`, on segment `k` at curve parameter `t`
+    /// (the side's evaluator's own segment and parameter, so the side of the corner a sample
+    /// is on is the side its tangent came from).
+    #[inline]
+    fn angle_at(&self, s: f64, k: usize, t: f64) -> f64 {
+        let past = k > self.segment
+            || (k == self.segment
+                && match self.at {
+                    None => false,
+                    // At the knot the side's evaluator takes the piece after it in t.
+                    Some((tc, true)) => t >= tc,
+                    Some((tc, false)) => t < tc,
+                });
+        let x = ((s - self.s + self.half) / (2.0 * self.half)).clamp(0.0, 1.0);
+        let ramp = x * x * (3.0 - 2.0 * x);
+        self.angle * (ramp - if past { 1.0 } else { 0.0 })
+    }
+}
+
+/// The [`Turn`]s of one side: its curves' corners inside its segments and its joints between
+/// segments where the ribbon's frame turns by more than [`MIN_TURN_DEGREES`].
+fn side_turns(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
+    let min = MIN_TURN_DEGREES.to_radians();
+    let mut out = Vec::new();
+    let m = side.segs.len();
+    // One-sided d/ds of segment `k` at curve parameter `t`, from the piece after `t` in t or
+    // the one before it.
+    let one_sided = |k: usize, t: f64, after_in_t: bool| -> DVec3 {
+        let seg = &side.segs[k];
+        let du = side.breaks[k + 1] - side.breaks[k];
+        let d1 = seg.fast.derivs_in(seg.fast.piece_at(t, after_in_t), t).d1;
+        (d1 * (seg.tb - seg.ta) + (seg.d1 - seg.d0)) / du
+    };
+    let mut push = |s: f64, before: SideSample, after: SideSample, segment, at| {
+        let n = (before.c.cross(before.cross) + after.c.cross(after.cross)).normalize_or_zero();
+        let angle = n.dot(before.c.cross(after.c)).atan2(before.c.dot(after.c));
+        let half = TURN_HALF_WIDTH.min(0.5 * s).min(0.5 * (1.0 - s));
+        if angle.abs() > min && half > 0.0 && angle.is_finite() {
+            out.push(Turn {
+                s,
+                half,
+                angle,
+                segment,
+                at,
+            });
+        }
+    };
+    for (k, seg) in side.segs.iter().enumerate() {
+        let up = seg.tb >= seg.ta;
+        let (lo, hi) = (seg.ta.min(seg.tb), seg.ta.max(seg.tb));
+        let du = side.breaks[k + 1] - side.breaks[k];
+        for tc in seg.curve.corner_parameters(min) {
+            if tc <= lo || tc >= hi {
+                continue;
+            }
+            let lam = (tc - seg.ta) / (seg.tb - seg.ta);
+            let s = side.breaks[k] + du * lam;
+            let p = seg.fast.point(tc) + seg.d0 * (1.0 - lam) + seg.d1 * lam;
+            let frame = |after_in_t| rib.frame_of(side, s, p, one_sided(k, tc, after_in_t), k, tc);
+            let (before, after) = (frame(!up), frame(up));
+            push(s, before, after, k, Some((tc, up)));
+        }
+        if k + 1 < m {
+            let next = &side.segs[k + 1];
+            let s = side.breaks[k + 1];
+            let p = side.point(s);
+            let before = rib.frame_of(side, s, p, one_sided(k, seg.tb, !up), k, seg.tb);
+            let next_up = next.tb >= next.ta;
+            let dp = one_sided(k + 1, next.ta, next_up);
+            let after = rib.frame_of(side, s, p, dp, k + 1, next.ta);
+            push(s, before, after, k, None);
+        }
+    }
+    out
 }
 
 /// Position, unit tangent and unit inward cross tangent of a side at `s`.
@@ -527,6 +643,21 @@ impl PreparedRibbon {
     #[inline]
     pub(crate) fn frame(&self, side: &PreparedSide, s: f64) -> SideSample {
         let (p, dp, k, t) = side.eval_located(s);
+        self.frame_of(side, s, p, dp, k, t)
+    }
+
+    /// The frame at `s` from the side's point `p` and derivative `dp` there, on segment `k`
+    /// at curve parameter `t` (`dp` one-sided where the side has a corner).
+    #[inline]
+    fn frame_of(
+        &self,
+        side: &PreparedSide,
+        s: f64,
+        p: DVec3,
+        dp: DVec3,
+        k: usize,
+        t: f64,
+    ) -> SideSample {
         // A zero derivative (coincident control points) has no direction: use the chord.
         let c = dp
             .try_normalize()
@@ -542,14 +673,25 @@ impl PreparedRibbon {
         SideSample { p, c, cross }
     }
 
-    /// Position and ribbon vector `R(s) = α(s)ĉ + β(s)T̂` at `s`.
+    /// Position and ribbon vector `R(s) = α(s)ĉ + β(s)T̂` at `s`, turned in the tangent
+    /// plane where the side has corners ([`Turn`]).
     #[inline]
     pub(crate) fn eval(&self, side: &PreparedSide, s: f64) -> (DVec3, DVec3) {
-        let f = self.frame(side, s);
+        let (p, dp, k, t) = side.eval_located(s);
+        let f = self.frame_of(side, s, p, dp, k, t);
         let s = s.clamp(0.0, 1.0);
         let a = self.alpha[0] + (self.alpha[1] - self.alpha[0]) * s;
         let b = self.beta[0] + (self.beta[1] - self.beta[0]) * s;
         let r = f.c * a + f.cross * b;
+        let r = if self.turns.is_empty() {
+            r
+        } else {
+            let phi: f64 = self.turns.iter().map(|turn| turn.angle_at(s, k, t)).sum();
+            // R ⊥ n̂ = ĉ × T̂: Rodrigues' rotation about n̂ in the tangent plane.
+            let axis = f.c.cross(f.cross);
+            let (sin, cos) = phi.sin_cos();
+            r * cos + axis.cross(r) * sin
+        };
         match &self.scale {
             None => (f.p, r),
             Some(w) => (f.p, r * w.at(s)),
@@ -762,6 +904,7 @@ pub(crate) fn prepare_ribbons(
             face_normal,
             alpha: [0.0; 2],
             beta: [0.0; 2],
+            turns: Vec::new(),
             scale: None,
         };
         let side = &sides[i];
@@ -784,6 +927,7 @@ pub(crate) fn prepare_ribbons(
                 Some((en, if dot < 0.0 { -1.0 } else { 1.0 }))
             })
             .collect();
+        rib.turns = side_turns(&rib, side);
         // Corner coefficients: R(0) = a0 and R(1) = a1, projected into the tangent plane.
         for (end, (s, a, corner)) in [(0.0, a0, i), (1.0, a1, next)].into_iter().enumerate() {
             let f = rib.frame(side, s);
