@@ -298,3 +298,129 @@ pub(crate) fn section_pieces(cells: &[DomainCell], patches: &[Patch], cut: &Cut)
         .flat_map_iter(|cell| cell_pieces(cell, &patches[cell.patch], cut))
         .collect()
 }
+
+/// A piece's end this far (in domain units) inside its patch's domain is an inner end: the
+/// section of a patch never ends there.
+const INNER_END: f64 = 1e-7;
+
+/// A bridge over a gap between inner ends may be at most this many times as long as the gap's
+/// chord (else the polish has jumped to another branch of the section).
+const BRIDGE_LENGTH_FACTOR: f64 = 2.0;
+
+/// Close the gaps a section can leave inside a patch, where it runs along the shared edge of
+/// two cells: each cell's polynomial interpolates the patch only to about 1e-9 of its size, so
+/// where the section strays across the edge by less than that, one cell has it leave across the
+/// edge and the other never has it enter (the frigate's waterline at 7/8 of its depth ran along
+/// a cell edge of a side patch for 0.7 m). A piece's end inside its patch's domain that no
+/// other piece meets within `join` is such a gap; it is bridged to the nearest such start on
+/// the same patch by the exact section between them (the points polished onto the plane on the
+/// patch itself, halved as [`refine`] does), kept only if no longer than
+/// [`BRIDGE_LENGTH_FACTOR`] times the gap's chord.
+pub(crate) fn bridge_inner_gaps(pieces: &mut Vec<Piece>, patches: &[Patch], cut: &Cut, join: f64) {
+    let inner = |piece: &Piece, x: DVec2| {
+        let domain = patches[piece.patch].domain();
+        (0..domain.sides()).all(|i| domain.distance(i, x) > INNER_END)
+    };
+    let ends: Vec<(DVec3, DVec3)> = pieces
+        .iter()
+        .map(|p| (p.points[0], p.points[p.points.len() - 1]))
+        .collect();
+    let met = |i: usize, q: DVec3| {
+        ends.iter()
+            .enumerate()
+            .any(|(j, &(a, b))| j != i && ((a - q).length() <= join || (b - q).length() <= join))
+    };
+    // Dangling inner ends (exits) and starts (entries).
+    let exits: Vec<usize> = (0..pieces.len())
+        .filter(|&i| inner(&pieces[i], pieces[i].end) && !met(i, ends[i].1))
+        .collect();
+    let mut entries: Vec<usize> = (0..pieces.len())
+        .filter(|&i| inner(&pieces[i], pieces[i].start) && !met(i, ends[i].0))
+        .collect();
+    let mut bridges = Vec::new();
+    for i in exits {
+        let (patch, x0, p0) = (pieces[i].patch, pieces[i].end, ends[i].1);
+        let Some((k, &j)) = entries
+            .iter()
+            .enumerate()
+            .filter(|&(_, &j)| j != i && pieces[j].patch == patch)
+            .min_by(|a, b| {
+                (pieces[*a.1].start - x0)
+                    .length()
+                    .total_cmp(&(pieces[*b.1].start - x0).length())
+            })
+        else {
+            continue;
+        };
+        let (x1, p1) = (pieces[j].start, ends[j].0);
+        let mut points = vec![p0];
+        refine(&patches[patch], cut, (x0, p0), (x1, p1), 0, &mut points);
+        on_plane(&mut points, cut);
+        let length: f64 = points.windows(2).map(|w| (w[1] - w[0]).length()).sum();
+        if points.len() >= 2 && length <= BRIDGE_LENGTH_FACTOR * (p1 - p0).length() + join {
+            entries.swap_remove(k);
+            bridges.push(Piece {
+                patch,
+                points,
+                start: x0,
+                end: x1,
+            });
+        }
+    }
+    pieces.extend(bridges);
+    drop_covered_fragments(pieces, patches, cut.tolerance);
+}
+
+/// The other side of [`bridge_inner_gaps`]: where the section strays across a cell edge the
+/// other way, both cells have it, and the one that has it only for a stretch leaves a fragment
+/// with an inner end that nothing meets, lying on a piece of the other cell. Such a piece (every
+/// point within twice the chordal `tolerance` of another piece's chords) is dropped, and so on
+/// along the fragment.
+fn drop_covered_fragments(pieces: &mut Vec<Piece>, patches: &[Patch], tolerance: f64) {
+    let near = 2.0 * tolerance;
+    let inner = |piece: &Piece, x: DVec2| {
+        let domain = patches[piece.patch].domain();
+        (0..domain.sides()).all(|i| domain.distance(i, x) > INNER_END)
+    };
+    let to_segment = |q: DVec3, a: DVec3, b: DVec3| {
+        let ab = b - a;
+        let t = if ab.length_squared() > 0.0 {
+            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (a + ab * t - q).length()
+    };
+    loop {
+        let met = |i: usize, q: DVec3| {
+            pieces.iter().enumerate().any(|(j, p)| {
+                j != i
+                    && ((p.points[0] - q).length() <= near
+                        || (p.points[p.points.len() - 1] - q).length() <= near)
+            })
+        };
+        let covered = |i: usize| {
+            pieces[i].points.iter().all(|&q| {
+                pieces.iter().enumerate().any(|(j, p)| {
+                    j != i
+                        && p.patch == pieces[i].patch
+                        && p.points
+                            .windows(2)
+                            .any(|w| to_segment(q, w[0], w[1]) <= near)
+                })
+            })
+        };
+        let fragment = (0..pieces.len()).find(|&i| {
+            let p = &pieces[i];
+            let dangling = (inner(p, p.start) && !met(i, p.points[0]))
+                || (inner(p, p.end) && !met(i, p.points[p.points.len() - 1]));
+            dangling && covered(i)
+        });
+        match fragment {
+            Some(i) => {
+                pieces.swap_remove(i);
+            }
+            None => break,
+        }
+    }
+}
