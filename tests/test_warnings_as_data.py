@@ -227,14 +227,21 @@ def test_a_degenerate_corner_names_its_face_curves_and_place():
 
 
 def test_a_side_blended_face_names_its_curves_and_both_fold_figures():
-    """A narrow triangle whose long side hooks into its apex (a waterline meeting the keel):
+    """A narrow triangle, gently twisted, whose long side waves like an S across its chord:
     its Charrot–Gregory patch folds, the side-blended patch that replaces it does not, and the
     report says so as a ``side_blended`` dict naming the face's curves, with no fold left."""
-    coll = new_collection("hook")
-    _line("keel", (0, 0, 0), (5.2, 0, 0), coll)
-    _line("station", (5.2, 0, 0), (5.2, 0.9, 0), coll)
-    hook = [(5.2, 0.9, 0), (3.5, 0.75, 0), (1.5, 0.55, 0), (0.45, 0.42, 0), (0.12, 0.13, 0), (0, 0, 0)]
-    new_curve("waterline", "NURBS", np.array(hook, dtype=float), endpoint=True, collection=coll)
+    coll = new_collection("wave")
+
+    def at(x, y):
+        return (5.0 * x, 5.0 * y, 0.25 * x * y)
+
+    thirds = np.linspace(0.0, 1.0, 4)
+    wave = [at(0, 0), at(0.3, 0.2), at(0.6, -0.2), at(1, 0)]
+    new_curve("waterline", "NURBS", np.array(wave, dtype=float), endpoint=True, collection=coll)
+    station = [at(1 - 0.95 * t, 0.2 * t) for t in thirds]
+    new_curve("station", "NURBS", np.array(station, dtype=float), endpoint=True, collection=coll)
+    keel = [at(0.05 * (1 - t), 0.2 * (1 - t)) for t in thirds]
+    new_curve("keel", "NURBS", np.array(keel, dtype=float), endpoint=True, collection=coll)
     report = api.build(coll, mirror=False).report
     assert report["faces"] == 1, report["warnings"]
     found = _of_kind(report["warnings"], "side_blended")

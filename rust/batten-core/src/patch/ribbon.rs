@@ -19,9 +19,9 @@
 //! condition is what the Gregory and Charrot–Gregory corner interpolants (eqs. 2–4) need to
 //! reproduce both boundary curves and their cross derivatives.
 //!
-//! Where a side's tangent jumps inside the side (a corner of its curve that is no node, or a
-//! joint between two of its segments), `ĉ` and `T̂` jump with it; the ribbon is turned in the
-//! tangent plane to run on continuously through such a corner ([`Turn`]).
+//! The angle of `R_i` to the side is blended in a frame carried along the side rather than in
+//! `ĉ, T̂`, which turn with the side's tangent: a side that turns unevenly or has a corner
+//! inside it then keeps its ribbon pointing into the face and continuous ([`Transport`]).
 //!
 //! A segment without crossing curves gets the face's default ribbon: the normal at each end
 //! corner is `ĉ × a` with `a` the neighbouring side's tangent there (the face's own corner),
@@ -504,8 +504,8 @@ pub(crate) struct PreparedRibbon {
     face_normal: DVec3,
     alpha: [f64; 2],
     beta: [f64; 2],
-    /// The side's corners, where the ribbon is turned to run on continuously.
-    turns: Vec<Turn>,
+    /// How the side turns, where the ribbon's frame is carried along it ([`Transport`]).
+    transport: Option<Transport>,
     /// The ribbon's scale at [`WIDTH_SAMPLES`] + 1 even steps of `s`, with its Hermite slopes
     /// and its smallest value, where a side-blended patch's narrow face shortens it
     /// ([`width_scale`]); `None` where it is 1 throughout (always, for the corner-based
@@ -514,28 +514,22 @@ pub(crate) struct PreparedRibbon {
 }
 
 /// A side's tangent turning by more than this at one point inside the side (a corner of its
-/// curve, or a joint between two of its segments) turns its ribbon there as well ([`Turn`]).
+/// curve, or a joint between two of its segments) is a [`Turn`]; the rest of its turning is
+/// measured at [`TRANSPORT_SAMPLES`] + 1 even steps.
 const MIN_TURN_DEGREES: f64 = 0.05;
 
-/// The farthest, in side parameter, a [`Turn`]'s blend reaches either side of its corner; it
-/// reaches at most half way to the side's nearer end, so the face's corners keep their
-/// ribbons and a blend never spans a whole short stretch between a corner and a face corner.
-const TURN_HALF_WIDTH: f64 = 0.25;
+/// Even steps of `s` at which a side's smooth turn is measured ([`Transport`]).
+const TRANSPORT_SAMPLES: usize = 64;
 
-/// A corner inside a side, where the side's tangent `ĉ` (and with it the frame `ĉ, T̂` of the
-/// ribbon `R = αĉ + βT̂`) turns by `angle` in the tangent plane: a waterline curling round a
-/// forefoot in section data, a station with a knuckle point that is not a node. `R` would jump
-/// by that angle, and a patch on a jumping ribbon folds. So `R` is turned back in the tangent
-/// plane by the part of the corner's angle that a smoothstep blend across `[s − half,
-/// s + half]` has not yet reached: half the angle on either side at the corner itself, where
-/// the two sides' ribbons then meet, and nothing at the blend's ends and the face's corners.
-/// The normal, and so G1 with the neighbouring face, is unchanged.
+/// The carried ribbon keeps at least this angle to the side's tangent, either way (unless the
+/// blend of its corner angles already comes closer), so it always points into the face.
+const MIN_RIBBON_ANGLE_DEGREES: f64 = 10.0;
+
+/// A corner inside a side, where the side's tangent `ĉ` turns by `angle` in the tangent plane
+/// at one point: a waterline curling round a forefoot in section data, a station with a
+/// knuckle point that is no node, the joint of two segments of a composite side.
 #[derive(Clone, Copy, Debug)]
 struct Turn {
-    /// Side parameter of the corner.
-    s: f64,
-    /// Half the blend's width, in side parameter.
-    half: f64,
     /// Signed angle (radians) from the frame before the corner to the frame after it, about
     /// the surface normal there.
     angle: f64,
@@ -547,28 +541,113 @@ struct Turn {
 }
 
 impl Turn {
-    /// The turn of the ribbon at side parameter `s`, on segment `k` at curve parameter `t`
-    /// (the side's evaluator's own segment and parameter, so the side of the corner a sample
-    /// is on is the side its tangent came from).
+    /// Whether a sample on segment `k` at curve parameter `t` (the side evaluator's own
+    /// segment and parameter) is past the corner: on the side its tangent comes from.
     #[inline]
-    fn angle_at(&self, s: f64, k: usize, t: f64) -> f64 {
-        let past = k > self.segment
+    fn past(&self, k: usize, t: f64) -> bool {
+        k > self.segment
             || (k == self.segment
                 && match self.at {
                     None => false,
                     // At the knot the side's evaluator takes the piece after it in t.
                     Some((tc, true)) => t >= tc,
                     Some((tc, false)) => t < tc,
-                });
-        let x = ((s - self.s + self.half) / (2.0 * self.half)).clamp(0.0, 1.0);
-        let ramp = x * x * (3.0 - 2.0 * x);
-        self.angle * (ramp - if past { 1.0 } else { 0.0 })
+                })
     }
+}
+
+/// How far a side's tangent has turned in its tangent plane from `s = 0`: its corners
+/// ([`Turn`]) and, between them, its smooth turn (the integral of its geodesic curvature) at
+/// even samples, blended by a cubic Hermite.
+///
+/// The ribbon `R = αĉ + βT̂` blends its corner angles linearly in the frame `ĉ, T̂`, which
+/// turns with the side's tangent. On a side that turns evenly (an arc) that is the natural
+/// blend; but where the side turns unevenly (a waterline curling round a forefoot in 4 cm, a
+/// side waving like an S), the frame carries the corners' ribbons round with it: a ribbon
+/// leaving one corner nearly along the side still points nearly along the side where the
+/// side has turned 90°, out of the face, and the patch folds. A corner in the side turns the
+/// frame, and the ribbon with it, at one point. So the blend is made in a frame carried along
+/// the side instead, turning by the side's mean rate `τ(1)·s`: the ribbon is turned in the
+/// tangent plane by `τ(1)·s − τ(s)`. That is nothing at the face's corners (Gregory's corner
+/// conditions hold), nothing anywhere on a side that turns evenly, continuous through corners
+/// (the turn's jump cancels the frame's), and leaves the normal, and so G1 with the
+/// neighbouring face, unchanged.
+#[derive(Clone, Debug)]
+struct Transport {
+    corners: Vec<Turn>,
+    /// The smooth turn at the samples, and its Hermite slopes.
+    values: Vec<f64>,
+    slopes: Vec<f64>,
+    /// The whole turn `τ(1)`, corners included.
+    total: f64,
+}
+
+impl Transport {
+    /// The side's turn `τ` at side parameter `s` (segment `k`, curve parameter `t`).
+    #[inline]
+    fn turn(&self, s: f64, k: usize, t: f64) -> f64 {
+        let corners: f64 = self
+            .corners
+            .iter()
+            .filter(|c| c.past(k, t))
+            .map(|c| c.angle)
+            .sum();
+        hermite_scalar(&self.values, &self.slopes, s) + corners
+    }
+
+    /// How far the ribbon is turned at `s` (see the type's docs).
+    #[inline]
+    fn angle(&self, s: f64, k: usize, t: f64) -> f64 {
+        self.total * s.clamp(0.0, 1.0) - self.turn(s, k, t)
+    }
+}
+
+/// The [`Transport`] of one side, or `None` where its tangent does not turn in its tangent
+/// plane (a straight side) or its frames are not finite.
+fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport> {
+    let corners = side_corners(rib, side);
+    let n = TRANSPORT_SAMPLES;
+    let samples: Vec<(SideSample, usize, f64)> = (0..=n)
+        .map(|j| {
+            let s = j as f64 / n as f64;
+            let (p, dp, k, t) = side.eval_located(s);
+            (rib.frame_of(side, s, p, dp, k, t), k, t)
+        })
+        .collect();
+    let mut values = vec![0.0; n + 1];
+    for j in 0..n {
+        let ((a, ka, ta), (b, kb, tb)) = (samples[j], samples[j + 1]);
+        let normal = (a.c.cross(a.cross) + b.c.cross(b.cross)).normalize_or_zero();
+        let mut d = normal.dot(a.c.cross(b.c)).atan2(a.c.dot(b.c));
+        // A corner between the samples is counted as a corner, not smeared over the step.
+        for c in corners.iter().filter(|c| !c.past(ka, ta) && c.past(kb, tb)) {
+            d -= c.angle;
+        }
+        values[j + 1] = values[j] + d;
+    }
+    if !values.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let total = values[n] + corners.iter().map(|c| c.angle).sum::<f64>();
+    let straight = values
+        .iter()
+        .all(|v| v.abs() <= MIN_TURN_DEGREES.to_radians() * 1e-3);
+    if straight && corners.is_empty() {
+        return None;
+    }
+    let ts: Vec<f64> = (0..=n).map(|j| j as f64 / n as f64).collect();
+    let slopes = hermite_slopes_scalar(&ts, &values);
+    Some(Transport {
+        corners,
+        values,
+        slopes,
+        total,
+    })
 }
 
 /// The [`Turn`]s of one side: its curves' corners inside its segments and its joints between
 /// segments where the ribbon's frame turns by more than [`MIN_TURN_DEGREES`].
-fn side_turns(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
+fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
     let min = MIN_TURN_DEGREES.to_radians();
     let mut out = Vec::new();
     let m = side.segs.len();
@@ -580,18 +659,11 @@ fn side_turns(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
         let d1 = seg.fast.derivs_in(seg.fast.piece_at(t, after_in_t), t).d1;
         (d1 * (seg.tb - seg.ta) + (seg.d1 - seg.d0)) / du
     };
-    let mut push = |s: f64, before: SideSample, after: SideSample, segment, at| {
+    let mut push = |before: SideSample, after: SideSample, segment, at| {
         let n = (before.c.cross(before.cross) + after.c.cross(after.cross)).normalize_or_zero();
         let angle = n.dot(before.c.cross(after.c)).atan2(before.c.dot(after.c));
-        let half = TURN_HALF_WIDTH.min(0.5 * s).min(0.5 * (1.0 - s));
-        if angle.abs() > min && half > 0.0 && angle.is_finite() {
-            out.push(Turn {
-                s,
-                half,
-                angle,
-                segment,
-                at,
-            });
+        if angle.abs() > min && angle.is_finite() {
+            out.push(Turn { angle, segment, at });
         }
     };
     for (k, seg) in side.segs.iter().enumerate() {
@@ -607,7 +679,7 @@ fn side_turns(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
             let p = seg.fast.point(tc) + seg.d0 * (1.0 - lam) + seg.d1 * lam;
             let frame = |after_in_t| rib.frame_of(side, s, p, one_sided(k, tc, after_in_t), k, tc);
             let (before, after) = (frame(!up), frame(up));
-            push(s, before, after, k, Some((tc, up)));
+            push(before, after, k, Some((tc, up)));
         }
         if k + 1 < m {
             let next = &side.segs[k + 1];
@@ -617,7 +689,7 @@ fn side_turns(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
             let next_up = next.tb >= next.ta;
             let dp = one_sided(k + 1, next.ta, next_up);
             let after = rib.frame_of(side, s, p, dp, k + 1, next.ta);
-            push(s, before, after, k, None);
+            push(before, after, k, None);
         }
     }
     out
@@ -683,14 +755,19 @@ impl PreparedRibbon {
         let a = self.alpha[0] + (self.alpha[1] - self.alpha[0]) * s;
         let b = self.beta[0] + (self.beta[1] - self.beta[0]) * s;
         let r = f.c * a + f.cross * b;
-        let r = if self.turns.is_empty() {
-            r
-        } else {
-            let phi: f64 = self.turns.iter().map(|turn| turn.angle_at(s, k, t)).sum();
-            // R ⊥ n̂ = ĉ × T̂: Rodrigues' rotation about n̂ in the tangent plane.
-            let axis = f.c.cross(f.cross);
-            let (sin, cos) = phi.sin_cos();
-            r * cos + axis.cross(r) * sin
+        let r = match &self.transport {
+            None => r,
+            Some(tr) => {
+                // Turned by the carried frame's angle, kept pointing into the face.
+                let psi = b.atan2(a);
+                let min = MIN_RIBBON_ANGLE_DEGREES.to_radians();
+                let (lo, hi) = (psi.min(min), psi.max(std::f64::consts::PI - min));
+                let phi = (psi + tr.angle(s, k, t)).clamp(lo, hi) - psi;
+                // R ⊥ n̂ = ĉ × T̂: Rodrigues' rotation about n̂ in the tangent plane.
+                let axis = f.c.cross(f.cross);
+                let (sin, cos) = phi.sin_cos();
+                r * cos + axis.cross(r) * sin
+            }
         };
         match &self.scale {
             None => (f.p, r),
@@ -761,8 +838,11 @@ fn width_scale(length: f64, width: f64) -> f64 {
 }
 
 /// The ribbon scales of side `i` of a face (see [`width_scale`]). The face's width at a side
-/// point is how far the ray from it along the cross tangent runs before it meets the rest of
-/// the boundary, all projected on the tangent plane there (no meeting: no limit).
+/// point is how far the ray from it along the ribbon runs before it meets the rest of the
+/// boundary, all projected on the tangent plane there (no meeting: no limit). Along the ribbon
+/// itself, its part along the side included: near a corner whose neighbouring side leaves
+/// nearly along this one, the ribbon runs nearly along the side too, and the face is narrow
+/// that way however wide it is across.
 fn side_scales(sides: &[PreparedSide], i: usize, rib: &PreparedRibbon) -> Option<WidthScale> {
     let n = sides.len();
     // The rest of the boundary as one polyline, from the end of side i round to its start.
@@ -778,7 +858,15 @@ fn side_scales(sides: &[PreparedSide], i: usize, rib: &PreparedRibbon) -> Option
         .map(|j| {
             let s = j as f64 / WIDTH_SAMPLES as f64;
             let f = rib.frame(&sides[i], s);
-            let flat = |q: DVec3| DVec2::new((q - f.p).dot(f.c), (q - f.p).dot(f.cross));
+            // The ray along the ribbon itself (its tangential part included), in the plane.
+            let r = rib.eval(&sides[i], s).1;
+            let u = DVec2::new(r.dot(f.c), r.dot(f.cross))
+                .try_normalize()
+                .unwrap_or(DVec2::Y);
+            let flat = |q: DVec3| {
+                let a = DVec2::new((q - f.p).dot(f.c), (q - f.p).dot(f.cross));
+                DVec2::new(a.x * u.y - a.y * u.x, a.x * u.x + a.y * u.y)
+            };
             let mut width = f64::INFINITY;
             for w in others.windows(2) {
                 let (a, b) = (flat(w[0]), flat(w[1]));
@@ -904,7 +992,7 @@ pub(crate) fn prepare_ribbons(
             face_normal,
             alpha: [0.0; 2],
             beta: [0.0; 2],
-            turns: Vec::new(),
+            transport: None,
             scale: None,
         };
         let side = &sides[i];
@@ -927,7 +1015,7 @@ pub(crate) fn prepare_ribbons(
                 Some((en, if dot < 0.0 { -1.0 } else { 1.0 }))
             })
             .collect();
-        rib.turns = side_turns(&rib, side);
+        rib.transport = side_transport(&rib, side);
         // Corner coefficients: R(0) = a0 and R(1) = a1, projected into the tangent plane.
         for (end, (s, a, corner)) in [(0.0, a0, i), (1.0, a1, next)].into_iter().enumerate() {
             let f = rib.frame(side, s);
