@@ -602,6 +602,13 @@ impl Transport {
     }
 }
 
+/// The signed angle by which the side's tangent turns from frame `a` to frame `b`, about their
+/// mean normal `ĉ × T̂`.
+fn turn_between(a: SideSample, b: SideSample) -> f64 {
+    let normal = (a.c.cross(a.cross) + b.c.cross(b.cross)).normalize_or_zero();
+    normal.dot(a.c.cross(b.c)).atan2(a.c.dot(b.c))
+}
+
 /// The [`Transport`] of one side, or `None` where its tangent does not turn in its tangent
 /// plane (a straight side) or its frames are not finite.
 fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport> {
@@ -617,8 +624,7 @@ fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport
     let mut values = vec![0.0; n + 1];
     for j in 0..n {
         let ((a, ka, ta), (b, kb, tb)) = (samples[j], samples[j + 1]);
-        let normal = (a.c.cross(a.cross) + b.c.cross(b.cross)).normalize_or_zero();
-        let mut d = normal.dot(a.c.cross(b.c)).atan2(a.c.dot(b.c));
+        let mut d = turn_between(a, b);
         // A corner between the samples is counted as a corner, not smeared over the step.
         for c in corners.iter().filter(|c| !c.past(ka, ta) && c.past(kb, tb)) {
             d -= c.angle;
@@ -635,8 +641,7 @@ fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport
     if straight && corners.is_empty() {
         return None;
     }
-    let ts: Vec<f64> = (0..=n).map(|j| j as f64 / n as f64).collect();
-    let slopes = hermite_slopes_scalar(&ts, &values);
+    let slopes = hermite_slopes_even(&values);
     Some(Transport {
         corners,
         values,
@@ -660,8 +665,7 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
         (d1 * (seg.tb - seg.ta) + (seg.d1 - seg.d0)) / du
     };
     let mut push = |before: SideSample, after: SideSample, segment, at| {
-        let n = (before.c.cross(before.cross) + after.c.cross(after.cross)).normalize_or_zero();
-        let angle = n.dot(before.c.cross(after.c)).atan2(before.c.dot(after.c));
+        let angle = turn_between(before, after);
         if angle.abs() > min && angle.is_finite() {
             out.push(Turn { angle, segment, at });
         }
@@ -746,7 +750,7 @@ impl PreparedRibbon {
     }
 
     /// Position and ribbon vector `R(s) = α(s)ĉ + β(s)T̂` at `s`, turned in the tangent
-    /// plane where the side has corners ([`Turn`]).
+    /// plane into the frame carried along the side ([`Transport`]).
     #[inline]
     pub(crate) fn eval(&self, side: &PreparedSide, s: f64) -> (DVec3, DVec3) {
         let (p, dp, k, t) = side.eval_located(s);
@@ -886,10 +890,7 @@ fn side_scales(sides: &[PreparedSide], i: usize, rib: &PreparedRibbon) -> Option
     if !any {
         return None;
     }
-    let ts: Vec<f64> = (0..=WIDTH_SAMPLES)
-        .map(|j| j as f64 / WIDTH_SAMPLES as f64)
-        .collect();
-    let slopes = hermite_slopes_scalar(&ts, &values);
+    let slopes = hermite_slopes_even(&values);
     let least = values.iter().copied().fold(1.0, f64::min);
     Some(WidthScale {
         values,
@@ -898,10 +899,12 @@ fn side_scales(sides: &[PreparedSide], i: usize, rib: &PreparedRibbon) -> Option
     })
 }
 
-/// [`hermite_slopes`] of scalars.
-fn hermite_slopes_scalar(ts: &[f64], values: &[f64]) -> Vec<f64> {
+/// [`hermite_slopes`] of scalars at even steps of `[0, 1]` (as [`hermite_scalar`] blends them).
+fn hermite_slopes_even(values: &[f64]) -> Vec<f64> {
+    let m = values.len() - 1;
+    let ts: Vec<f64> = (0..=m).map(|j| j as f64 / m as f64).collect();
     let v: Vec<DVec3> = values.iter().map(|&x| DVec3::new(x, 0.0, 0.0)).collect();
-    hermite_slopes(ts, &v).into_iter().map(|d| d.x).collect()
+    hermite_slopes(&ts, &v).into_iter().map(|d| d.x).collect()
 }
 
 /// The cubic Hermite blend at `s ∈ [0, 1]` of `values` at even steps with `slopes`.

@@ -27,7 +27,7 @@ use crate::tolerance::Tolerance;
 pub use chain::SectionPolyline;
 pub use knuckle_lines::{knuckle_lines, KnuckleLine};
 
-use trace::{bridge_inner_gaps, domain_cells, section_pieces, Cut, DomainCell};
+use trace::{domain_cells, mend_cell_edges, section_pieces, Cut, DomainCell};
 
 /// The chordal tolerance of a section's polylines and fitted curves by default (m): 1 mm, a
 /// line's width on a 1:100 lines plan and well inside what a yard's offsets give.
@@ -228,7 +228,7 @@ impl SectionModel {
         };
         let mut pieces = section_pieces(&self.cells, &self.patches, &cut);
         let join = (JOIN_RELATIVE * size).max(BRIDGE_TOLERANCES * tolerance);
-        bridge_inner_gaps(&mut pieces, &self.patches, &cut, join);
+        mend_cell_edges(&mut pieces, &self.patches, &cut, join);
         Ok(chain::join_pieces(
             &pieces,
             &self.patches,

@@ -8,6 +8,7 @@
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use crate::curve::segment_distance;
 use crate::hydro::{boxes, grid_pieces, interpolate, quads, CellDensity, Quad, GRID, NET_SIZE};
 use crate::patch::{Domain, Patch};
 
@@ -307,6 +308,21 @@ const INNER_END: f64 = 1e-7;
 /// chord (else the polish has jumped to another branch of the section).
 const BRIDGE_LENGTH_FACTOR: f64 = 2.0;
 
+/// Whether domain point `x` of `piece`'s patch lies inside the domain ([`INNER_END`]).
+fn inner_end(patches: &[Patch], piece: &Piece, x: DVec2) -> bool {
+    let domain = patches[piece.patch].domain();
+    (0..domain.sides()).all(|i| domain.distance(i, x) > INNER_END)
+}
+
+/// Whether an end of a piece other than `pieces[i]` lies within `within` of `q`.
+fn end_met(pieces: &[Piece], i: usize, q: DVec3, within: f64) -> bool {
+    pieces.iter().enumerate().any(|(j, p)| {
+        j != i
+            && ((p.points[0] - q).length() <= within
+                || (p.points[p.points.len() - 1] - q).length() <= within)
+    })
+}
+
 /// Close the gaps a section can leave inside a patch, where it runs along the shared edge of
 /// two cells: each cell's polynomial interpolates the patch only to about 1e-9 of its size, so
 /// where the section strays across the edge by less than that, one cell has it leave across the
@@ -316,26 +332,21 @@ const BRIDGE_LENGTH_FACTOR: f64 = 2.0;
 /// the same patch by the exact section between them (the points polished onto the plane on the
 /// patch itself, halved as [`refine`] does), kept only if no longer than
 /// [`BRIDGE_LENGTH_FACTOR`] times the gap's chord.
-pub(crate) fn bridge_inner_gaps(pieces: &mut Vec<Piece>, patches: &[Patch], cut: &Cut, join: f64) {
-    let inner = |piece: &Piece, x: DVec2| {
-        let domain = patches[piece.patch].domain();
-        (0..domain.sides()).all(|i| domain.distance(i, x) > INNER_END)
-    };
+fn bridge_inner_gaps(pieces: &mut Vec<Piece>, patches: &[Patch], cut: &Cut, join: f64) {
     let ends: Vec<(DVec3, DVec3)> = pieces
         .iter()
         .map(|p| (p.points[0], p.points[p.points.len() - 1]))
         .collect();
-    let met = |i: usize, q: DVec3| {
-        ends.iter()
-            .enumerate()
-            .any(|(j, &(a, b))| j != i && ((a - q).length() <= join || (b - q).length() <= join))
-    };
     // Dangling inner ends (exits) and starts (entries).
     let exits: Vec<usize> = (0..pieces.len())
-        .filter(|&i| inner(&pieces[i], pieces[i].end) && !met(i, ends[i].1))
+        .filter(|&i| {
+            inner_end(patches, &pieces[i], pieces[i].end) && !end_met(pieces, i, ends[i].1, join)
+        })
         .collect();
     let mut entries: Vec<usize> = (0..pieces.len())
-        .filter(|&i| inner(&pieces[i], pieces[i].start) && !met(i, ends[i].0))
+        .filter(|&i| {
+            inner_end(patches, &pieces[i], pieces[i].start) && !end_met(pieces, i, ends[i].0, join)
+        })
         .collect();
     let mut bridges = Vec::new();
     for i in exits {
@@ -368,6 +379,12 @@ pub(crate) fn bridge_inner_gaps(pieces: &mut Vec<Piece>, patches: &[Patch], cut:
         }
     }
     pieces.extend(bridges);
+}
+
+/// Mend what a section's pieces lose or double where it runs along the shared edge of two
+/// cells: [`bridge_inner_gaps`] (within `join`), then [`drop_covered_fragments`].
+pub(crate) fn mend_cell_edges(pieces: &mut Vec<Piece>, patches: &[Patch], cut: &Cut, join: f64) {
+    bridge_inner_gaps(pieces, patches, cut, join);
     drop_covered_fragments(pieces, patches, cut.tolerance);
 }
 
@@ -378,27 +395,7 @@ pub(crate) fn bridge_inner_gaps(pieces: &mut Vec<Piece>, patches: &[Patch], cut:
 /// along the fragment.
 fn drop_covered_fragments(pieces: &mut Vec<Piece>, patches: &[Patch], tolerance: f64) {
     let near = 2.0 * tolerance;
-    let inner = |piece: &Piece, x: DVec2| {
-        let domain = patches[piece.patch].domain();
-        (0..domain.sides()).all(|i| domain.distance(i, x) > INNER_END)
-    };
-    let to_segment = |q: DVec3, a: DVec3, b: DVec3| {
-        let ab = b - a;
-        let t = if ab.length_squared() > 0.0 {
-            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (a + ab * t - q).length()
-    };
     loop {
-        let met = |i: usize, q: DVec3| {
-            pieces.iter().enumerate().any(|(j, p)| {
-                j != i
-                    && ((p.points[0] - q).length() <= near
-                        || (p.points[p.points.len() - 1] - q).length() <= near)
-            })
-        };
         let covered = |i: usize| {
             pieces[i].points.iter().all(|&q| {
                 pieces.iter().enumerate().any(|(j, p)| {
@@ -406,14 +403,16 @@ fn drop_covered_fragments(pieces: &mut Vec<Piece>, patches: &[Patch], tolerance:
                         && p.patch == pieces[i].patch
                         && p.points
                             .windows(2)
-                            .any(|w| to_segment(q, w[0], w[1]) <= near)
+                            .any(|w| segment_distance(q, w[0], w[1]) <= near)
                 })
             })
         };
         let fragment = (0..pieces.len()).find(|&i| {
             let p = &pieces[i];
-            let dangling = (inner(p, p.start) && !met(i, p.points[0]))
-                || (inner(p, p.end) && !met(i, p.points[p.points.len() - 1]));
+            let dangling = (inner_end(patches, p, p.start)
+                && !end_met(pieces, i, p.points[0], near))
+                || (inner_end(patches, p, p.end)
+                    && !end_met(pieces, i, p.points[p.points.len() - 1], near));
             dangling && covered(i)
         });
         match fragment {
