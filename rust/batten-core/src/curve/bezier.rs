@@ -60,6 +60,13 @@ impl BezierDecomposition {
         self.pieces[k].point_tangent_at(t)
     }
 
+    /// C(t) and C′(t) on piece `k` (`t` clamped into it) by [`BezierPiece::point_d1_at`], as
+    /// [`BezierDecomposition::point_d1`] gives them on that piece.
+    #[inline]
+    pub(crate) fn point_d1_in(&self, k: usize, t: f64) -> (DVec3, DVec3) {
+        self.pieces[k].point_d1_at(t)
+    }
+
     /// C(t) and C′(t) (t clamped into the domain; at a knot, of the piece after it) by
     /// [`BezierPiece::point_d1_at`], the evaluator of the surface patches' sides.
     #[inline]

@@ -230,6 +230,12 @@ impl PreparedSide {
     }
 
     /// Position and derivative d/ds at `s`, with the segment index and curve parameter there.
+    ///
+    /// At a knot of the curve the derivative is the piece's after it, except at the segment's
+    /// end of larger parameter, where it is the piece's before it: always the segment's own
+    /// piece, so a side that ends on a knot does not take its end tangent's length from the
+    /// next piece of its curve (one unit of parameter per piece, whatever their lengths, in a
+    /// Bézier-segmented curve).
     #[inline]
     pub(crate) fn eval_located(&self, s: f64) -> (DVec3, DVec3, usize, f64) {
         let (k, lam) = self.locate(s);
@@ -240,7 +246,8 @@ impl PreparedSide {
         } else {
             seg.ta + lam * dt
         };
-        let (c, d1) = seg.fast.point_d1(t);
+        let piece = seg.fast.piece_at(t, t < seg.ta.max(seg.tb));
+        let (c, d1) = seg.fast.point_d1_in(piece, t);
         let du = self.breaks[k + 1] - self.breaks[k];
         let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
         let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
@@ -476,4 +483,51 @@ pub(crate) fn prepare_boundary(
         out.push(PreparedSide { segs, breaks, end });
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A line along x through 0, 1 m and 10 m as two Bézier pieces (handles at thirds), one
+    /// unit of parameter each, as a Bézier spline is read: 1 m per unit, then 9 m per unit.
+    fn uneven_line() -> NurbsCurve {
+        let x = |v: f64| DVec3::new(v, 0.0, 0.0);
+        let co = [x(0.0), x(1.0), x(10.0)];
+        let left = [co[0], x(2.0 / 3.0), x(7.0)];
+        let right = [x(1.0 / 3.0), x(4.0), co[2]];
+        NurbsCurve::from_bezier(&co, &left, &right, false).expect("a valid curve")
+    }
+
+    /// A triangle whose first side is `first`, closed by straight lines through (0, 1, 0).
+    fn triangle(first: SideSegment) -> FaceBoundary {
+        let (a, b) = (first.curve.point(first.t0), first.curve.point(first.t1));
+        let apex = DVec3::new(0.5, 1.0, 0.0);
+        let line = |p: DVec3, q: DVec3| {
+            NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![p, q], None).expect("a line")
+        };
+        FaceBoundary::new(vec![
+            Side::single(first),
+            Side::single(SideSegment::whole(line(b, apex))),
+            Side::single(SideSegment::whole(line(apex, a))),
+        ])
+    }
+
+    #[test]
+    fn a_side_ending_on_a_knot_takes_its_end_tangent_from_its_own_piece() {
+        let c = uneven_line();
+        // The first piece, 1 m long: d/ds is 1 m along the whole side, both ways round.
+        for (t0, t1) in [(0.0, 1.0), (1.0, 0.0)] {
+            let face = triangle(SideSegment::new(c.clone(), t0, t1));
+            let sides = prepare_boundary(&face, SideParam::ArcLength, Tolerance::DEFAULT, 8)
+                .expect("a valid face");
+            for s in [0.0, 0.5, 1.0] {
+                let speed = sides[0].eval(s).1.length();
+                assert!(
+                    (speed - 1.0).abs() < 1e-12,
+                    "t {t0} → {t1}, s {s}: |d/ds| {speed} (9 is the next piece's)"
+                );
+            }
+        }
+    }
 }
