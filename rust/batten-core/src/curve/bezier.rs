@@ -71,7 +71,7 @@ impl BezierDecomposition {
     /// [`BezierPiece::point_d1_at`], the evaluator of the surface patches' sides.
     #[inline]
     pub(crate) fn point_d1(&self, t: f64) -> (DVec3, DVec3) {
-        self.pieces[self.piece_at(t, true)].point_d1_at(t)
+        self.point_d1_in(self.piece_at(t, true), t)
     }
 
     /// Decompose by inserting every knot of the domain to multiplicity `degree` (A5.1 repeated):

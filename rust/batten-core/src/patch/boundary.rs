@@ -499,7 +499,7 @@ mod tests {
         NurbsCurve::from_bezier(&co, &left, &right, false).expect("a valid curve")
     }
 
-    /// A triangle whose first side is `first`, closed by straight lines through (0, 1, 0).
+    /// A triangle whose first side is `first`, closed by straight lines through (0.5, 1, 0).
     fn triangle(first: SideSegment) -> FaceBoundary {
         let (a, b) = (first.curve.point(first.t0), first.curve.point(first.t1));
         let apex = DVec3::new(0.5, 1.0, 0.0);
