@@ -1161,6 +1161,7 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
             model_tolerance=model_tolerance,
             role=sec.role,
             flat_plane=flat,
+            flat_noise=within,
         )
         report["curve"] = sec.name
         return curve, report

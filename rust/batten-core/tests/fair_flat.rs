@@ -42,6 +42,7 @@ const BASE: FlatPlane = FlatPlane {
     normal: DVec3::Z,
     offset: 0.0,
     tolerance: 1e-3,
+    noise: 1e-3,
 };
 
 /// Largest |z| of the curve over its first `share` of the parameter domain, sampled finely.
@@ -116,6 +117,36 @@ fn a_run_at_the_end_of_the_points_is_a_flat_too() {
 }
 
 #[test]
+fn a_noisy_flat_runs_on_over_points_within_the_noise_and_ends_within_the_tolerance() {
+    // Offsets read to the nearest 2 mm: the flat's points straddle the base plane, and the
+    // second one is 2 mm below it, beyond the 1 mm tolerance.
+    let mut pts = section(1.0, 2.0);
+    let n = pts.iter().position(|p| p.y >= 1.0).unwrap();
+    for (i, p) in pts[..n].iter_mut().enumerate() {
+        p.z = [0.0, -0.002, 0.001, -0.0015][i % 4];
+    }
+    // The tolerance alone: the run stops at the keel point, so there is no flat.
+    assert!(fair_points(&pts, &options(Some(BASE)))
+        .unwrap()
+        .report
+        .flat
+        .is_none());
+    // With 5 mm of noise the run goes over the straddling points and on up the arc while it
+    // stays within 5 mm, but ends at its last point within the 1 mm tolerance: the arc's
+    // first point past the flat (0.6 mm up), as without noise.
+    let noisy = FlatPlane {
+        noise: 0.005,
+        ..BASE
+    };
+    let fit = fair_points(&pts, &options(Some(noisy))).unwrap();
+    let flat = fit.report.flat.expect("a flat run");
+    assert_eq!(flat.index, n + 1, "{:?}", pts[flat.index]);
+    assert!(pts[n + 2].z > BASE.tolerance && pts[n + 2].z < noisy.noise);
+    assert!(sag(&fit.curve, flat.parameter) < 1e-12);
+    assert!(fit.report.max_deviation <= 0.005);
+}
+
+#[test]
 fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
     // Shorter than MIN_FLAT_RUN.
     let short = section(0.5 * MIN_FLAT_RUN, 2.0);
@@ -167,6 +198,7 @@ fn a_bad_flat_plane_is_an_error() {
             normal,
             offset,
             tolerance,
+            noise: tolerance,
         };
         let err = fair_points(&pts, &options(Some(plane))).unwrap_err();
         assert!(
@@ -179,6 +211,7 @@ fn a_bad_flat_plane_is_an_error() {
         normal: DVec3::Z * 4.0,
         offset: 0.0,
         tolerance: 1e-3,
+        noise: 1e-3,
     };
     assert!(fair_points(&pts, &options(Some(scaled)))
         .unwrap()

@@ -28,13 +28,15 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 /// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). `flat_plane`: `(normal, offset,
 /// tolerance)` of a plane a run of points at one end may lie in (a section's flat of bottom):
 /// that run becomes a straight piece in the plane and the curve leaves it tangentially (the
-/// report's `flat` says where). Returns `(Curve, report dict)`.
+/// report's `flat` says where); `flat_noise` (m, default the plane's tolerance): how far
+/// points inside the run may stray from the plane, its ends staying within the tolerance.
+/// Returns `(Curve, report dict)`.
 #[pyfunction]
 #[pyo3(signature = (name, points, *, degree=None, tolerance=None, noise=None,
     smoothing_factor=None, corners=None, corner_angle_deg=Some(DEFAULT_CORNER_ANGLE_DEGREES),
     start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
-    max_parameter_iterations=None, role=None, flat_plane=None),
-    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\", flat_plane=None)")]
+    max_parameter_iterations=None, role=None, flat_plane=None, flat_noise=None),
+    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\", flat_plane=None, flat_noise=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_points<'py>(
     py: Python<'py>,
@@ -52,6 +54,7 @@ pub(crate) fn fair_points<'py>(
     max_parameter_iterations: Option<&Bound<'py, PyAny>>,
     role: Option<&Bound<'py, PyAny>>,
     flat_plane: Option<([f64; 3], f64, f64)>,
+    flat_noise: Option<f64>,
 ) -> PyResult<(Curve, Bound<'py, PyDict>)> {
     let name = &text(name, || "the curve name".to_owned())?;
     let role = &role_or_free(name, role)?;
@@ -102,7 +105,9 @@ pub(crate) fn fair_points<'py>(
         })?,
         max_parameter_iterations,
         flat: flat_plane
-            .map(|(normal, offset, tolerance)| flat(name, normal, offset, tolerance))
+            .map(|(normal, offset, tolerance)| {
+                flat(name, normal, offset, tolerance, flat_noise.unwrap_or(tolerance))
+            })
             .transpose()?,
     };
     let faired = py.detach(|| {
@@ -158,7 +163,13 @@ pub(crate) fn fair_points<'py>(
 
 /// The flat plane of `fair_points`, checked: a finite non-zero normal (made unit), a finite
 /// offset and a positive finite tolerance.
-fn flat(name: &str, normal: [f64; 3], offset: f64, tolerance: f64) -> PyResult<FlatPlane> {
+fn flat(
+    name: &str,
+    normal: [f64; 3],
+    offset: f64,
+    tolerance: f64,
+    noise: f64,
+) -> PyResult<FlatPlane> {
     let n = DVec3::from_array(normal);
     let normal_ok = n.is_finite() && n.length_squared() > 0.0;
     if !(normal_ok && offset.is_finite() && tolerance.is_finite() && tolerance > 0.0) {
@@ -166,11 +177,17 @@ fn flat(name: &str, normal: [f64; 3], offset: f64, tolerance: f64) -> PyResult<F
             "curve '{name}': flat_plane needs a finite non-zero normal, a finite offset and a positive tolerance, got {normal:?}, {offset}, {tolerance}"
         )));
     }
+    if !(noise.is_finite() && noise >= 0.0) {
+        return Err(arg_err(format!(
+            "curve '{name}': flat_noise must be a finite distance of at least 0 m, got {noise}"
+        )));
+    }
     let length = n.length();
     Ok(FlatPlane {
         normal: n / length,
         offset: offset / length,
         tolerance,
+        noise: noise.max(tolerance),
     })
 }
 

@@ -12,11 +12,12 @@ use crate::curve::CurveError;
 /// [`fair_points`]: crate::fair_points
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum FairError {
-    /// The flat plane has a zero or non-finite normal, a non-finite offset or a tolerance
-    /// that is not a positive finite distance.
+    /// The flat plane has a zero or non-finite normal, a non-finite offset, a tolerance
+    /// that is not a positive finite distance or a non-finite noise.
     #[error(
-        "flat plane: normal {normal:?}, offset {offset}, tolerance {tolerance}: needs a finite \
-         non-zero normal, a finite offset and a positive finite tolerance"
+        "flat plane: normal {normal:?}, offset {offset}, tolerance {tolerance}, noise {noise}: \
+         needs a finite non-zero normal, a finite offset, a positive finite tolerance and a \
+         finite noise"
     )]
     FlatPlane {
         /// The normal given.
@@ -25,6 +26,8 @@ pub enum FairError {
         offset: f64,
         /// The tolerance given.
         tolerance: f64,
+        /// The noise given.
+        noise: f64,
     },
     /// The degree is outside the range the fitting supports (Dierckx's curfit allows 1..=5).
     #[error("fairing degree {degree} is outside 1..=5")]

@@ -24,9 +24,16 @@ pub struct FlatPlane {
     pub normal: DVec3,
     /// The plane is `normal · p = offset`.
     pub offset: f64,
-    /// How far (m) a point may be from the plane, and from the straight line of the run, and
-    /// still be on the flat.
+    /// How far (m) the run's inner end (where the curve leaves the flat) may be from the plane
+    /// and still be on the flat.
     pub tolerance: f64,
+    /// How far (m) a point inside the run may be from the plane, and from the straight line of
+    /// the run, as the data's noise: the run goes on over such points as long as a later one is
+    /// back within `tolerance`. Not less than `tolerance` (a smaller value counts as
+    /// `tolerance`). Offsets measured to the nearest millimetre or two straddle the base plane
+    /// so (KVLCC2's station at x = 312.05 m: −2 mm, then +1 mm), where a bilge leaves it on one
+    /// side only.
+    pub noise: f64,
 }
 
 /// Shortest flat run kept straight (m, from the curve's end to where the run ends): a shorter
@@ -53,18 +60,21 @@ impl FlatPlane {
         if !(normal_ok
             && self.offset.is_finite()
             && self.tolerance.is_finite()
-            && self.tolerance > 0.0)
+            && self.tolerance > 0.0
+            && self.noise.is_finite())
         {
             return Err(FairError::FlatPlane {
                 normal: self.normal.to_array(),
                 offset: self.offset,
                 tolerance: self.tolerance,
+                noise: self.noise,
             });
         }
         Ok(FlatPlane {
             normal: self.normal / length,
             offset: self.offset / length,
             tolerance: self.tolerance,
+            noise: self.noise.max(self.tolerance),
         })
     }
 
@@ -77,16 +87,26 @@ impl FlatPlane {
         (self.normal.dot(p) - self.offset).abs() <= self.tolerance
     }
 
-    /// The flat run at the start of `pts` (else at its end) that is straight within the
-    /// tolerance, at least [`MIN_FLAT_RUN`] long, and leaves at least `degree + 1` points for
-    /// the rest of the curve; None when there is none.
+    fn within_noise(&self, p: DVec3) -> bool {
+        (self.normal.dot(p) - self.offset).abs() <= self.noise
+    }
+
+    /// The flat run at the start of `pts` (else at its end): its points within the noise of
+    /// the plane and of a straight line, its ends within the tolerance of the plane, at least
+    /// [`MIN_FLAT_RUN`] long, and leaving at least `degree + 1` points for the rest of the
+    /// curve; None when there is none.
     pub(crate) fn run(&self, pts: &[DVec3], degree: usize) -> Option<FlatRun> {
         let m = pts.len();
         let at = |i: usize, at_start: bool| if at_start { pts[i] } else { pts[m - 1 - i] };
         for at_start in [true, false] {
+            // The last point within the tolerance before the first one beyond the noise.
             let mut k = 0;
-            while k + 1 < m && self.holds(at(k + 1, at_start)) {
-                k += 1;
+            let mut i = 0;
+            while i + 1 < m && self.within_noise(at(i + 1, at_start)) {
+                i += 1;
+                if self.holds(at(i, at_start)) {
+                    k = i;
+                }
             }
             if !self.holds(at(0, at_start)) || k == 0 || m - k < degree + 1 {
                 continue;
@@ -99,7 +119,7 @@ impl FlatPlane {
             let line = chord.normalize();
             let straight = (0..=k).all(|i| {
                 let q = self.project(at(i, at_start)) - a;
-                (q - line * q.dot(line)).length() <= self.tolerance
+                (q - line * q.dot(line)).length() <= self.noise
             });
             if !straight {
                 continue;

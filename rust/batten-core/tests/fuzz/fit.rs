@@ -175,6 +175,7 @@ fn options(k: &Knobs, size: f64) -> Option<FairOptions> {
             normal,
             offset: offset * size,
             tolerance: tolerance * size,
+            noise: tolerance * size,
         }),
     })
 }

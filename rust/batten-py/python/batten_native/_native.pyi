@@ -169,6 +169,7 @@ def fair_points(
     max_parameter_iterations: int | None = None,  # None: 20 rounds of parameter correction
     role: str = "free",
     flat_plane: tuple[tuple[float, float, float], float, float] | None = None,  # (normal, offset, tolerance)
+    flat_noise: float | None = None,  # None: the flat plane's tolerance
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
 def fair_sections(
