@@ -111,7 +111,8 @@ def test_barge_with_its_pmb_held_is_bulged_not_lengthened(barge):
     r = api.transform_hydrostatic(barge, cb=before["cb"] + 0.005, keep_pmb=True).report
     assert (r["mode"], r["stop"]) == ("bulge", "converged")
     assert r["pmb_length"][1] == pytest.approx(r["pmb_length"][0], abs=1e-9)
-    assert r["bulge"]["offsets"][0] == pytest.approx(r["bulge"]["offsets"][1], abs=1e-5)
+    # Alike to what the solve stops at (|δLCB| ≤ 1e-5·Lpp), not bit for bit.
+    assert r["bulge"]["offsets"][0] == pytest.approx(r["bulge"]["offsets"][1], rel=1e-3)
     assert r["bulge"]["offsets"][0] > 0
 
 

@@ -931,10 +931,12 @@ fn barge_with_its_pmb_held_bulges_its_ends_alike_fore_and_aft() {
             run.len(),
             "the barge is symmetric: {entrance:?} {run:?}"
         );
+        // Alike to what the solve stops at (|δLCB| ≤ 1e-5·Lpp, about 4e-3 in the bulge
+        // here), not bit for bit: one end bulged alone would be 0.4 apart.
         assert_near!(
             x[0],
             x[1],
-            1e-6,
+            1e-3 * x[0].abs(),
             "LCB held on a symmetric hull: both ends alike"
         );
         offsets.push(x[0]);

@@ -186,7 +186,8 @@ impl NurbsCurve {
     /// layout matches ([`NurbsCurve::matching_layout`]), else its Bézier pieces in the
     /// `EndpointBezier` layout ([`NurbsCurve::bezier_control_points`]): the same shape, with
     /// one unit of parameter per piece. What a surface built from the modeller's curves is
-    /// built from (its patches follow the curves' parameters).
+    /// built from (its nodes and edges are found at those parameters; its patches run their
+    /// sides at arc length and turning, whatever the parameter).
     pub fn as_layouts_hold(&self) -> NurbsCurve {
         if self.matching_layout().is_some() {
             return self.clone();

@@ -118,8 +118,8 @@ fn edge_owners(surface: &HullSurface) -> Vec<Option<(usize, usize, usize, bool)>
     owner
 }
 
-/// The edge's curve on `[0, 1]` from its curve parameter `t0` to `t1`, fitted once from the
-/// side of its first patch.
+/// The edge's curve on `[0, 1]` (the segments' own parameter, from the edge's `t0` end to its
+/// `t1` end), fitted once from the side of its first patch.
 fn fit_edge(
     patches: &[Patch],
     (p, side, seg, forward): (usize, usize, usize, bool),

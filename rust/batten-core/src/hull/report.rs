@@ -186,8 +186,8 @@ fn polygons_volume<'a>(p: impl Fn(u32) -> DVec3, polygons: impl Iterator<Item = 
     sum
 }
 
-/// The normal of `patch` at fraction `lambda` (of the curve's parameter interval, from `t0`)
-/// of the edge it uses as segment `seg` of side `side`.
+/// The normal of `patch` at fraction `lambda` (of the segment's own parameter, from the
+/// edge's `t0`) of the edge it uses as segment `seg` of side `side`.
 fn edge_normal_at(patch: &Patch, side: usize, seg: usize, forward: bool, lambda: f64) -> DVec3 {
     let local = if forward { lambda } else { 1.0 - lambda };
     let s = patch.segment_side_parameter(side, seg, local);
@@ -251,14 +251,12 @@ pub(crate) fn report(
         .map(|PatchedFace { patch, layout, .. }| {
             let mut worst: f64 = 0.0;
             for (si, side) in layout.iter().enumerate() {
-                for (ki, &LayoutSegment { edge, forward: fwd }) in side.iter().enumerate() {
-                    let e = &brep.edges[edge];
-                    let curve = &curves[e.curve].curve;
-                    let (ta, tb) = if fwd { (e.t0, e.t1) } else { (e.t1, e.t0) };
+                for (ki, &LayoutSegment { edge, .. }) in side.iter().enumerate() {
+                    let curve = &curves[brep.edges[edge].curve].curve;
                     for j in 0..=GAP_SAMPLES {
                         let lam = j as f64 / GAP_SAMPLES as f64;
                         let s = patch.segment_side_parameter(si, ki, lam);
-                        let t = ta + lam * (tb - ta);
+                        let t = patch.segment_curve_parameter(si, ki, lam);
                         let gap = (patch.side_point(si, s) - curve.point(t)).length();
                         worst = worst.max(gap);
                     }

@@ -5,12 +5,14 @@
 //! edge loops, §3.1). A side is one or more [`SideSegment`]s end to end: a composite side arises
 //! where a T-joint splits it (paper §5.2). Each side is parameterised by `s ∈ [0, 1]` from its
 //! start corner to its end corner; a composite side gives each segment an interval of `s` in
-//! proportion to its arc length (or its chord, [`SideParam`]), and within a segment `s` is
-//! mapped linearly onto the curve's own parameter, so the side is exactly the designer curve.
+//! proportion to its arc length (or its chord, [`SideParam`]), and within a segment `s` runs
+//! through the segment's [`SpeedMap`] onto the curve's own parameter (at nearly uniform speed
+//! along the curve, whatever its knots), so the side is exactly the designer curve.
 
 use glam::DVec3;
 
 use super::error::PatchError;
+use super::speed::SpeedMap;
 use crate::curve::{BezierDecomposition, NurbsCurve};
 use crate::tolerance::Tolerance;
 
@@ -87,18 +89,6 @@ impl SideSegment {
         }
     }
 
-    /// The curve's parameters `t` of the tessellation samples of this segment, `resolution + 1`
-    /// of them, always in the curve's increasing parameter whatever the traversal direction.
-    ///
-    /// `t_j = lo + (hi − lo)·(j / resolution)` with the two ends set exactly to `lo` and `hi`:
-    /// the same segment used by two faces (in either direction) gives bitwise identical values.
-    pub fn sample_parameters(&self, resolution: usize) -> Vec<f64> {
-        let r = resolution.max(1);
-        (0..=r)
-            .map(|j| canonical_sample(self.t0, self.t1, r, j))
-            .collect()
-    }
-
     fn label(&self) -> String {
         if self.name.is_empty() {
             "<unnamed>".to_string()
@@ -167,18 +157,6 @@ pub enum SideParam {
     Chord,
 }
 
-/// Sample `j` of `r` of the interval between `t0` and `t1` in increasing parameter order, ends
-/// exact: the one formula every face uses, so a shared segment's samples are bitwise equal.
-#[inline]
-pub(crate) fn canonical_sample(t0: f64, t1: f64, r: usize, j: usize) -> f64 {
-    let (lo, hi) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-    match j {
-        0 => lo,
-        j if j >= r => hi,
-        j => lo + (hi - lo) * (j as f64 / r as f64),
-    }
-}
-
 /// One segment ready for evaluation: traversal parameters and the linear end corrections that
 /// make consecutive segments and sides meet exactly at the resolved node positions.
 #[derive(Clone, Debug)]
@@ -190,12 +168,99 @@ pub(crate) struct PreparedSegment {
     pub(crate) ta: f64,
     /// Curve parameter at the segment end.
     pub(crate) tb: f64,
+    /// The segment's fraction λ onto its curve's parameter, in increasing curve parameter.
+    pub(crate) speed: SpeedMap,
     /// Resolved start point minus the curve's start point.
     pub(crate) d0: DVec3,
     /// Resolved end point minus the curve's end point.
     pub(crate) d1: DVec3,
     /// Resolved start point (node position).
     pub(crate) p0: DVec3,
+}
+
+impl PreparedSegment {
+    /// The segment's curve parameter interval `(lo, hi)`, `lo ≤ hi`.
+    #[inline]
+    fn interval(&self) -> (f64, f64) {
+        if self.ta <= self.tb {
+            (self.ta, self.tb)
+        } else {
+            (self.tb, self.ta)
+        }
+    }
+
+    /// The curve parameter at the segment's fraction `lam` (clamped to [0, 1]; exactly `ta`
+    /// and `tb` at its ends) and dt/dλ there (at a knot, on the side after it in the curve's
+    /// parameter, except at the segment's far end in the curve's parameter: always inside the
+    /// segment).
+    #[inline]
+    pub(crate) fn parameter(&self, lam: f64) -> (f64, f64) {
+        let up = self.ta <= self.tb;
+        let (lo, hi) = self.interval();
+        let (tau, d) = self.speed.tau(if up { lam } else { 1.0 - lam });
+        let t = if tau >= 1.0 {
+            hi
+        } else if tau <= 0.0 {
+            lo
+        } else {
+            lo + tau * (hi - lo)
+        };
+        (t, d * (self.tb - self.ta))
+    }
+
+    /// C(t) and dC/dλ at the segment's fraction `lam`, with the curve parameter `t` there: at a
+    /// knot, of the curve's piece after it (before it at the segment's far end in the curve's
+    /// parameter), so a segment that ends on a knot takes its end tangent from its own piece,
+    /// as the map takes its slope from its own interval.
+    #[inline]
+    pub(crate) fn point_d1(&self, lam: f64) -> (DVec3, DVec3, f64) {
+        let (t, dt) = self.parameter(lam);
+        let piece = self.fast.piece_at(t, t < self.interval().1);
+        let (c, d1) = self.fast.point_d1_in(piece, t);
+        (c, d1 * dt, t)
+    }
+
+    /// dt/dλ at curve parameter `t` of the segment, on the side after `t` in the curve's
+    /// parameter (`after_in_t`) or before it.
+    pub(crate) fn parameter_slope(&self, t: f64, after_in_t: bool) -> f64 {
+        let (lo, hi) = self.interval();
+        let lam = self.speed.lambda((t - lo) / (hi - lo));
+        self.speed.slope(lam, after_in_t) * (self.tb - self.ta)
+    }
+
+    /// The segment's fraction λ at curve parameter `t` (the inverse of
+    /// [`PreparedSegment::parameter`]).
+    pub(crate) fn fraction(&self, t: f64) -> f64 {
+        let (lo, hi) = self.interval();
+        if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
+            return 0.0;
+        }
+        let lam = self.speed.lambda((t - lo) / (hi - lo));
+        if self.ta <= self.tb {
+            lam
+        } else {
+            1.0 - lam
+        }
+    }
+
+    /// The curve parameter of tessellation sample `j` of `r` in the curve's increasing
+    /// parameter, ends exact: the one formula every face uses, so a shared segment's samples
+    /// are bitwise equal whichever way the faces run along it.
+    pub(crate) fn canonical_sample(&self, r: usize, j: usize) -> f64 {
+        let (lo, hi) = self.interval();
+        match j {
+            0 => lo,
+            j if j >= r => hi,
+            j => {
+                let tau = self.speed.tau(j as f64 / r as f64).0;
+                if tau >= 1.0 {
+                    hi
+                } else {
+                    lo + (hi - lo) * tau
+                }
+            }
+        }
+    }
 }
 
 /// A validated side: segments with corrections and the break parameters `U_0 = 0 < … < U_m = 1`.
@@ -240,17 +305,10 @@ impl PreparedSide {
     pub(crate) fn eval_located(&self, s: f64) -> (DVec3, DVec3, usize, f64) {
         let (k, lam) = self.locate(s);
         let seg = &self.segs[k];
-        let dt = seg.tb - seg.ta;
-        let t = if lam >= 1.0 {
-            seg.tb
-        } else {
-            seg.ta + lam * dt
-        };
-        let piece = seg.fast.piece_at(t, t < seg.ta.max(seg.tb));
-        let (c, d1) = seg.fast.point_d1_in(piece, t);
+        let (c, d1, t) = seg.point_d1(lam);
         let du = self.breaks[k + 1] - self.breaks[k];
         let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
-        let dp = (d1 * dt + (seg.d1 - seg.d0)) / du;
+        let dp = (d1 + (seg.d1 - seg.d0)) / du;
         (p, dp, k, t)
     }
 
@@ -259,11 +317,7 @@ impl PreparedSide {
     pub(crate) fn point(&self, s: f64) -> DVec3 {
         let (k, lam) = self.locate(s);
         let seg = &self.segs[k];
-        let t = if lam >= 1.0 {
-            seg.tb
-        } else {
-            seg.ta + lam * (seg.tb - seg.ta)
-        };
+        let t = seg.parameter(lam).0;
         seg.curve.point(t) + seg.d0 * (1.0 - lam) + seg.d1 * lam
     }
 
@@ -470,14 +524,19 @@ pub(crate) fn prepare_boundary(
             .segments
             .iter()
             .enumerate()
-            .map(|(k, seg)| PreparedSegment {
-                curve: seg.curve.clone(),
-                fast: seg.curve.bezier_decomposition(),
-                ta: seg.t0,
-                tb: seg.t1,
-                d0: starts[k] - raw[si][k].start,
-                d1: starts[k + 1] - raw[si][k].end,
-                p0: starts[k],
+            .map(|(k, seg)| {
+                let fast = seg.curve.bezier_decomposition();
+                let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
+                PreparedSegment {
+                    speed: SpeedMap::of_curve(&fast, lo, hi),
+                    curve: seg.curve.clone(),
+                    fast,
+                    ta: seg.t0,
+                    tb: seg.t1,
+                    d0: starts[k] - raw[si][k].start,
+                    d1: starts[k + 1] - raw[si][k].end,
+                    p0: starts[k],
+                }
             })
             .collect();
         out.push(PreparedSide { segs, breaks, end });

@@ -276,14 +276,26 @@ impl Patch {
     }
 
     /// The side parameter `s ∈ [0, 1]` of the point at fraction `lambda` of segment `segment`
-    /// of side `side` (the segment's curve parameter is then `t0 + lambda·(t1 − t0)`): lets the
-    /// hull report (H-rep §3.2.2, G1 across shared edges) evaluate both faces of an edge at the
-    /// same curve point when the edge is one segment of a composite side.
+    /// of side `side` (the segment's own parameter, which runs at nearly uniform speed along
+    /// its curve; [`Patch::segment_curve_parameter`] gives the curve's parameter there): lets
+    /// the hull report (H-rep §3.2.2, G1 across shared edges) evaluate both faces of an edge at
+    /// the same curve point when the edge is one segment of a composite side. Two faces sharing
+    /// a segment map its fractions to the same curve points, `lambda` on one and `1 − lambda`
+    /// on the other.
     pub(crate) fn segment_side_parameter(&self, side: usize, segment: usize, lambda: f64) -> f64 {
         let side = &self.sides[side % self.sides.len()];
         let k = segment.min(side.segs.len() - 1);
         let (a, b) = (side.breaks[k], side.breaks[k + 1]);
         a + (b - a) * lambda.clamp(0.0, 1.0)
+    }
+
+    /// The curve parameter at fraction `lambda` of segment `segment` of side `side` (as in
+    /// [`Patch::segment_side_parameter`]).
+    pub(crate) fn segment_curve_parameter(&self, side: usize, segment: usize, lambda: f64) -> f64 {
+        let side = &self.sides[side % self.sides.len()];
+        side.segs[segment.min(side.segs.len() - 1)]
+            .parameter(lambda)
+            .0
     }
 
     /// The ribbon (cross-boundary derivative pointing into the face, with respect to the cross

@@ -12,6 +12,9 @@
 //! gives node positions to the segments ([`SideSegment::with_nodes`]) so corners weld.
 //!
 //! Choices the paper leaves open, made here as a naval architect would expect:
+//! - A side runs at arc length plus turning, not at its curves' own parameters (`speed`): a
+//!   Bézier-segmented curve has one unit of parameter per piece, whatever its length, and a
+//!   patch following that would crowd and crease its inside where the pieces are short.
 //! - The cross-derivative magnitude follows the neighbouring sides at the corners (linear in
 //!   between): a long, narrow patch is not bulged by unit-length ribbons.
 //! - A face whose corner-based patch folds can be given Kato's side-blended patch instead
@@ -33,6 +36,7 @@ mod face_patch;
 mod gregory4;
 mod ribbon;
 mod side_blend;
+mod speed;
 mod tessellate;
 
 pub use boundary::{FaceBoundary, Side, SideParam, SideSegment};

@@ -662,7 +662,7 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
         let seg = &side.segs[k];
         let du = side.breaks[k + 1] - side.breaks[k];
         let d1 = seg.fast.derivs_in(seg.fast.piece_at(t, after_in_t), t).d1;
-        (d1 * (seg.tb - seg.ta) + (seg.d1 - seg.d0)) / du
+        (d1 * seg.parameter_slope(t, after_in_t) + (seg.d1 - seg.d0)) / du
     };
     let mut push = |before: SideSample, after: SideSample, segment, at| {
         let angle = turn_between(before, after);
@@ -678,7 +678,7 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
             if tc <= lo || tc >= hi {
                 continue;
             }
-            let lam = (tc - seg.ta) / (seg.tb - seg.ta);
+            let lam = seg.fraction(tc);
             let s = side.breaks[k] + du * lam;
             let p = seg.fast.point(tc) + seg.d0 * (1.0 - lam) + seg.d1 * lam;
             let frame = |after_in_t| rib.frame_of(side, s, p, one_sided(k, tc, after_in_t), k, tc);
@@ -1007,7 +1007,7 @@ pub(crate) fn prepare_ribbons(
                     .and_then(|e| e.clone())?;
                 // Orient outwards: agree with the default normal at the segment's middle.
                 let seg = &side.segs[k];
-                let tm = 0.5 * (seg.ta + seg.tb);
+                let tm = seg.parameter(0.5).0;
                 let sm = 0.5 * (side.breaks[k] + side.breaks[k + 1]);
                 let dot = en.normal(tm).dot(rib.default_normal(sm));
                 let dot = if dot.abs() > PARALLEL {

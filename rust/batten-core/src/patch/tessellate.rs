@@ -2,12 +2,12 @@
 //!
 //! Every side is sampled from its designer curve itself: segment `k` of a side gets
 //! `resolution` intervals — or its own count (`Patch::face_mesh_with`; the hull build gives
-//! a segment more where a face along it turns tightly) — at the curve parameters of
-//! [`crate::SideSegment::sample_parameters`] (always computed in the curve's increasing
-//! parameter and reversed when the face traverses the segment backwards), and its ends are the
-//! resolved node positions. Two faces sharing a segment with the same count therefore emit
-//! bitwise identical boundary vertices whichever direction they see it in, and
-//! [`tessellate_patches`] welds them by exact equality, never by a distance.
+//! a segment more where a face along it turns tightly) — at the curve parameters of evenly
+//! spaced fractions of the segment's own parameter (its speed map, always computed in the
+//! curve's increasing parameter and reversed when the face traverses the segment backwards),
+//! and its ends are the resolved node positions. Two faces sharing a segment with the same
+//! count therefore emit bitwise identical boundary vertices whichever direction they see it in,
+//! and [`tessellate_patches`] welds them by exact equality, never by a distance.
 //!
 //! Interiors: a 4-sided face whose opposite sides have equal sample counts is a grid of quads
 //! (domain points by a discrete Coons interpolation of the boundary samples); any other face is
@@ -22,7 +22,6 @@ use std::collections::HashMap;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::boundary::canonical_sample;
 use super::error::PatchError;
 use super::face_patch::Patch;
 
@@ -180,7 +179,7 @@ impl Patch {
                 lambdas.push(u0);
                 for q in 1..r {
                     let j = if seg.ta <= seg.tb { q } else { r - q };
-                    let t = canonical_sample(seg.ta, seg.tb, r, j);
+                    let t = seg.canonical_sample(r, j);
                     let s = u0 + (u1 - u0) * (q as f64 / r as f64);
                     pts.push(seg.curve.point(t));
                     dom.push(self.domain().side_point_v(i, s));
