@@ -16,7 +16,9 @@
 //! sharper than the corner angle are knuckles of the data, not curvature, and give no sagitta.
 //! A curve that lies in an axis plane (a station, waterline or buttock: its points within the
 //! tolerance of it) keeps its nodes in that plane, so a node of two plane sections is on the
-//! line where their planes cross.
+//! line where their planes cross. Where two curves meet at a shallow angle θ, the place along
+//! them is uncertain by the capture over sin θ, and another node on one of them within that is
+//! the same node (a station at the FP that runs up the stem beside the waterline's end there).
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -78,7 +80,11 @@ pub(super) fn nodes_from_data(
             _ => Vec::new(),
         })
         .collect();
-    let nodes = cluster(&meetings, 2.0 * tol);
+    let planes: Vec<[Option<f64>; 3]> = polylines
+        .iter()
+        .map(|p| p.as_ref().map_or([None; 3], |p| p.planes))
+        .collect();
+    let nodes = cluster(&meetings, 2.0 * tol, &planes);
     Ok(insert_nodes(points, &nodes, model_tolerance.get()))
 }
 
@@ -163,6 +169,8 @@ struct Meeting {
     position: DVec3,
     weight: f64,
     gap: f64,
+    /// |sin| of the angle between the two polylines' segments there (1 where one is a point).
+    sin_angle: f64,
 }
 
 /// The meetings of polylines `pa` (curve `a`) and `pb` (curve `b`): the local minima of the
@@ -206,11 +214,20 @@ fn meetings(a: usize, pa: &Polyline<'_>, b: usize, pb: &Polyline<'_>, tol: f64) 
             let (wa, wb) = (1.0 / (sa * sa), 1.0 / (sb * sb));
             let p = pa.points[i].lerp(pa.points[i + 1], s);
             let q = pb.points[j].lerp(pb.points[j + 1], t);
+            let (da, db) = (
+                pa.points[i + 1] - pa.points[i],
+                pb.points[j + 1] - pb.points[j],
+            );
+            let sin_angle = match (da.try_normalize(), db.try_normalize()) {
+                (Some(u), Some(v)) => u.cross(v).length().min(1.0),
+                _ => 1.0,
+            };
             out.push(Meeting {
                 at: [(a, i as f64 + s), (b, j as f64 + t)],
                 position: in_planes((p * wa + q * wb) / (wa + wb), pa, pb),
                 weight: wa + wb,
                 gap: d,
+                sin_angle,
             });
         }
     }
@@ -326,6 +343,11 @@ fn segment_closest(a0: DVec3, a1: DVec3, b0: DVec3, b1: DVec3) -> (f64, f64) {
     (s, t)
 }
 
+/// The shallowest meeting (degrees) whose place along the curves is taken as uncertain by
+/// `capture / sin θ`: shallower ones reach no further. It is the needles' angle (`needles`):
+/// an end that meets a curve more shallowly and runs beside it is cut back.
+pub(crate) const SHALLOWEST_MEETING_DEGREES: f64 = 5.0;
+
 /// A node being gathered: its curves with their parameters, its point and weight.
 struct Gathered {
     at: Vec<(usize, f64)>,
@@ -334,17 +356,40 @@ struct Gathered {
 
 /// The meetings closer than `capture` to each other are one node (union–find), at their
 /// weighted mean; a curve meeting it more than once takes it at the mean of its parameters.
-fn cluster(meetings: &[Meeting], capture: f64) -> Vec<Gathered> {
+///
+/// Where two curves meet at a shallow angle θ, where along each other they meet is known only
+/// to `capture / sin θ` (a curve `capture` off sideways meets `capture / sin θ` further on).
+/// Two meetings on one curve within that of each other are one node too, placed in the axis
+/// planes of all its curves: KVLCC2's station 20 ends on the stem at 9°, 2.35 cm below where
+/// the waterline at 20.8 m ends on it, and the face between got a 2.35 cm side and a 3.5°
+/// corner, with an 11.7° crease along the station.
+fn cluster(meetings: &[Meeting], capture: f64, planes: &[[Option<f64>; 3]]) -> Vec<Gathered> {
+    let slide = |m: &Meeting| {
+        let sin = m
+            .sin_angle
+            .max(SHALLOWEST_MEETING_DEGREES.to_radians().sin());
+        capture / sin
+    };
+    let reach = meetings.iter().map(slide).fold(capture, f64::max);
     let mut sets = UnionFind::new(meetings.len());
+    let mut slid = vec![false; meetings.len()];
     let mut order: Vec<usize> = (0..meetings.len()).collect();
     order.sort_by(|&i, &j| meetings[i].position.x.total_cmp(&meetings[j].position.x));
     for (k, &i) in order.iter().enumerate() {
         for &j in &order[k + 1..] {
-            if meetings[j].position.x - meetings[i].position.x > capture {
+            if meetings[j].position.x - meetings[i].position.x > reach {
                 break;
             }
-            if meetings[i].position.distance(meetings[j].position) <= capture {
+            let (a, b) = (&meetings[i], &meetings[j]);
+            let d = a.position.distance(b.position);
+            if d <= capture {
                 sets.union(i, j);
+            } else if d <= slide(a).max(slide(b))
+                && a.at.iter().any(|p| b.at.iter().any(|q| p.0 == q.0))
+            {
+                sets.union(i, j);
+                slid[i] = true;
+                slid[j] = true;
             }
         }
     }
@@ -357,11 +402,23 @@ fn cluster(meetings: &[Meeting], capture: f64) -> Vec<Gathered> {
         .filter(|g| !g.is_empty())
         .map(|g| {
             let weight: f64 = g.iter().map(|&i| meetings[i].weight).sum();
-            let position = g
+            let mut position = g
                 .iter()
                 .map(|&i| meetings[i].position * meetings[i].weight)
                 .sum::<DVec3>()
                 / weight;
+            if g.iter().any(|&i| slid[i]) {
+                for axis in 0..3 {
+                    let on: Vec<f64> = g
+                        .iter()
+                        .flat_map(|&i| meetings[i].at.iter().map(|a| a.0))
+                        .filter_map(|c| planes[c][axis])
+                        .collect();
+                    if !on.is_empty() {
+                        position[axis] = on.iter().sum::<f64>() / on.len() as f64;
+                    }
+                }
+            }
             let mut at: Vec<(usize, f64, usize)> = Vec::new();
             for &(c, u) in g.iter().flat_map(|&i| &meetings[i].at) {
                 match at.iter_mut().find(|e| e.0 == c) {
@@ -502,6 +559,47 @@ mod tests {
         );
         assert_eq!(noded.points[1][0], noded.nodes[0].position);
         assert_eq!(noded.source[1][0], Some(0));
+    }
+
+    /// A vertical stem (x = 0, y = 0), a waterline z = 2 ending on it square, and a station
+    /// x = 0 whose last segment runs up to the stem at `end_z` along `(0, −run, 0.475)`.
+    fn stem_meetings(end_z: f64, run: f64) -> Vec<Vec<DVec3>> {
+        let stem = (0..=6)
+            .map(|i| DVec3::new(0.0, 0.0, 0.5 * i as f64))
+            .collect();
+        let waterline = vec![DVec3::new(-1.0, 1.0, 2.0), DVec3::new(0.0, 0.0, 2.0)];
+        let station = vec![
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(0.0, run, end_z - 0.475),
+            DVec3::new(0.0, 0.0, end_z),
+        ];
+        vec![stem, waterline, station]
+    }
+
+    #[test]
+    fn a_shallow_meeting_beside_another_on_one_curve_is_one_node() {
+        // The station meets the stem at 9° (run 0.075 over 0.475), 2 cm below the waterline's
+        // end: with a capture of 4 mm, where along the stem it meets is known only to
+        // 4 mm / sin 9° = 2.6 cm, so the two ends are one node, in all three curves' planes.
+        let noded =
+            nodes_from_data(&stem_meetings(1.98, 0.075), 2e-3, None, Tolerance::DEFAULT).unwrap();
+        assert_eq!(noded.nodes.len(), 1, "{:?}", noded.nodes);
+        assert_eq!(noded.nodes[0].curves, vec![0, 1, 2]);
+        assert_eq!(noded.nodes[0].position, DVec3::new(0.0, 0.0, 2.0));
+        assert_eq!(
+            noded.points[2][2],
+            DVec3::new(0.0, 0.0, 2.0),
+            "the station ends there"
+        );
+        // Meeting the stem at 45° instead, it is placed to within 4 mm / sin 45° = 5.7 mm: two
+        // nodes 2 cm apart.
+        let noded =
+            nodes_from_data(&stem_meetings(1.98, 0.475), 2e-3, None, Tolerance::DEFAULT).unwrap();
+        assert_eq!(noded.nodes.len(), 2, "{:?}", noded.nodes);
+        // And at 9° but 3 cm apart, beyond the 2.6 cm.
+        let noded =
+            nodes_from_data(&stem_meetings(1.97, 0.075), 2e-3, None, Tolerance::DEFAULT).unwrap();
+        assert_eq!(noded.nodes.len(), 2, "{:?}", noded.nodes);
     }
 
     #[test]

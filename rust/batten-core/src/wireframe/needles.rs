@@ -22,7 +22,7 @@ use crate::curve::segment_distance;
 
 /// The largest angle (degrees) at which a section end meeting another curve, and the stretch
 /// before it, make a needle ([module doc](self)).
-pub(crate) const NEEDLE_DEGREES: f64 = 5.0;
+pub(crate) const NEEDLE_DEGREES: f64 = super::data_nodes::SHALLOWEST_MEETING_DEGREES;
 
 /// `noded` with every section end that runs into a needle cut back to the curve's last node
 /// before it ([module doc](self)); `capture` (m) is the distance within which two curves meet.
