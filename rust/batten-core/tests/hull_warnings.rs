@@ -75,6 +75,36 @@ fn degenerate_corner_is_a_typed_warning_at_its_face() {
 }
 
 #[test]
+fn a_cusp_corner_gets_the_side_blended_patch_and_says_so() {
+    // At a 0.5° corner a corner-based patch has no tangent plane to interpolate; the
+    // side-blended patch has no corner interpolants, and is used where it folds no more.
+    let r = build_hull(&sliver(0.5), &HullOptions::default())
+        .expect("built")
+        .report;
+    let blended: Vec<_> = r
+        .warnings
+        .iter()
+        .filter(|w| w.kind == WarningKind::SideBlended)
+        .collect();
+    assert_eq!(blended.len(), 1, "{:?}", r.warnings);
+    let message = &blended[0].message;
+    assert!(
+        message.contains("cusp") && message.contains("0.50°"),
+        "{message}"
+    );
+    // A 3° corner keeps the corner-based patch.
+    let ok = build_hull(&sliver(3.0), &HullOptions::default()).expect("built");
+    assert!(
+        ok.report
+            .warnings
+            .iter()
+            .all(|w| w.kind != WarningKind::SideBlended),
+        "{:?}",
+        ok.report.warnings
+    );
+}
+
+#[test]
 fn warnings_serialise_with_kind_place_and_error() {
     let r = build_hull(&sliver(0.5), &HullOptions::default())
         .expect("built")

@@ -143,9 +143,9 @@ fn face_warning(
 fn patch_warning(topology: &Topology, fi: usize, label: &str, w: &PatchWarning) -> Warning {
     let kind = match w {
         PatchWarning::CornerAngle { .. } => WarningKind::DegenerateCorner,
-        PatchWarning::SideBlended { .. } | PatchWarning::FlatSideBlended { .. } => {
-            WarningKind::SideBlended
-        }
+        PatchWarning::SideBlended { .. }
+        | PatchWarning::FlatSideBlended { .. }
+        | PatchWarning::CuspSideBlended { .. } => WarningKind::SideBlended,
     };
     face_warning(topology, fi, kind, format!("{label}: {w}"), None)
 }
@@ -289,6 +289,9 @@ fn unfolded(
         return (patch, Some(mesh), Need::NONE);
     }
     let need = refinement(&patch, &mesh, resolution);
+    if let Some((blended, mesh, need)) = cusp_unfolded(plan, &patch, opts, resolution, &need) {
+        return (blended, Some(mesh), need);
+    }
     if need.folds.pairs == 0 {
         return match flat_unfolded(plan, &patch, opts, resolution) {
             Some((blended, mesh, need)) => (blended, Some(mesh), need),
@@ -317,6 +320,41 @@ fn unfolded(
         Some(blended) => (blended, Some(other), other_need),
         None => (patch, Some(mesh), need),
     }
+}
+
+/// For a face with a cusp (two sides meeting at a corner angle near 0°, repaired by its
+/// ribbons: [`PatchWarning::CornerAngle`]), the side-blended patch of the same boundary and
+/// ribbons, its mesh and need, where its mesh folds no more than `patch`'s (`need`): a
+/// corner-based patch interpolates the tangent plane its two sides span at each corner, and
+/// at a cusp they span none (KVLCC2's station 20 runs up the stem and meets it at 1°: the
+/// Charrot–Gregory patch there creased 0.79° against its neighbour). None otherwise.
+fn cusp_unfolded(
+    plan: &FacePlan,
+    patch: &Patch,
+    opts: &PatchOptions,
+    resolution: usize,
+    need: &Need,
+) -> Option<(Patch, FaceMesh, Need)> {
+    let (corner, degrees) = patch.warnings().iter().find_map(|w| match *w {
+        PatchWarning::CornerAngle {
+            corner, degrees, ..
+        } if degrees.abs() < 90.0 => Some((corner, degrees)),
+        _ => None,
+    })?;
+    let blended = side_blend(plan, opts)?;
+    let mesh = blended.face_mesh(resolution);
+    if !mesh.is_finite() {
+        return None;
+    }
+    let other = refinement(&blended, &mesh, resolution);
+    (other.folds.pairs <= need.folds.pairs).then(|| {
+        let blended = blended.with_warning(PatchWarning::CuspSideBlended {
+            replaced: patch.kind(),
+            corner,
+            degrees,
+        });
+        (blended, mesh, other)
+    })
 }
 
 /// For a flat face whose patch folds within its plane ([`in_plane_folds`]; its mesh shows

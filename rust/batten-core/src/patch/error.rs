@@ -211,6 +211,17 @@ pub enum PatchWarning {
         /// The cells of a fine grid over its domain that turned over.
         cells: usize,
     },
+    /// Two sides of the face meet at a cusp (a corner angle near 0°: [`PatchWarning::CornerAngle`]),
+    /// where a corner-based patch has no tangent plane to interpolate; the side-blended patch,
+    /// which has no corner interpolants, is used instead.
+    CuspSideBlended {
+        /// The corner-based patch replaced.
+        replaced: crate::PatchKind,
+        /// Index of the corner (start of side `corner`).
+        corner: usize,
+        /// The corner angle, degrees.
+        degrees: f64,
+    },
 }
 
 /// The name of the corner-based patch a side-blended one replaced, for its warning.
@@ -254,6 +265,19 @@ impl std::fmt::Display for PatchWarning {
                     "the face is flat and its {name} patch folds within its plane ({cells} cell(s) \
                      of a fine grid turned over, too thin for the mesh); the side-blended patch, \
                      which does not, is used"
+                )
+            }
+            PatchWarning::CuspSideBlended {
+                replaced,
+                corner,
+                degrees,
+            } => {
+                let name = corner_patch_name(*replaced);
+                write!(
+                    f,
+                    "corner {corner}: its sides meet at {degrees:.2}°, a cusp where the {name} \
+                     patch has no tangent plane to take; the side-blended patch, which needs \
+                     none, is used"
                 )
             }
         }
