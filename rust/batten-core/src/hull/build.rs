@@ -298,14 +298,9 @@ fn unfolded(
             None => (patch, Some(mesh), need),
         };
     }
-    let Some(blended) = side_blend(plan, opts) else {
+    let Some((blended, other, other_need)) = side_blended_mesh(plan, opts, resolution) else {
         return (patch, Some(mesh), need);
     };
-    let other = blended.face_mesh(resolution);
-    if !other.is_finite() {
-        return (patch, Some(mesh), need);
-    }
-    let other_need = refinement(&blended, &other, resolution);
     // Both judged at the finer of their levels: a patch's own level's folds are at hand.
     let level = need.times.max(other_need.times);
     let folds_at = |p: &Patch, n: &Need| {
@@ -341,12 +336,7 @@ fn cusp_unfolded(
         } if degrees.abs() < 90.0 => Some((corner, degrees)),
         _ => None,
     })?;
-    let blended = side_blend(plan, opts)?;
-    let mesh = blended.face_mesh(resolution);
-    if !mesh.is_finite() {
-        return None;
-    }
-    let other = refinement(&blended, &mesh, resolution);
+    let (blended, mesh, other) = side_blended_mesh(plan, opts, resolution)?;
     (other.folds.pairs <= need.folds.pairs).then(|| {
         let blended = blended.with_warning(PatchWarning::CuspSideBlended {
             replaced: patch.kind(),
@@ -371,19 +361,30 @@ fn flat_unfolded(
     if cells == 0 {
         return None;
     }
-    let blended = side_blend(plan, opts)?;
-    let mesh = blended.face_mesh(resolution);
-    if !mesh.is_finite() || in_plane_folds(&blended, opts.tolerance) > 0 {
-        return None;
-    }
-    let need = refinement(&blended, &mesh, resolution);
-    (need.folds.pairs == 0).then(|| {
+    let (blended, mesh, need) = side_blended_mesh(plan, opts, resolution)?;
+    (need.folds.pairs == 0 && in_plane_folds(&blended, opts.tolerance) == 0).then(|| {
         let blended = blended.with_warning(PatchWarning::FlatSideBlended {
             replaced: patch.kind(),
             cells,
         });
         (blended, mesh, need)
     })
+}
+
+/// The side-blended patch of `plan` ([`side_blend`]) with its mesh at `resolution` and the
+/// refinement that mesh needs; None where the patch cannot be made or its mesh is not finite.
+fn side_blended_mesh(
+    plan: &FacePlan,
+    opts: &PatchOptions,
+    resolution: usize,
+) -> Option<(Patch, FaceMesh, Need)> {
+    let blended = side_blend(plan, opts)?;
+    let mesh = blended.face_mesh(resolution);
+    if !mesh.is_finite() {
+        return None;
+    }
+    let need = refinement(&blended, &mesh, resolution);
+    Some((blended, mesh, need))
 }
 
 /// The side-blended patch ([`PatchKind::SideBlend`]) of `plan`'s boundary and ribbons, None

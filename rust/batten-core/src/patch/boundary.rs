@@ -196,16 +196,22 @@ impl PreparedSegment {
     #[inline]
     pub(crate) fn parameter(&self, lam: f64) -> (f64, f64) {
         let up = self.ta <= self.tb;
-        let (lo, hi) = self.interval();
         let (tau, d) = self.speed.tau(if up { lam } else { 1.0 - lam });
-        let t = if tau >= 1.0 {
+        (self.at_tau(tau), d * (self.tb - self.ta))
+    }
+
+    /// The curve parameter at fraction `tau` of the interval in increasing curve parameter:
+    /// exactly its ends at and past 0 and 1.
+    #[inline]
+    fn at_tau(&self, tau: f64) -> f64 {
+        let (lo, hi) = self.interval();
+        if tau >= 1.0 {
             hi
         } else if tau <= 0.0 {
             lo
         } else {
             lo + tau * (hi - lo)
-        };
-        (t, d * (self.tb - self.ta))
+        }
     }
 
     /// C(t) and dC/dλ at the segment's fraction `lam`, with the curve parameter `t` there: at a
@@ -247,18 +253,10 @@ impl PreparedSegment {
     /// parameter, ends exact: the one formula every face uses, so a shared segment's samples
     /// are bitwise equal whichever way the faces run along it.
     pub(crate) fn canonical_sample(&self, r: usize, j: usize) -> f64 {
-        let (lo, hi) = self.interval();
         match j {
-            0 => lo,
-            j if j >= r => hi,
-            j => {
-                let tau = self.speed.tau(j as f64 / r as f64).0;
-                if tau >= 1.0 {
-                    hi
-                } else {
-                    lo + (hi - lo) * tau
-                }
-            }
+            0 => self.at_tau(0.0),
+            j if j >= r => self.at_tau(1.0),
+            j => self.at_tau(self.speed.tau(j as f64 / r as f64).0),
         }
     }
 }

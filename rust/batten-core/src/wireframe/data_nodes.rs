@@ -364,13 +364,12 @@ struct Gathered {
 /// the waterline at 20.8 m ends on it, and the face between got a 2.35 cm side and a 3.5°
 /// corner, with an 11.7° crease along the station.
 fn cluster(meetings: &[Meeting], capture: f64, planes: &[[Option<f64>; 3]]) -> Vec<Gathered> {
-    let slide = |m: &Meeting| {
-        let sin = m
-            .sin_angle
-            .max(SHALLOWEST_MEETING_DEGREES.to_radians().sin());
-        capture / sin
-    };
-    let reach = meetings.iter().map(slide).fold(capture, f64::max);
+    let shallowest = SHALLOWEST_MEETING_DEGREES.to_radians().sin();
+    let slide: Vec<f64> = meetings
+        .iter()
+        .map(|m| capture / m.sin_angle.max(shallowest))
+        .collect();
+    let reach = slide.iter().copied().fold(capture, f64::max);
     let mut sets = UnionFind::new(meetings.len());
     let mut slid = vec![false; meetings.len()];
     let mut order: Vec<usize> = (0..meetings.len()).collect();
@@ -384,7 +383,7 @@ fn cluster(meetings: &[Meeting], capture: f64, planes: &[[Option<f64>; 3]]) -> V
             let d = a.position.distance(b.position);
             if d <= capture {
                 sets.union(i, j);
-            } else if d <= slide(a).max(slide(b))
+            } else if d <= slide[i].max(slide[j])
                 && a.at.iter().any(|p| b.at.iter().any(|q| p.0 == q.0))
             {
                 sets.union(i, j);
