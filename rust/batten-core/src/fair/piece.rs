@@ -20,6 +20,12 @@ const SETTLE: f64 = 1e-3;
 /// (parameter correction converges linearly there, on the KCS benchmark by about 2 % per
 /// step), but the fit no longer changes measurably.
 const SETTLE_E: f64 = 5e-3;
+/// The parameters of neighbouring points stay at least this fraction of their distance apart
+/// where the points are taken in their given order (no resolution: tolerance mode, or S
+/// given), see [`reproject`]. Points a spacing `h` apart along the curve and scattered `±d`
+/// to its sides have foot points `h` apart and are `√(h² + 4d²)` apart: the bound bites only
+/// where the scatter is about twice the spacing, never for offsets fitted within a tolerance.
+const MIN_GAP: f64 = 0.25;
 /// Most steps of the search for S in tolerance mode.
 const MAX_S_STEPS: usize = 24;
 /// Each step lowers S by the squared ratio of tolerance to deviation times this safety factor
@@ -171,7 +177,12 @@ pub(crate) fn fit_smooth(
             }
         }
         iterations += 1;
-        let (change, e_proj) = reproject(&curve, &mut pts, &mut u);
+        let (change, e_proj) = reproject(
+            &curve,
+            &mut pts,
+            &mut u,
+            resolution.is_none().then_some(MIN_GAP),
+        );
         if exact && (change <= SETTLE * spacing || fp - e_proj <= SETTLE_E * s.s) {
             settled = true;
             break;

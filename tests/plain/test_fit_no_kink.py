@@ -1,0 +1,34 @@
+"""A waterline fitted through its data and the nodes where the stations cross it has no kink the
+data do not have. KVLCC2's wl_z0.30 (120 offsets and 21 nodes) needs a near-interpolating fit
+within 5 mm; its parameter correction then brought the foot points of two offsets 3 cm apart at
+the stern to one parameter, the next fit kept the kink there (radius 0.5 mm, curvature 1,912 /m),
+and the surface folded across it. The foot points now keep a quarter of their points' distance
+apart (when ``shared/hulls`` is beside the checkout)."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from batten_native import fair_points, nodes_from_data
+
+HULLS = Path(__file__).resolve().parents[3] / "shared" / "hulls"
+
+
+@pytest.mark.skipif(not HULLS.is_dir(), reason="shared/hulls is not beside the checkout")
+def test_kvlcc2_low_waterline_fitted_through_its_nodes_has_no_kink():
+    data = json.loads((HULLS / "kvlcc2" / "network.json").read_text())
+    names = [c["name"] for c in data["curves"]]
+    points = [np.asarray(c["points"], dtype=float) for c in data["curves"]]
+    noded, _, _ = nodes_from_data(names, points, 0.005, 45.0, 0.001)
+    i = names.index("wl_z0.30")
+    curve, report = fair_points("wl_z0.30", np.asarray(noded[i]), tolerance=0.005, corner_angle_deg=45.0)
+    assert report["max_deviation"] <= 0.005
+    # The data's own turns are no tighter than a radius of a few centimetres (the stern end
+    # leaves the centreline over 5 cm); 1,912 /m before.
+    assert report["max_curvature"] < 50.0, report["max_curvature"]
+    # The stern end, where the kink was, turns smoothly.
+    t = np.linspace(*curve.domain, 20001)
+    at, kappa = curve.curvature(t)
+    stern = np.asarray(at)[:, 0] < 14.0
+    assert np.linalg.norm(np.asarray(kappa)[stern], axis=1).max() < 20.0
