@@ -405,3 +405,53 @@ fn a_knuckle_node_or_one_far_off_a_plane_is_left_as_it_is() {
         assert!(moved < 1e-12, "{} moved {moved:e}", a.name);
     }
 }
+
+#[test]
+fn a_curve_held_by_its_data_keeps_its_tangent_and_the_others_turn_into_a_plane_through_it() {
+    // The station's data allow it no move; the profile's and the waterline's are only their
+    // far ends, which a turn at the node leaves where they are.
+    let (curves, off) = stem(0.05, Role::Free);
+    let points: Vec<Vec<DVec3>> = curves
+        .iter()
+        .enumerate()
+        .map(|(i, c)| match i {
+            1 => (0..=20).map(|k| c.curve.point(k as f64 / 20.0)).collect(),
+            0 => vec![c.curve.point(0.0), c.curve.point(1.0)],
+            _ => vec![c.curve.point(1.0)],
+        })
+        .collect();
+    let net = Network::try_new("held", curves).expect("network");
+    let data = SnapData {
+        points: &points,
+        tolerance: 1e-9,
+    };
+    let capture = Tolerance::try_new(0.01).expect("capture");
+    let s = snap_to_nodes(&net, capture, Some(data)).expect("snap");
+    let node = DVec3::ZERO;
+    assert_eq!(s.snaps[1].tangent_nodes, 0, "the station is held");
+    assert_eq!((s.snaps[0].tangent_nodes, s.snaps[2].tangent_nodes), (1, 1));
+    let given = unit_tangent(&net.curves()[1], node);
+    let kept = unit_tangent(&s.network.curves()[1], node);
+    assert!(
+        given.angle_between(kept) < 1e-9,
+        "the station keeps its tangent"
+    );
+    let t: Vec<DVec3> = s
+        .network
+        .curves()
+        .iter()
+        .map(|c| unit_tangent(c, node))
+        .collect();
+    let triple = t[0].dot(t[1].cross(t[2])).abs();
+    assert!(triple < 1e-9, "tangents {triple:e} off one plane");
+    // The plane is the one through the station's tangent: the others turn by the station's
+    // whole slope off their plane between them (the least-squares plane of all three, as
+    // before, would have turned each by less and left the station out of it by `off`/3).
+    assert_eq!(s.smooth_nodes.len(), 1);
+    let report = &s.smooth_nodes[0];
+    assert!(report.normal.dot(kept).abs() < 1e-9);
+    assert!(
+        report.turn_degrees > 0.3 * off && report.turn_degrees <= off + 1e-9,
+        "{off} {report:?}"
+    );
+}

@@ -19,7 +19,7 @@ use crate::network::{Network, NetworkCurve};
 use crate::tolerance::Tolerance;
 use crate::topo::Topology;
 
-use super::tangents::smooth_nodes;
+use super::tangents::{held_plane, smooth_nodes};
 
 /// What snapping did to one curve.
 #[derive(Clone, Debug, PartialEq)]
@@ -124,45 +124,98 @@ pub fn snap_to_nodes(
         .collect::<Result<_, Error>>()?;
     let views: Vec<(&NurbsCurve, &[(f64, DVec3)])> =
         moved.iter().map(|(c, _, k)| (c, k.as_slice())).collect();
-    let nodes = smooth_nodes(network.curves(), &topology, &views, capture.get());
-    let mut tangents: Vec<Vec<(f64, DVec3, usize)>> = vec![Vec::new(); moved.len()];
-    for (k, node) in nodes.iter().enumerate() {
-        for &(c, t, d) in &node.tangents {
-            tangents[c].push((t, d, k));
+    let found = smooth_nodes(network.curves(), &topology, &views, capture.get());
+    // The turn is an improvement, not a condition of meeting: where the move cannot be made,
+    // or takes a data point past the tolerance, the curve keeps its move through the nodes
+    // alone, and its tangents are held as they are at its nodes (`held_plane`): the other
+    // curves there turn again, into a plane through them.
+    let turn = |i: usize, at: &[(f64, DVec3)]| -> Option<Turned> {
+        let turned = network.curves()[i]
+            .curve
+            .through_with_tangents(&moved[i].2, at)
+            .ok()?;
+        let worst = match points_of(i) {
+            Some((points, tol)) => {
+                let (d, k, _) = worst_point(&turned, points, tol).ok()?;
+                (d <= tol).then_some(Some((d, k)))?
+            }
+            None => None,
+        };
+        Some((turned, worst))
+    };
+    let n = moved.len();
+    let mut held = vec![false; n];
+    let mut nodes = found.clone();
+    let mut targets: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); n];
+    let mut results: Vec<Option<Turned>> = vec![None; n];
+    for _ in 0..HELD_ROUNDS {
+        let mut wanted: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); n];
+        for node in &nodes {
+            for &(c, t, d) in &node.tangents {
+                if !held[c] {
+                    wanted[c].push((t, d));
+                }
+            }
         }
+        let again: Vec<usize> = (0..n).filter(|&i| wanted[i] != targets[i]).collect();
+        let fresh: Vec<Option<Turned>> = again
+            .par_iter()
+            .map(|&i| {
+                (!wanted[i].is_empty())
+                    .then(|| turn(i, &wanted[i]))
+                    .flatten()
+            })
+            .collect();
+        for (&i, r) in again.iter().zip(fresh) {
+            results[i] = r;
+        }
+        targets = wanted;
+        let refused: Vec<usize> = (0..n)
+            .filter(|&i| !targets[i].is_empty() && results[i].is_none())
+            .collect();
+        if refused.is_empty() {
+            break;
+        }
+        for &i in &refused {
+            held[i] = true;
+        }
+        nodes = found
+            .iter()
+            .filter_map(|node| {
+                if node.tangents.iter().any(|&(c, _, _)| held[c]) {
+                    held_plane(node, &held)
+                } else {
+                    Some(node.clone())
+                }
+            })
+            .collect();
+    }
+    // A node is made coplanar where every curve through it was turned into its plane or is
+    // held in it.
+    let mut coplanar = vec![true; nodes.len()];
+    for (k, node) in nodes.iter().enumerate() {
+        coplanar[k] = node
+            .tangents
+            .iter()
+            .all(|&(c, _, _)| held[c] || results[c].is_some());
     }
     let turned: Vec<(NetworkCurve, CurveSnap)> = network
         .curves()
-        .par_iter()
+        .iter()
         .zip(moved)
-        .zip(&tangents)
+        .zip(results)
         .enumerate()
-        .map(|(i, ((c, (curve, snap, kept)), at))| {
-            // The turn is an improvement, not a condition of meeting: where the move cannot
-            // be made, or takes a data point past the tolerance, the curve keeps its move
-            // through the nodes alone.
-            let turn = || -> Option<(NurbsCurve, Option<(f64, usize)>)> {
-                let derivs: Vec<(f64, DVec3)> = at.iter().map(|&(t, d, _)| (t, d)).collect();
-                let turned = c.curve.through_with_tangents(&kept, &derivs).ok()?;
-                let worst = match points_of(i) {
-                    Some((points, tol)) => {
-                        let (d, k, _) = worst_point(&turned, points, tol).ok()?;
-                        (d <= tol).then_some(Some((d, k)))?
-                    }
-                    None => None,
-                };
-                Some((turned, worst))
-            };
-            let turned = if at.is_empty() { None } else { turn() };
-            let (curve, snap) = match turned {
+        .map(|(i, ((c, (curve, snap, _)), result))| {
+            let (curve, snap) = match result {
                 Some((turned, worst)) => {
-                    let most = at
+                    let most = nodes
                         .iter()
-                        .map(|&(_, _, k)| nodes[k].turn_degrees)
+                        .filter(|node| node.tangents.iter().any(|&(d, _, _)| d == i))
+                        .map(|node| node.turn_degrees)
                         .fold(0.0, f64::max);
                     let snap = CurveSnap {
                         max_deviation: worst,
-                        tangent_nodes: at.len(),
+                        tangent_nodes: targets[i].len(),
                         max_tangent_turn: most,
                         ..snap
                     };
@@ -181,12 +234,9 @@ pub fn snap_to_nodes(
     let (mut curves, snaps): (Vec<NetworkCurve>, Vec<_>) = turned.into_iter().unzip();
     let smooth_nodes = nodes
         .iter()
-        .filter(|n| {
-            n.tangents
-                .iter()
-                .all(|&(c, _, _)| snaps[c].tangent_nodes > 0)
-        })
-        .map(|n| SmoothNodeReport {
+        .zip(&coplanar)
+        .filter(|(_, &made)| made)
+        .map(|(n, _)| SmoothNodeReport {
             position: n.position,
             normal: n.normal,
             curves: n
@@ -265,6 +315,15 @@ fn check_data(network: &Network, d: SnapData<'_>) -> Result<(), Error> {
 /// A curve moved through its nodes, what that took, and the targets (node parameters and
 /// positions) it passes through.
 type Snapped = (NurbsCurve, CurveSnap, Vec<(f64, DVec3)>);
+
+/// A curve turned into its nodes' planes, and its worst data point (distance, index) if it
+/// has data.
+type Turned = (NurbsCurve, Option<(f64, usize)>);
+
+/// Rounds of turning at most: the first turns every curve into its nodes' planes; each
+/// further one holds the curves whose turn was refused and turns the others at their nodes
+/// again ([`held_plane`]).
+const HELD_ROUNDS: usize = 3;
 
 /// Accuracy (fraction of the tolerance) of the closest points that measure the data's
 /// distance from a moved curve.

@@ -31,6 +31,9 @@ const JOINT_DEGREES: f64 = 1.0;
 /// is left as it is, and the build reports the normal jump there.
 pub const MAX_TANGENT_TURN_DEGREES: f64 = 2.0;
 
+/// Held tangents (unit) farther than this from their plane are not in one ([`held_plane`]).
+const HELD_COPLANAR: f64 = 1e-9;
+
 /// What the plane of one smooth node asks of the curves through it.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct SmoothNode {
@@ -41,6 +44,8 @@ pub(crate) struct SmoothNode {
     /// Per curve through the node: its index, the parameter there, and the derivative it is to
     /// have (its own turned into the plane).
     pub(crate) tangents: Vec<(usize, f64, DVec3)>,
+    /// The curves' own derivatives there, in the order of `tangents`.
+    pub(crate) given: Vec<DVec3>,
     /// The largest turn (degrees) of a curve's tangent into the plane.
     pub(crate) turn_degrees: f64,
 }
@@ -133,8 +138,87 @@ pub(crate) fn smooth_nodes(
             position,
             normal,
             tangents,
+            given: derivs,
             turn_degrees: off.asin().to_degrees(),
         });
     }
     nodes
+}
+
+/// `node` with its plane made to hold, as they are, the tangents of the curves `held` (by
+/// network index; curves whose own turn was refused: their data do not allow it): the plane
+/// through them closest to the other curves' tangent lines, each other curve's target turned
+/// into it. Otherwise the others would turn into a plane the held curve is not in, and the
+/// node would still crease (KVLCC2's stem at the top of station 20: turning the profile 0.36°
+/// took one of its points 6.4 mm from it, so the station and the waterline there turned into
+/// a plane the stem missed by that much, and the patches creased 0.70° across the waterline).
+/// None where every curve is held, the held tangents span no plane within
+/// [`MAX_TANGENT_TURN_DEGREES`] of all of them, or another curve would turn more than that.
+pub(crate) fn held_plane(node: &SmoothNode, held: &[bool]) -> Option<SmoothNode> {
+    let max_sin = MAX_TANGENT_TURN_DEGREES.to_radians().sin();
+    let units: Vec<DVec3> = node.given.iter().map(|d| d.normalize()).collect();
+    let is_held: Vec<bool> = node.tangents.iter().map(|&(c, _, _)| held[c]).collect();
+    if is_held.iter().all(|&h| h) {
+        return None;
+    }
+    let fixed: Vec<DVec3> = units
+        .iter()
+        .zip(&is_held)
+        .filter(|(_, &h)| h)
+        .map(|(&u, _)| u)
+        .collect();
+    let free: Vec<DVec3> = units
+        .iter()
+        .zip(&is_held)
+        .filter(|(_, &h)| !h)
+        .map(|(&u, _)| u)
+        .collect();
+    let first = *fixed.first()?;
+    // Two held tangents that are not parallel fix the plane; otherwise it turns about the one
+    // held direction to the plane the others' lines are closest to.
+    let spanning = fixed
+        .iter()
+        .map(|u| first.cross(*u))
+        .max_by(|a, b| a.length().total_cmp(&b.length()))
+        .filter(|c| c.length() >= MIN_CROSSING_ANGLE_DEGREES.to_radians().sin());
+    let normal = match spanning {
+        Some(c) => c.normalize(),
+        None => {
+            // The held direction weighs far more than any other: the least-variance direction
+            // of the set is then exactly perpendicular to it.
+            let mut lines: Vec<DVec3> = free
+                .iter()
+                .map(|&u| u - first * first.dot(u))
+                .flat_map(|p| [p, -p])
+                .collect();
+            lines.extend([first * 10.0, -first * 10.0]);
+            best_fit_normal(&lines)
+        }
+    };
+    let off = |set: &[DVec3]| set.iter().map(|u| u.dot(normal).abs()).fold(0.0, f64::max);
+    // Three held tangents out of one plane leave none to turn the others into.
+    if off(&fixed) > HELD_COPLANAR {
+        return None;
+    }
+    let turn = off(&free);
+    if turn > max_sin {
+        return None;
+    }
+    let tangents = node
+        .tangents
+        .iter()
+        .zip(&node.given)
+        .zip(&is_held)
+        .map(|((&(c, t, _), &d), &h)| {
+            let target = if h { d } else { d - normal * normal.dot(d) };
+            (c, t, target)
+        })
+        .collect();
+    Some(SmoothNode {
+        position: node.position,
+        normal,
+        tangents,
+        given: node.given.clone(),
+        turn_degrees: turn.asin().to_degrees(),
+    })
 }
