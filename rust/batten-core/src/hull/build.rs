@@ -330,12 +330,16 @@ fn cusp_unfolded(
     resolution: usize,
     need: &Need,
 ) -> Option<(Patch, FaceMesh, Need)> {
-    let (corner, degrees) = patch.warnings().iter().find_map(|w| match *w {
-        PatchWarning::CornerAngle {
-            corner, degrees, ..
-        } if degrees.abs() < 90.0 => Some((corner, degrees)),
-        _ => None,
-    })?;
+    let (corner, degrees) = patch
+        .warnings()
+        .iter()
+        .find_map(|w| match *w {
+            PatchWarning::CornerAngle {
+                corner, degrees, ..
+            } if degrees.abs() < 90.0 => Some((corner, degrees)),
+            _ => None,
+        })
+        .or_else(|| sharpest_cusp(patch))?;
     let (blended, mesh, other) = side_blended_mesh(plan, opts, resolution)?;
     (other.folds.pairs <= need.folds.pairs).then(|| {
         let blended = blended.with_warning(PatchWarning::CuspSideBlended {
@@ -345,6 +349,33 @@ fn cusp_unfolded(
         });
         (blended, mesh, other)
     })
+}
+
+/// Corners of a face sharper than this are cusps for [`cusp_unfolded`], though their ribbons
+/// need no repair (`MIN_CORNER_ANGLE_DEGREES`): KVLCC2's station 20 meets the stem at 1.2°, a
+/// repaired corner; fitted a little differently (weighted fits, tried and left) it met it at
+/// 3.7°, no repair, and the Charrot–Gregory patch between them creased 5.8° against its
+/// neighbour across the station. The shallowest meeting the import places a node for is the
+/// same 5°.
+const CUSP_DEGREES: f64 = 5.0;
+
+/// The side parameter step over which [`sharpest_cusp`] takes a side's direction at a corner.
+const CUSP_STEP: f64 = 1e-4;
+
+/// The sharpest corner of `patch` under [`CUSP_DEGREES`]: its index and interior angle in
+/// degrees, between the directions of its two sides there.
+fn sharpest_cusp(patch: &Patch) -> Option<(usize, f64)> {
+    let n = patch.sides();
+    (0..n)
+        .filter_map(|i| {
+            let prev = (i + n - 1) % n;
+            let p = patch.side_point(i, 0.0);
+            let along = patch.side_point(i, CUSP_STEP) - p;
+            let back = patch.side_point(prev, 1.0 - CUSP_STEP) - p;
+            let degrees = along.angle_between(back).to_degrees();
+            (degrees < CUSP_DEGREES).then_some((i, degrees))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// For a flat face whose patch folds within its plane ([`in_plane_folds`]; its mesh shows

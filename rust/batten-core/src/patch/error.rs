@@ -275,9 +275,9 @@ impl std::fmt::Display for PatchWarning {
                 let name = corner_patch_name(*replaced);
                 write!(
                     f,
-                    "corner {corner}: its sides meet at {degrees:.2}°, a cusp where the {name} \
-                     patch has no tangent plane to take; the side-blended patch, which needs \
-                     none, is used"
+                    "corner {corner}: its sides meet at {degrees:.2}°, a cusp where they span \
+                     no tangent plane the {name} patch can take; the side-blended patch, which \
+                     needs none, is used"
                 )
             }
         }
