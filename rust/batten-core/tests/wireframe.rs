@@ -315,6 +315,17 @@ fn unit_tangent(c: &NetworkCurve, at: DVec3) -> DVec3 {
     c.curve.derivs(n.t).d1.normalize()
 }
 
+/// The tangents of the network's three curves at `node` lie in one plane.
+fn assert_coplanar(network: &Network, node: DVec3) {
+    let t: Vec<DVec3> = network
+        .curves()
+        .iter()
+        .map(|c| unit_tangent(c, node))
+        .collect();
+    let triple = t[0].dot(t[1].cross(t[2])).abs();
+    assert!(triple < 1e-9, "tangents {triple:e} off one plane");
+}
+
 #[test]
 fn the_tangents_at_a_smooth_node_are_turned_into_one_plane() {
     let (curves, off) = stem(0.05, Role::Free);
@@ -325,14 +336,7 @@ fn the_tangents_at_a_smooth_node_are_turned_into_one_plane() {
     let net = Network::try_new("stem", curves).expect("network");
     let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
     let node = DVec3::ZERO;
-    let t: Vec<DVec3> = s
-        .network
-        .curves()
-        .iter()
-        .map(|c| unit_tangent(c, node))
-        .collect();
-    let triple = t[0].dot(t[1].cross(t[2])).abs();
-    assert!(triple < 1e-9, "tangents {triple:e} off one plane");
+    assert_coplanar(&s.network, node);
     assert_eq!(s.smooth_nodes.len(), 1);
     let report = &s.smooth_nodes[0];
     assert!(report.position.length() < 1e-12);
@@ -436,14 +440,7 @@ fn a_curve_held_by_its_data_keeps_its_tangent_and_the_others_turn_into_a_plane_t
         given.angle_between(kept) < 1e-9,
         "the station keeps its tangent"
     );
-    let t: Vec<DVec3> = s
-        .network
-        .curves()
-        .iter()
-        .map(|c| unit_tangent(c, node))
-        .collect();
-    let triple = t[0].dot(t[1].cross(t[2])).abs();
-    assert!(triple < 1e-9, "tangents {triple:e} off one plane");
+    assert_coplanar(&s.network, node);
     // The plane is the one through the station's tangent: the others turn by the station's
     // whole slope off their plane between them (the least-squares plane of all three, as
     // before, would have turned each by less and left the station out of it by `off`/3).
