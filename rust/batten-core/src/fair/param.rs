@@ -269,12 +269,14 @@ pub(crate) fn reproject(
         for i in 1..m - 1 {
             dist2[i] = (power.eval(params[i]).0 - points[i]).length_squared();
         }
-    } else {
-        sort_by_parameter(points, params);
     }
+    // Each point's own change (before the pairs are sorted).
     let largest = (1..m - 1)
         .map(|i| (params[i] - old[i]).abs())
         .fold(0.0, f64::max);
+    if min_gap.is_none() {
+        sort_by_parameter(points, params);
+    }
     (largest, dist2.iter().sum())
 }
 

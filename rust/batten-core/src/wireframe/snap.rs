@@ -148,7 +148,7 @@ pub fn snap_to_nodes(
     let mut nodes = found.clone();
     let mut targets: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); n];
     let mut results: Vec<Option<Turned>> = vec![None; n];
-    for _ in 0..HELD_ROUNDS {
+    for round in 0..HELD_ROUNDS {
         let mut wanted: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); n];
         for node in &nodes {
             for &(c, t, d) in &node.tangents {
@@ -173,7 +173,9 @@ pub fn snap_to_nodes(
         let refused: Vec<usize> = (0..n)
             .filter(|&i| !targets[i].is_empty() && results[i].is_none())
             .collect();
-        if refused.is_empty() {
+        // The last round's turns are those of `nodes`: a curve refused then keeps its move
+        // through the nodes alone, and its nodes are not reported.
+        if refused.is_empty() || round + 1 == HELD_ROUNDS {
             break;
         }
         for &i in &refused {

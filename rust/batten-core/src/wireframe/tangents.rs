@@ -149,11 +149,12 @@ pub(crate) fn smooth_nodes(
 /// network index; curves whose own turn was refused: their data do not allow it): the plane
 /// through them closest to the other curves' tangent lines, each other curve's target turned
 /// into it. Otherwise the others would turn into a plane the held curve is not in, and the
-/// node would still crease (KVLCC2's stem at the top of station 20: turning the profile 0.36°
-/// took one of its points 6.4 mm from it, so the station and the waterline there turned into
-/// a plane the stem missed by that much, and the patches creased 0.70° across the waterline).
-/// None where every curve is held, the held tangents span no plane within
-/// [`MAX_TANGENT_TURN_DEGREES`] of all of them, or another curve would turn more than that.
+/// node would still crease (KVLCC2's stem at the top of station 20, with the sections fitted
+/// otherwise in an experiment: turning the profile 0.36° took one of its points 6.4 mm from
+/// it, so the station and the waterline there turned into a plane the stem missed by that
+/// much, and the patches creased 0.70° across the waterline). None where every curve is
+/// held, three or more held tangents lie in no one plane ([`HELD_COPLANAR`]), or another
+/// curve would turn more than [`MAX_TANGENT_TURN_DEGREES`].
 pub(crate) fn held_plane(node: &SmoothNode, held: &[bool]) -> Option<SmoothNode> {
     let max_sin = MAX_TANGENT_TURN_DEGREES.to_radians().sin();
     let units: Vec<DVec3> = node.given.iter().map(|d| d.normalize()).collect();
