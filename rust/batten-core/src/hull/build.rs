@@ -18,7 +18,8 @@ use crate::error::Error;
 use crate::network::Network;
 use crate::patch::{
     weld_face_meshes_with, EdgeNormal, FaceBoundary, FaceMesh, Patch, PatchError, PatchKind,
-    PatchOptions, PatchWarning, Side, SideParam, SideRibbon, SurfaceMesh, Weld, MAX_SIDES,
+    PatchOptions, PatchWarning, Side, SideParam, SideRibbon, SurfaceMesh, Weld, CUSP_DEGREES,
+    MAX_SIDES,
 };
 use crate::topo::{TopoFace, Topology};
 
@@ -317,8 +318,9 @@ fn unfolded(
     }
 }
 
-/// For a face with a cusp (two sides meeting at a corner angle near 0°, repaired by its
-/// ribbons: [`PatchWarning::CornerAngle`]), the side-blended patch of the same boundary and
+/// For a face with a cusp (two sides meeting at a corner angle near 0°: repaired by its
+/// ribbons, [`PatchWarning::CornerAngle`], or under [`CUSP_DEGREES`] without a repair,
+/// [`sharpest_cusp`]), the side-blended patch of the same boundary and
 /// ribbons, its mesh and need, where its mesh folds no more than `patch`'s (`need`): a
 /// corner-based patch interpolates the tangent plane its two sides span at each corner, and
 /// at a cusp they span none (KVLCC2's station 20 runs up the stem and meets it at 1°: the
@@ -350,14 +352,6 @@ fn cusp_unfolded(
         (blended, mesh, other)
     })
 }
-
-/// Corners of a face sharper than this are cusps for [`cusp_unfolded`], though their ribbons
-/// need no repair (`MIN_CORNER_ANGLE_DEGREES`): KVLCC2's station 20 meets the stem at 1.2°, a
-/// repaired corner; fitted a little differently (weighted fits, tried and left) it met it at
-/// 3.7°, no repair, and the Charrot–Gregory patch between them creased 5.8° against its
-/// neighbour across the station. The shallowest meeting the import places a node for is the
-/// same 5°.
-const CUSP_DEGREES: f64 = 5.0;
 
 /// The side parameter step over which [`sharpest_cusp`] takes a side's direction at a corner.
 const CUSP_STEP: f64 = 1e-4;

@@ -211,9 +211,10 @@ pub enum PatchWarning {
         /// The cells of a fine grid over its domain that turned over.
         cells: usize,
     },
-    /// Two sides of the face meet at a cusp (a corner angle near 0°: [`PatchWarning::CornerAngle`]),
-    /// where a corner-based patch has no tangent plane to interpolate; the side-blended patch,
-    /// which has no corner interpolants, is used instead.
+    /// Two sides of the face meet at a cusp (a corner angle near 0°: one repaired,
+    /// [`PatchWarning::CornerAngle`], or one under `CUSP_DEGREES`), where they span no tangent
+    /// plane a corner-based patch can interpolate; the side-blended patch, which has no corner
+    /// interpolants, is used instead.
     CuspSideBlended {
         /// The corner-based patch replaced.
         replaced: crate::PatchKind,

@@ -45,6 +45,7 @@ pub(crate) use curvature::{central_differences, stencil_fits};
 pub use domain::{Domain, MAX_SIDES};
 pub use error::{PatchError, PatchWarning};
 pub use face_patch::{Patch, PatchKind, PatchOptions};
+pub(crate) use ribbon::CUSP_DEGREES;
 pub use ribbon::{
     gram_schmidt_cross_tangent, EdgeNormal, RibbonNode, SideRibbon, MIN_CORNER_ANGLE_DEGREES,
     MIN_CROSSING_ANGLE_DEGREES,

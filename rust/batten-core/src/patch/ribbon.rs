@@ -40,6 +40,16 @@ pub const MIN_CROSSING_ANGLE_DEGREES: f64 = 15.0;
 /// is turned to this angle and a [`PatchWarning::CornerAngle`] is recorded.
 pub const MIN_CORNER_ANGLE_DEGREES: f64 = 2.0;
 
+/// Corners sharper than this are cusps, though their ribbons need no repair
+/// ([`MIN_CORNER_ANGLE_DEGREES`]): their two sides span the corner-based patches' tangent
+/// plane only to a few hundredths of their directions' accuracy, so the hull build gives such
+/// a face the side-blended patch, and the import takes curves meeting this shallowly as
+/// uncertain in where they meet. KVLCC2's station 20 meets the stem at 1.2°, a repaired
+/// corner; fitted a little differently (weighted fits, tried and left) it met it at 3.7°, no
+/// repair, and the Charrot–Gregory patch between them creased 5.8° against its neighbour
+/// across the station.
+pub(crate) const CUSP_DEGREES: f64 = 5.0;
+
 /// Below this length (relative to the vectors involved) a cross product or Gram–Schmidt
 /// remainder is treated as zero: directions that close are parallel for every purpose here.
 const PARALLEL: f64 = 1e-9;

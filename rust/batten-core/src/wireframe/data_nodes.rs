@@ -345,8 +345,9 @@ fn segment_closest(a0: DVec3, a1: DVec3, b0: DVec3, b1: DVec3) -> (f64, f64) {
 
 /// The shallowest meeting (degrees) whose place along the curves is taken as uncertain by
 /// `capture / sin θ`: shallower ones reach no further. It is the needles' angle (`needles`):
-/// an end that meets a curve more shallowly and runs beside it is cut back.
-pub(crate) const SHALLOWEST_MEETING_DEGREES: f64 = 5.0;
+/// an end that meets a curve more shallowly and runs beside it is cut back. Both are the
+/// patches' cusp angle: curves meeting more shallowly span no tangent plane a patch can take.
+pub(crate) const SHALLOWEST_MEETING_DEGREES: f64 = crate::patch::CUSP_DEGREES;
 
 /// A node being gathered: its curves with their parameters, its point and weight.
 struct Gathered {
