@@ -74,7 +74,9 @@ def test_stations_run_flat_into_a_flat_of_bottom_curve_and_the_bottom_is_flat(fl
     report = next(r for r in fits if r["curve"] == flat_of_bottom.NAME)
     assert report["kind"] == "flat_of_bottom" and report["points"] == 11
     stations = [r for r in fits if r["curve"].startswith("st")]
-    assert all(r["flat"] is not None and not r["corners"] for r in stations), "a flat each, no knuckle"
+    assert all([f["kind"] for f in r["flats"]] == ["bottom"] and not r["corners"] for r in stations), (
+        "a flat each, no knuckle"
+    )
     # The flat ends where the bilge arc leaves the base plane by the model tolerance.
     leave = math.sqrt(2 * R * 1e-3) + STEP
     curve = api.read_curves(fob)[0]

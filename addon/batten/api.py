@@ -1083,7 +1083,9 @@ def import_sections(
     ``name, x, y, z``), find where the point curves cross or end on each other
     (``nodes_from_data``: within twice ``tolerance`` plus what their chords may miss the true
     curve by) and give each such node one point that every curve through it takes among its
-    points, fair every curve within ``tolerance`` (m) keeping its end points and corners, join
+    points, fair every curve within ``tolerance`` (m) keeping its end points and corners (a
+    station's run along the flat of bottom made straight in its plane and left tangentially;
+    see :mod:`batten.flat_of_bottom`), join
     the corners (knuckles) of consecutive sections into chines (role ``knuckle``; a chine in one
     plane, a transom's edge, is carried on in that plane to the profile's and the deck edge's
     corners there, shaped like the nearest station; a flat end that the profile outlines
@@ -1108,7 +1110,8 @@ def import_sections(
     past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
     distance to a node before the move), ``tangent_nodes`` and ``tangent_turn_deg`` (smooth
     nodes where its tangent was turned into the node's plane, and the largest turn in degrees),
-    ``max_deviation`` and ``max_deviation_index``
+    ``flats`` (where a section leaves a flat: ``kind`` ``"bottom"``, ``plane``,
+    ``index``, ``parameter``, ``point``), ``max_deviation`` and ``max_deviation_index``
     measured after the move (``rms_deviation`` is the fit's), and ``fit_tolerance``: a curve
     that leaves nodes out is fitted again closer (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS``
     times) and the nodes found again. ``dropped_points`` lists the indices of the file's points
@@ -1151,7 +1154,9 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
 
     def fit(i: int, within: float):
         sec = data[i]
-        flat = ((0.0, 0.0, 1.0), base, model_tolerance) if base is not None and stations[i] else None
+        planes = []
+        if base is not None and stations[i]:
+            planes.append(("bottom", ((0.0, 0.0, 1.0), base, model_tolerance)))
         curve, report = fair_points(
             sec.name,
             sec.points,
@@ -1160,9 +1165,11 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
             corner_angle_deg=corner_angle_deg,
             model_tolerance=model_tolerance,
             role=sec.role,
-            flat_plane=flat,
+            flat_planes=[plane for _, plane in planes],
             flat_noise=within,
         )
+        for flat in report["flats"]:
+            flat["kind"] = planes[flat["plane"]][0]
         report["curve"] = sec.name
         return curve, report
 

@@ -2,7 +2,7 @@
 topology, with its tangent attribute): the base plane the data lie flat in, and the curve
 joining the points where the stations leave it.
 
-Each station is faired with the base plane as its flat plane (``fair_points(flat_plane=…)``):
+Each station is faired with the base plane as a flat plane (``fair_points(flat_planes=[…])``):
 its flat run becomes a straight piece in the plane and the bilge leaves it tangentially; the
 fit reports where the flat ends. Those ends, ordered along the ship, are joined by the flat of
 bottom curve (role ``fob``) in the base plane, so the faces between the keel and it are planar
@@ -47,11 +47,17 @@ def is_station(points: np.ndarray, tolerance: float) -> bool:
     return len(x) > 0 and float(np.ptp(x)) <= tolerance
 
 
-def flat_ends(reports: list[dict], stations: list[bool]) -> np.ndarray:
-    """The points where the stations leave the flat (from their fits' ``flat`` reports), in
-    order along x, one per station (the outermost where a station's parts have several):
-    (k, 3)."""
-    ends = [r["flat"]["point"] for r, s in zip(reports, stations, strict=True) if s and r.get("flat")]
+def flat_ends(reports: list[dict], stations: list[bool], kind: str = "bottom") -> np.ndarray:
+    """The points where the stations leave the flat (from their fits' ``flats`` reports, the
+    runs of that ``kind``), in order along x, one per station (the outermost where a station's
+    parts have several): (k, 3)."""
+    ends = [
+        f["point"]
+        for r, s in zip(reports, stations, strict=True)
+        if s
+        for f in r.get("flats", [])
+        if f.get("kind") == kind
+    ]
     ends = np.asarray(ends, dtype=float).reshape(-1, 3)
     ends = ends[np.lexsort((-np.abs(ends[:, 1]), ends[:, 0]))]
     # A station cut in parts has one flat: where two ends share a station, the outer one.

@@ -1,4 +1,4 @@
-//! A section's flat of bottom (`FairOptions::flat`): the run of points in the base plane at an
+//! A section's flat of bottom (`FairOptions::flats`): the run of points in the base plane at an
 //! end of the section becomes a straight piece exactly in the plane, and the rest of the
 //! section leaves it with the flat's tangent; without the option the one smooth spline sags on
 //! the flat and tilts where it ends.
@@ -33,7 +33,7 @@ fn section(w: f64, r: f64) -> Vec<DVec3> {
 fn options(flat: Option<FlatPlane>) -> FairOptions {
     FairOptions {
         smoothing: Smoothing::MaxDeviation(0.005),
-        flat,
+        flats: flat.into_iter().collect(),
         ..FairOptions::default()
     }
 }
@@ -57,7 +57,7 @@ fn sag(curve: &batten_core::NurbsCurve, upto: f64) -> f64 {
 fn the_flat_is_straight_in_the_plane_and_the_bilge_leaves_it_tangentially() {
     let pts = section(4.0, 2.0);
     let fit = fair_points(&pts, &options(Some(BASE))).unwrap();
-    let flat = fit.report.flat.expect("a flat run");
+    let flat = fit.report.flats.first().copied().expect("a flat run");
     // The run ends at the last point within the plane's tolerance (the arc's first, 0.6 mm up).
     let inner = pts.iter().position(|p| p.z > BASE.tolerance).unwrap() - 1;
     assert_eq!(flat.index, inner);
@@ -81,7 +81,7 @@ fn the_flat_is_straight_in_the_plane_and_the_bilge_leaves_it_tangentially() {
 
     // The one smooth spline, for comparison: it sags on the flat and tilts where it ends.
     let plain = fair_points(&pts, &options(None)).unwrap();
-    assert!(plain.report.flat.is_none());
+    assert!(plain.report.flats.is_empty());
     let tp = plain
         .curve
         .nearest(DVec3::new(10.0, 4.0, 0.0), 1e-12)
@@ -99,7 +99,12 @@ fn a_run_at_the_end_of_the_points_is_a_flat_too() {
     let mut pts = section(3.0, 1.5);
     pts.reverse();
     let fit = fair_points(&pts, &options(Some(BASE))).unwrap();
-    let flat = fit.report.flat.expect("a flat run at the end");
+    let flat = fit
+        .report
+        .flats
+        .first()
+        .copied()
+        .expect("a flat run at the end");
     let inner = pts.iter().rposition(|p| p.z > BASE.tolerance).unwrap() + 1;
     assert_eq!(flat.index, inner);
     let (_, b) = fit.curve.domain();
@@ -129,8 +134,8 @@ fn a_noisy_flat_runs_on_over_points_within_the_noise_and_ends_within_the_toleran
     assert!(fair_points(&pts, &options(Some(BASE)))
         .unwrap()
         .report
-        .flat
-        .is_none());
+        .flats
+        .is_empty());
     // With 5 mm of noise the run goes over the straddling points and on up the arc while it
     // stays within 5 mm, but ends at its last point within the 1 mm tolerance: the arc's
     // first point past the flat (0.6 mm up), as without noise.
@@ -139,7 +144,7 @@ fn a_noisy_flat_runs_on_over_points_within_the_noise_and_ends_within_the_toleran
         ..BASE
     };
     let fit = fair_points(&pts, &options(Some(noisy))).unwrap();
-    let flat = fit.report.flat.expect("a flat run");
+    let flat = fit.report.flats.first().copied().expect("a flat run");
     assert_eq!(flat.index, n + 1, "{:?}", pts[flat.index]);
     assert!(pts[n + 2].z > BASE.tolerance && pts[n + 2].z < noisy.noise);
     assert!(sag(&fit.curve, flat.parameter) < 1e-12);
@@ -153,8 +158,8 @@ fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
     assert!(fair_points(&short, &options(Some(BASE)))
         .unwrap()
         .report
-        .flat
-        .is_none());
+        .flats
+        .is_empty());
     // In the plane but curved: a quarter circle in z = 0, then up.
     let mut curved: Vec<DVec3> = (0..40)
         .map(|i| {
@@ -166,12 +171,12 @@ fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
     assert!(fair_points(&curved, &options(Some(BASE)))
         .unwrap()
         .report
-        .flat
-        .is_none());
+        .flats
+        .is_empty());
     // Wholly in the plane: a straight waterline at the base.
     let line: Vec<DVec3> = (0..50).map(|i| DVec3::new(i as f64, 2.0, 0.0)).collect();
     let fit = fair_points(&line, &options(Some(BASE))).unwrap();
-    assert!(fit.report.flat.is_none());
+    assert!(fit.report.flats.is_empty());
     // A polyline fit (degree 1) has no tangent to carry off a flat.
     let linear = FairOptions {
         degree: 1,
@@ -180,8 +185,8 @@ fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
     assert!(fair_points(&section(4.0, 2.0), &linear)
         .unwrap()
         .report
-        .flat
-        .is_none());
+        .flats
+        .is_empty());
 }
 
 #[test]
@@ -213,9 +218,157 @@ fn a_bad_flat_plane_is_an_error() {
         tolerance: 1e-3,
         noise: 1e-3,
     };
-    assert!(fair_points(&pts, &options(Some(scaled)))
+    assert!(
+        fair_points(&pts, &options(Some(scaled)))
+            .unwrap()
+            .report
+            .flats
+            .len()
+            == 1
+    );
+}
+
+/// Half-breadth 6 m through a parallel middle body (x 20..40), a parabola off it to 1 m at the
+/// ends, at height `z`; points every 0.5 m.
+fn waterline(z: f64) -> Vec<DVec3> {
+    (0..=120)
+        .map(|i| {
+            let x = 0.5 * i as f64;
+            let off = ((x - 30.0).abs() - 10.0).max(0.0);
+            DVec3::new(x, 6.0 - 0.0125 * off * off, z)
+        })
+        .collect()
+}
+
+const SIDE: FlatPlane = FlatPlane {
+    normal: DVec3::Y,
+    offset: 6.0,
+    tolerance: 1e-3,
+    noise: 1e-3,
+};
+
+#[test]
+fn a_run_between_the_ends_is_straight_and_left_tangentially_at_both_its_ends() {
+    let pts = waterline(5.0);
+    let fit = fair_points(&pts, &options(Some(SIDE))).unwrap();
+    let ends = &fit.report.flats;
+    // The points within 1 mm of the side: x 20..40 (19.5 and 40.5 are 3.1 mm off).
+    assert_eq!(ends.iter().map(|f| f.index).collect::<Vec<_>>(), [40, 80]);
+    assert!(ends.iter().all(|f| f.plane == 0));
+    assert!(fit.report.corners.is_empty());
+    let c = &fit.curve;
+    let (a, b) = (ends[0].parameter, ends[1].parameter);
+    let off = (0..=400)
+        .map(|i| (c.point(a + (b - a) * i as f64 / 400.0).y - 6.0).abs())
+        .fold(0.0, f64::max);
+    assert!(off < 1e-12, "straight in the plane: {off}");
+    for t in [a, b] {
+        for d in [
+            (c.point(t) - c.point(t - 1e-6)).normalize(),
+            (c.point(t + 1e-6) - c.point(t)).normalize(),
+        ] {
+            assert!(d.angle_between(DVec3::X) < 1e-4, "tangent {d} at {t}");
+        }
+    }
+    assert!(fit.report.max_deviation <= 0.005);
+    // Fitted as one spline, the flat sags off the side by 2.5 mm.
+    let plain = fair_points(&pts, &options(None)).unwrap().curve;
+    let (lo, hi) = plain.domain();
+    let sag = (0..=2000)
+        .map(|i| plain.point(lo + (hi - lo) * i as f64 / 2000.0))
+        .filter(|p| p.x > 20.5 && p.x < 39.5)
+        .map(|p| (p.y - 6.0).abs())
+        .fold(0.0, f64::max);
+    assert!(sag > 1e-3, "{sag}");
+}
+
+#[test]
+fn a_station_runs_flat_on_the_bottom_and_up_the_side() {
+    // section(): flat bottom to y = 4, bilge radius 2, side at y = 6 up to z = 8.
+    let pts = section(4.0, 2.0);
+    let options = FairOptions {
+        flats: vec![BASE, SIDE],
+        ..options(None)
+    };
+    let fit = fair_points(&pts, &options).unwrap();
+    let ends = &fit.report.flats;
+    assert_eq!(
+        ends.iter().map(|f| f.plane).collect::<Vec<_>>(),
+        [0, 1],
+        "{ends:?}"
+    );
+    let c = &fit.curve;
+    let (lo, hi) = c.domain();
+    let (a, b) = (ends[0].parameter, ends[1].parameter);
+    let worst = |from: f64, to: f64, f: &dyn Fn(DVec3) -> f64| {
+        (0..=200)
+            .map(|i| f(c.point(from + (to - from) * i as f64 / 200.0)).abs())
+            .fold(0.0, f64::max)
+    };
+    assert!(worst(lo, a, &|p| p.z) < 1e-12, "the bottom is flat");
+    assert!(worst(b, hi, &|p| p.y - 6.0) < 1e-12, "the side is flat");
+    // The side's run starts at the arc's first point within 1 mm of y = 6: past 88.2°
+    // (z = 2 (1 − cos a) > 1.937 m).
+    assert!(
+        ends[1].point.z > 1.937 && ends[1].point.z <= 2.0,
+        "{}",
+        ends[1].point
+    );
+    assert!(fit.report.corners.is_empty());
+}
+
+#[test]
+fn a_crossing_is_no_run_and_of_two_runs_in_a_plane_the_longer_is_kept() {
+    // Crossing the side plane: two points within 1 mm (a crossing, 0.35 m apart).
+    let cross: Vec<DVec3> = (0..60)
+        .map(|i| {
+            let z = 0.35 * i as f64;
+            DVec3::new(0.0, 6.0 + 0.004 * (z - 10.675), z)
+        })
+        .collect();
+    let close = cross.iter().filter(|p| (p.y - 6.0).abs() <= 1e-3).count();
+    assert_eq!(close, 2);
+    assert!(fair_points(&cross, &options(Some(SIDE)))
         .unwrap()
         .report
-        .flat
-        .is_some());
+        .flats
+        .is_empty());
+    // Two flats in one plane with a 2 cm bulge between them: the longer one only.
+    let mut two = waterline(5.0);
+    for p in two.iter_mut().filter(|p| p.x > 24.0 && p.x < 27.0) {
+        p.y += 0.02 * ((p.x - 24.0) * std::f64::consts::PI / 3.0).sin();
+    }
+    let fit = fair_points(&two, &options(Some(SIDE))).unwrap();
+    let xs: Vec<f64> = fit.report.flats.iter().map(|f| f.point.x).collect();
+    assert_eq!(xs, [27.0, 40.0]);
+}
+
+#[test]
+fn a_chine_where_the_flat_of_side_starts_stays_a_knuckle() {
+    // A hard-chine station: a deadrise bottom from the keel to the chine at (5, 1), then the
+    // side straight up at y = 5; points every 5 cm.
+    let mut pts: Vec<DVec3> = (0..100)
+        .map(|i| DVec3::new(0.0, 0.05 * i as f64, 0.01 * i as f64))
+        .collect();
+    let chine = pts.len();
+    pts.extend((0..=100).map(|i| DVec3::new(0.0, 5.0, 1.0 + 0.05 * i as f64)));
+    let side = FlatPlane {
+        offset: 5.0,
+        ..SIDE
+    };
+    let fit = fair_points(&pts, &options(Some(side))).unwrap();
+    assert_eq!(fit.report.corners, [chine]);
+    assert!(fit.report.flats.is_empty(), "{:?}", fit.report.flats);
+    let c = &fit.curve;
+    let t = fit.report.corner_parameters[0];
+    let (_, hi) = c.domain();
+    let off = (0..=200)
+        .map(|i| (c.point(t + (hi - t) * i as f64 / 200.0).y - 5.0).abs())
+        .fold(0.0, f64::max);
+    assert!(off < 1e-12, "the side is flat: {off}");
+    let before = (c.point(t) - c.point(t - 1e-6)).normalize();
+    let after = (c.point(t + 1e-6) - c.point(t)).normalize();
+    let deadrise = DVec3::new(0.0, 5.0, 1.0).normalize();
+    assert!(before.angle_between(deadrise) < 1e-3, "{before}");
+    assert!(after.angle_between(DVec3::Z) < 1e-4, "{after}");
 }

@@ -25,18 +25,19 @@ fn metrics_into(d: &Bound<'_, PyDict>, m: &FairnessMetrics) -> PyResult<()> {
 
 /// Fair the points (n, 3) into a smooth B-spline named `name` (H-rep paper §4, Dierckx's
 /// smoothing spline). Give at most one of `tolerance` (max deviation, m; default 1 mm),
-/// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). `flat_plane`: `(normal, offset,
-/// tolerance)` of a plane a run of points at one end may lie in (a section's flat of bottom):
-/// that run becomes a straight piece in the plane and the curve leaves it tangentially (the
-/// report's `flat` says where); `flat_noise` (m, default the plane's tolerance): how far
-/// points inside the run may stray from the plane, its ends staying within the tolerance.
+/// `noise` (σ, m: S = M·σ²) or `smoothing_factor` (S, m²). `flat_planes`: a list of
+/// `(normal, offset, tolerance)`, planes runs of points may lie in (a section's flat of
+/// bottom, a flat of side): each run becomes a straight piece in its plane and the curve leaves
+/// it tangentially (the report's `flats` say where, each with its plane's index);
+/// `flat_noise` (m, default each plane's tolerance): how far points inside a run may stray
+/// from the plane, its ends staying within the tolerance.
 /// Returns `(Curve, report dict)`.
 #[pyfunction]
 #[pyo3(signature = (name, points, *, degree=None, tolerance=None, noise=None,
     smoothing_factor=None, corners=None, corner_angle_deg=Some(DEFAULT_CORNER_ANGLE_DEGREES),
     start_tangent=None, end_tangent=None, model_tolerance=DEFAULT_TOLERANCE,
-    max_parameter_iterations=None, role=None, flat_plane=None, flat_noise=None),
-    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\", flat_plane=None, flat_noise=None)")]
+    max_parameter_iterations=None, role=None, flat_planes=None, flat_noise=None),
+    text_signature = "(name, points, *, degree=None, tolerance=None, noise=None, smoothing_factor=None, corners=None, corner_angle_deg=..., start_tangent=None, end_tangent=None, model_tolerance=..., max_parameter_iterations=None, role=\"free\", flat_planes=None, flat_noise=None)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_points<'py>(
     py: Python<'py>,
@@ -53,7 +54,7 @@ pub(crate) fn fair_points<'py>(
     model_tolerance: f64,
     max_parameter_iterations: Option<&Bound<'py, PyAny>>,
     role: Option<&Bound<'py, PyAny>>,
-    flat_plane: Option<([f64; 3], f64, f64)>,
+    flat_planes: Option<Vec<([f64; 3], f64, f64)>>,
     flat_noise: Option<f64>,
 ) -> PyResult<(Curve, Bound<'py, PyDict>)> {
     let name = &text(name, || "the curve name".to_owned())?;
@@ -104,11 +105,13 @@ pub(crate) fn fair_points<'py>(
             ))
         })?,
         max_parameter_iterations,
-        flat: flat_plane
+        flats: flat_planes
+            .unwrap_or_default()
+            .into_iter()
             .map(|(normal, offset, tolerance)| {
                 flat(name, normal, offset, tolerance, flat_noise.unwrap_or(tolerance))
             })
-            .transpose()?,
+            .collect::<PyResult<_>>()?,
     };
     let faired = py.detach(|| {
         guard(name, || {
@@ -148,16 +151,19 @@ pub(crate) fn fair_points<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("pieces", pieces)?;
-    match &r.flat {
-        Some(f) => {
+    let flats = r
+        .flats
+        .iter()
+        .map(|f| {
             let fd = PyDict::new(py);
+            fd.set_item("plane", f.plane)?;
             fd.set_item("index", f.index)?;
             fd.set_item("parameter", f.parameter)?;
             fd.set_item("point", f.point.to_array())?;
-            d.set_item("flat", fd)?;
-        }
-        None => d.set_item("flat", py.None())?,
-    }
+            Ok(fd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("flats", flats)?;
     Ok((curve, d))
 }
 
@@ -174,7 +180,7 @@ fn flat(
     let normal_ok = n.is_finite() && n.length_squared() > 0.0;
     if !(normal_ok && offset.is_finite() && tolerance.is_finite() && tolerance > 0.0) {
         return Err(arg_err(format!(
-            "curve '{name}': flat_plane needs a finite non-zero normal, a finite offset and a positive tolerance, got {normal:?}, {offset}, {tolerance}"
+            "curve '{name}': a flat plane needs a finite non-zero normal, a finite offset and a positive tolerance, got {normal:?}, {offset}, {tolerance}"
         )));
     }
     if !(noise.is_finite() && noise >= 0.0) {

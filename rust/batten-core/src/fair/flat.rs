@@ -1,31 +1,33 @@
-//! A flat run at an end of a section's points: the flat of bottom of a ship's station is a
-//! straight line in the base plane, and the section leaves it tangentially into the bilge.
+//! Flat runs of a section's points: the flat of bottom of a ship's station is a straight line
+//! in the base plane, and the section leaves it tangentially into the bilge; a station's top
+//! runs straight up the flat of side, and a waterline runs along the flat of side through the
+//! parallel middle body and leaves it tangentially at both ends.
 //!
 //! Fitted as one smooth spline, such a section rounds the curvature jump where the flat ends
 //! (zero curvature, then the bilge radius): the flat sags or rises by millimetres and the
 //! section's tangent there tilts by degrees, and every patch along the flat of bottom inherits
 //! the tilt as a cross-derivative that bulges its interior by centimetres (KCS and KVLCC2:
 //! 33 and 37 mm). Seed 002 §5 gives the flat of bottom curve a tangent attribute for this:
-//! the curves attached to it enter it tangentially. Here the run of points in the plane at the
-//! curve's end becomes a straight piece in the plane (its points moved onto the line, within
-//! the plane's tolerance), and the rest of the curve is fitted with its end tangent fixed along
-//! that line: the two pieces meet G1 (a knot of multiplicity `degree` with collinear control
-//! points), so the flat is exactly flat and the section leaves it with the flat's tangent.
+//! the curves attached to it enter it tangentially. Here each run of points in a flat plane
+//! becomes a straight piece in the plane (its points moved onto the line, within the plane's
+//! noise), and the pieces beside it are fitted with their end tangents fixed along that line:
+//! they meet G1 (knots of multiplicity `degree` with collinear control points), so the flat is
+//! exactly flat and the section leaves it with the flat's tangent.
 
 use glam::DVec3;
 
 use super::error::FairError;
 
-/// A plane that the points at one end of a curve may run in: the flat of bottom (or of side)
-/// of the hull the curve is a section of.
+/// A plane that stretches of a curve's points may run in: the flat of bottom or of side of the
+/// hull the curve is a section of.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlatPlane {
     /// Normal of the plane (made unit by the fit, with the offset).
     pub normal: DVec3,
     /// The plane is `normal · p = offset`.
     pub offset: f64,
-    /// How far (m) the run's inner end (where the curve leaves the flat) may be from the plane
-    /// and still be on the flat.
+    /// How far (m) a run's ends (where the curve leaves the flat) may be from the plane and
+    /// still be on the flat.
     pub tolerance: f64,
     /// How far (m) a point inside the run may be from the plane, and from the straight line of
     /// the run, as the data's noise: the run goes on over such points as long as a later one is
@@ -36,18 +38,24 @@ pub struct FlatPlane {
     pub noise: f64,
 }
 
-/// Shortest flat run kept straight (m, from the curve's end to where the run ends): a shorter
-/// one is a point of tangency rather than a flat.
+/// Shortest flat run kept straight (m, between the run's ends): a shorter one is a point of
+/// tangency rather than a flat.
 pub const MIN_FLAT_RUN: f64 = 0.3;
 
-/// A flat run found at an end of the points.
+/// Fewest points of a flat run between the ends of a curve: two are a crossing of the plane
+/// (KVLCC2's station 15 crosses the flat of side at z = 17 m, a node and a data point there).
+const MIN_MIDDLE_RUN_POINTS: usize = 3;
+
+/// A flat run found in the points: a straight stretch in one of the curve's flat planes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FlatRun {
-    /// Whether the run is at the start of the points (else at their end).
-    pub at_start: bool,
-    /// Index of the run's inner end, where the curve leaves the flat.
-    pub inner: usize,
-    /// Unit direction of the run's line, along the curve's direction.
+    /// Index of the plane (in [`FairOptions::flats`](super::FairOptions::flats)).
+    pub plane: usize,
+    /// Index of the run's first point.
+    pub first: usize,
+    /// Index of the run's last point.
+    pub last: usize,
+    /// Unit direction of the run's line, from its first point to its last.
     pub direction: DVec3,
 }
 
@@ -91,67 +99,122 @@ impl FlatPlane {
         (self.normal.dot(p) - self.offset).abs() <= self.noise
     }
 
-    /// The flat run at the start of `pts` (else at its end): its points within the noise of
-    /// the plane and of a straight line, its ends within the tolerance of the plane, at least
-    /// [`MIN_FLAT_RUN`] long, and leaving at least `degree + 1` points for the rest of the
-    /// curve; None when there is none.
-    pub(crate) fn run(&self, pts: &[DVec3], degree: usize) -> Option<FlatRun> {
+    /// Every flat run of `pts` in this plane (`plane` is its index among the curve's planes),
+    /// in order: stretches of consecutive points within the noise of the plane and of the
+    /// straight line through the stretch's ends, both ends within the tolerance of the plane,
+    /// at least [`MIN_FLAT_RUN`] long. A run may be at either end of the points (a station's
+    /// flat of bottom or side) or between them (a waterline along the flat of side).
+    pub(crate) fn runs(&self, pts: &[DVec3], plane: usize) -> Vec<FlatRun> {
         let m = pts.len();
-        let at = |i: usize, at_start: bool| if at_start { pts[i] } else { pts[m - 1 - i] };
-        for at_start in [true, false] {
-            // The last point within the tolerance before the first one beyond the noise.
-            let mut k = 0;
-            let mut i = 0;
-            while i + 1 < m && self.within_noise(at(i + 1, at_start)) {
+        let mut runs = Vec::new();
+        let mut i = 0;
+        while i < m {
+            if !self.holds(pts[i]) {
                 i += 1;
-                if self.holds(at(i, at_start)) {
-                    k = i;
+                continue;
+            }
+            // The last point within the tolerance before the first one beyond the noise.
+            let (first, mut last, mut j) = (i, i, i);
+            while j + 1 < m && self.within_noise(pts[j + 1]) {
+                j += 1;
+                if self.holds(pts[j]) {
+                    last = j;
                 }
             }
-            if !self.holds(at(0, at_start)) || k == 0 || m - k < degree + 1 {
-                continue;
+            if let Some(run) = self.run_between(pts, plane, first, last) {
+                runs.push(run);
             }
-            let (a, b) = (self.project(at(0, at_start)), self.project(at(k, at_start)));
-            let chord = b - a;
-            if chord.length() < MIN_FLAT_RUN {
-                continue;
-            }
-            let line = chord.normalize();
-            let straight = (0..=k).all(|i| {
-                let q = self.project(at(i, at_start)) - a;
-                (q - line * q.dot(line)).length() <= self.noise
-            });
-            if !straight {
-                continue;
-            }
-            return Some(FlatRun {
-                at_start,
-                inner: if at_start { k } else { m - 1 - k },
-                direction: if at_start { line } else { -line },
-            });
+            i = j + 1;
         }
-        None
+        runs
+    }
+
+    /// The run from `first` to `last` when it is long and straight enough.
+    fn run_between(
+        &self,
+        pts: &[DVec3],
+        plane: usize,
+        first: usize,
+        last: usize,
+    ) -> Option<FlatRun> {
+        let (a, b) = (self.project(pts[first]), self.project(pts[last]));
+        let chord = b - a;
+        if last == first || chord.length() < MIN_FLAT_RUN {
+            return None;
+        }
+        let line = chord.normalize();
+        let straight = (first..=last).all(|i| {
+            let q = self.project(pts[i]) - a;
+            (q - line * q.dot(line)).length() <= self.noise
+        });
+        straight.then_some(FlatRun {
+            plane,
+            first,
+            last,
+            direction: line,
+        })
     }
 }
 
-impl FlatRun {
-    /// The points with the run's points moved onto its line (in the plane); the others as
-    /// they are.
-    pub(crate) fn straightened(&self, pts: &[DVec3], plane: &FlatPlane) -> Vec<DVec3> {
-        let m = pts.len();
-        let outer = if self.at_start { 0 } else { m - 1 };
-        let a = plane.project(pts[outer]);
-        let line = self.direction;
-        let mut out = pts.to_vec();
-        let run = if self.at_start {
-            0..=self.inner
-        } else {
-            self.inner..=m - 1
+/// The flat runs of `pts` in `planes` that a fit of degree `degree` can keep straight, in
+/// order along the points: the longest run in each plane (a flat is one stretch of a section;
+/// two runs in one plane have a wave of the data between them, which a piece held to the
+/// flat's tangent at both ends would make a bump of — KVLCC2's station 15 at the side, 29 mm
+/// out between two runs), of those a run that overlaps an earlier one is dropped, and so is one that
+/// would leave fewer than `degree + 1` points for the smooth piece before or after it (it
+/// needs them to leave the flat with the flat's tangent), and so is a run between the ends of
+/// fewer than `MIN_MIDDLE_RUN_POINTS`. A degree-1 fit is a polyline
+/// through its points (no tangent to carry off a flat): none. A degree-2 piece can take one
+/// fixed tangent only: one run, at an end of the points.
+pub(crate) fn runs_of(planes: &[FlatPlane], pts: &[DVec3], degree: usize) -> Vec<FlatRun> {
+    let m = pts.len();
+    if degree < 2 || m == 0 {
+        return Vec::new();
+    }
+    let length = |r: &FlatRun| pts[r.last].distance(pts[r.first]);
+    let mut all: Vec<FlatRun> = planes
+        .iter()
+        .enumerate()
+        .filter_map(|(i, plane)| {
+            plane
+                .runs(pts, i)
+                .into_iter()
+                .max_by(|a, b| length(a).total_cmp(&length(b)))
+        })
+        .collect();
+    all.sort_by_key(|r| (r.first, std::cmp::Reverse(r.last)));
+    let mut kept: Vec<FlatRun> = Vec::new();
+    for run in all {
+        let before = match kept.last() {
+            Some(prev) => run.first > prev.last && run.first - prev.last >= degree,
+            None => run.first == 0 || run.first >= degree,
         };
-        for i in run {
-            let q = plane.project(pts[i]) - a;
-            out[i] = a + line * q.dot(line);
+        let after = run.last + 1 == m || m - 1 - run.last >= degree;
+        let at_end = run.first == 0 || run.last + 1 == m;
+        // Between the ends, two points in the plane are where the curve crosses it.
+        let enough = at_end || run.last - run.first + 1 >= MIN_MIDDLE_RUN_POINTS;
+        if before && after && enough && (degree >= 3 || (at_end && kept.is_empty())) {
+            kept.push(run);
         }
-        out
+    }
+    if degree == 2 {
+        kept.truncate(1);
+    }
+    kept
+}
+
+impl FlatRun {
+    /// The run's points in `pts` moved onto its line (in the plane), the others as they are.
+    pub(crate) fn straighten(&self, pts: &mut [DVec3], plane: &FlatPlane) {
+        let a = plane.project(pts[self.first]);
+        for p in &mut pts[self.first..=self.last] {
+            let q = plane.project(*p) - a;
+            *p = a + self.direction * q.dot(self.direction);
+        }
+    }
+
+    /// Whether `index` is one of the run's ends.
+    pub(crate) fn ends_at(&self, index: usize) -> bool {
+        index == self.first || index == self.last
     }
 }

@@ -165,10 +165,11 @@ pub struct FairOptions {
     pub model_tolerance: Tolerance,
     /// Most foot-point parameter corrections per fit (default 20; 0 keeps chord lengths).
     pub max_parameter_iterations: usize,
-    /// A plane the points at one end of the curve may run in (a section's flat of bottom):
-    /// such a run becomes a straight piece in the plane and the rest of the curve leaves it
-    /// tangentially (see [`FlatPlane`]; default none).
-    pub flat: Option<FlatPlane>,
+    /// Planes stretches of the points may run in (a section's flat of bottom, the hull's flat
+    /// of side): each such run becomes a straight piece in its plane and the curve leaves it
+    /// tangentially (see [`FlatPlane`]; default none). Where runs in two planes overlap, the
+    /// one that starts first is kept.
+    pub flats: Vec<FlatPlane>,
 }
 
 impl Default for FairOptions {
@@ -182,7 +183,7 @@ impl Default for FairOptions {
             end_tangent: None,
             model_tolerance: Tolerance::DEFAULT,
             max_parameter_iterations: DEFAULT_PARAMETER_ITERATIONS,
-            flat: None,
+            flats: Vec::new(),
         }
     }
 }
@@ -232,14 +233,19 @@ pub struct FairReport {
     pub corner_parameters: Vec<f64>,
     /// One report per smooth piece.
     pub pieces: Vec<PieceReport>,
-    /// Where the curve leaves its straight flat run ([`FairOptions::flat`]), if it has one.
-    pub flat: Option<FlatEnd>,
+    /// Where the curve leaves its straight flat runs ([`FairOptions::flats`]), in order along
+    /// it: one for a run at an end of the curve, two for a run between; none where a corner is
+    /// (a chine where a flat starts stays a corner, in `corners`).
+    pub flats: Vec<FlatEnd>,
 }
 
-/// Where a faired curve leaves its flat run: the inner end of the straight piece.
+/// Where a faired curve leaves a flat run: an end of the straight piece that is not an end of
+/// the curve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlatEnd {
-    /// Input index of the run's inner end.
+    /// Index of the run's plane in [`FairOptions::flats`].
+    pub plane: usize,
+    /// Input index of the point where the curve leaves the run.
     pub index: usize,
     /// Its curve parameter (a knot of multiplicity `degree`; the curve is G1 there).
     pub parameter: f64,
@@ -285,7 +291,11 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
             return Err(FairError::CornerAngle(a));
         }
     }
-    let flat_plane = options.flat.map(|p| p.checked()).transpose()?;
+    let flat_planes = options
+        .flats
+        .iter()
+        .map(FlatPlane::checked)
+        .collect::<Result<Vec<_>, _>>()?;
     let start_dir = direction(options.start_tangent, "start")?;
     let end_dir = direction(options.end_tangent, "end")?;
     let tangents = usize::from(start_dir.is_some()) + usize::from(end_dir.is_some());
@@ -331,31 +341,24 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
         corners.extend(corner_indices(pts, angle, options.smoothing.reach(m)));
     }
     corners.retain(|&c| c > 0 && c + 1 < m);
-    // A flat run is one straight piece: no corner inside it, its inner end a joint.
-    // (A degree-1 fit is a polyline through its points: no tangent to carry off the flat.)
-    let flat = flat_plane
-        .filter(|_| k >= 2)
-        .and_then(|plane| plane.run(pts, k).map(|run| (plane, run)));
-    if let Some((_, run)) = flat {
-        corners.retain(|&c| {
-            if run.at_start {
-                c > run.inner
-            } else {
-                c < run.inner
-            }
-        });
-        corners.push(run.inner);
-    }
+    // A flat run is one straight piece: no corner inside it; its ends (but the curve's) are
+    // joints, smooth ones (the curve leaves the flat along it) unless a corner is there (a
+    // chine where the flat of side starts stays a knuckle).
+    let runs = flat::runs_of(&flat_planes, pts, k);
+    corners.retain(|&c| !runs.iter().any(|r| r.first < c && c < r.last));
+    let smooth_joints: Vec<usize> = runs
+        .iter()
+        .flat_map(|r| [r.first, r.last])
+        .filter(|&j| j > 0 && j + 1 < m && !corners.contains(&j))
+        .collect();
+    corners.extend(&smooth_joints);
     corners.sort_unstable();
     corners.dedup();
-    let straight;
-    let fit_pts: &[DVec3] = match flat {
-        Some((plane, run)) => {
-            straight = run.straightened(pts, &plane);
-            &straight
-        }
-        None => pts,
-    };
+    let mut straight = pts.clone();
+    for run in &runs {
+        run.straighten(&mut straight, &flat_planes[run.plane]);
+    }
+    let fit_pts: &[DVec3] = &straight;
 
     // The fit works in the data's own frame (see `frame`); its results are moved back.
     let frame = Frame::of(pts);
@@ -366,17 +369,15 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     bounds.extend_from_slice(&corners);
     bounds.push(m - 1);
     let count = bounds.len() - 1;
-    // The flat's direction in the frame, fixed at both sides of the flat's joint.
-    let flat_dir = flat.map(|(_, run)| {
-        (
-            run.inner,
-            (frame.to_local(run.direction) - frame.to_local(DVec3::ZERO)).normalize(),
-        )
-    });
+    // A flat's direction in the frame, fixed at both sides of each of its smooth joints.
+    let at_flat = |index: usize| {
+        runs.iter()
+            .find(|r| r.ends_at(index) && smooth_joints.contains(&index))
+            .map(|r| (frame.to_local(r.direction) - frame.to_local(DVec3::ZERO)).normalize())
+    };
     let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
     for (i, w) in bounds.windows(2).enumerate() {
         let piece = &fit_local[w[0]..=w[1]];
-        let at_flat = |index: usize| flat_dir.filter(|&(j, _)| j == index).map(|(_, d)| d);
         let dirs = Directions {
             start: if i == 0 { start_dir } else { at_flat(w[0]) },
             end: if i + 1 == count {
@@ -427,18 +428,28 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     }
 
     let (knots, coefs, mut corner_parameters) = join(&pieces, k);
-    // The flat's joint is smooth: no corner; said apart.
-    // (`corners` holds the run's inner end, pushed above, at the same place as its joint.)
-    let flat_end = flat.and_then(|(_, run)| {
-        let at = corners.iter().position(|&c| c == run.inner)?;
-        corners.remove(at);
-        let parameter = corner_parameters.remove(at);
-        Some(FlatEnd {
-            index: cleaned.index[run.inner],
-            parameter,
-            point: fit_pts[run.inner],
-        })
-    });
+    // A flat's smooth joints are no corners; said apart.
+    // (`corners` holds them, pushed above, at the same places as their joints.)
+    let mut flat_ends = Vec::new();
+    let mut at = 0;
+    while at < corners.len() {
+        let c = corners[at];
+        match runs
+            .iter()
+            .find(|r| r.ends_at(c) && smooth_joints.contains(&c))
+        {
+            Some(run) => {
+                corners.remove(at);
+                flat_ends.push(FlatEnd {
+                    plane: run.plane,
+                    index: cleaned.index[c],
+                    parameter: corner_parameters.remove(at),
+                    point: fit_pts[c],
+                });
+            }
+            None => at += 1,
+        }
+    }
     let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
     // A single piece is the curve itself (its parameters start at 0, so joining leaves knots
     // and control points as they were): what its fit measured holds for the curve.
@@ -481,7 +492,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                 parameters_settled: p.settled,
             })
             .collect(),
-        flat: flat_end,
+        flats: flat_ends,
     };
     Ok(FairedCurve { curve, report })
 }

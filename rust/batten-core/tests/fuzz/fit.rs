@@ -171,12 +171,16 @@ fn options(k: &Knobs, size: f64) -> Option<FairOptions> {
         end_tangent: k.end_tangent,
         model_tolerance: Tolerance::try_new(k.model_tolerance * size.max(1.0)).ok()?,
         max_parameter_iterations: k.iterations,
-        flat: k.flat.map(|(normal, offset, tolerance)| FlatPlane {
-            normal,
-            offset: offset * size,
-            tolerance: tolerance * size,
-            noise: tolerance * size,
-        }),
+        flats: k
+            .flat
+            .map(|(normal, offset, tolerance)| FlatPlane {
+                normal,
+                offset: offset * size,
+                tolerance: tolerance * size,
+                noise: tolerance * size,
+            })
+            .into_iter()
+            .collect(),
     })
 }
 

@@ -168,8 +168,8 @@ def fair_points(
     model_tolerance: float = ...,  # DEFAULT_TOLERANCE
     max_parameter_iterations: int | None = None,  # None: 20 rounds of parameter correction
     role: str = "free",
-    flat_plane: tuple[tuple[float, float, float], float, float] | None = None,  # (normal, offset, tolerance)
-    flat_noise: float | None = None,  # None: the flat plane's tolerance
+    flat_planes: list[tuple[tuple[float, float, float], float, float]] | None = None,  # (normal, offset, tol)
+    flat_noise: float | None = None,  # None: each flat plane's tolerance
 ) -> tuple[Curve, dict]: ...
 def fairness(curve: Curve) -> dict: ...
 def fair_sections(
