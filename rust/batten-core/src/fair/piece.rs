@@ -26,6 +26,15 @@ const SETTLE_E: f64 = 5e-3;
 /// to its sides have foot points `h` apart and are `√(h² + 4d²)` apart: the bound bites only
 /// where the scatter is about twice the spacing, never for offsets fitted within a tolerance.
 const MIN_GAP: f64 = 0.25;
+/// A parameter correction is a descent on the roughness of the fit at a fixed S (its foot
+/// points lower E, so the refit to S may be smoother); one that raises the roughness
+/// ([`roughness`]) above this factor times the least reached on the same knots is not taken,
+/// and the corrections stop at that least. Where the parameters are held apart
+/// ([`MIN_GAP`]) they are not foot points, and the correction can run away instead: KCS's
+/// wl_z9.00 aft of its flat of side, where eleven offsets lie within 5 cm of each other
+/// across a 2 cm step, sharpened each step until a kink of curvature 50,000 /m folded the
+/// surface at the stern.
+const ROUGHNESS_RISE: f64 = 1.5;
 /// Most steps of the search for S in tolerance mode.
 const MAX_S_STEPS: usize = 24;
 /// Each step lowers S by the squared ratio of tolerance to deviation times this safety factor
@@ -137,6 +146,8 @@ pub(crate) fn fit_smooth(
     let mut interior: Vec<f64> = Vec::new();
     let mut last_system = None;
     let mut last_round = None;
+    // The smoothest exact fit on the current knots, and what it was fitted to.
+    let mut best: Option<Best> = None;
     loop {
         let ends = Ends {
             start: pts[0],
@@ -169,9 +180,35 @@ pub(crate) fn fit_smooth(
         let fp = spline.fp;
         let curve = NurbsCurve::try_new(degree, spline.knots.clone(), spline.coefs.clone(), None)?;
         if exact {
-            last = Some((spline, curve.clone()));
-            last_system = system;
+            let eta = roughness(&spline);
+            let knots = spline.knots.len();
+            if let Some(b) = best.take_if(|b| b.knots == knots && eta > ROUGHNESS_RISE * b.eta) {
+                // Running away: back to the smoothest fit and its parameters.
+                last = Some(b.fit);
+                last_system = b.system;
+                last_round = b.round;
+                pts = b.points;
+                u = b.params;
+                break;
+            }
+            let smoother = best
+                .as_ref()
+                .is_none_or(|b| b.knots != knots || eta < b.eta);
+            let fit = (spline, curve.clone());
             last_round = Some((round, ends, interior.clone()));
+            if smoother {
+                best = Some(Best {
+                    eta,
+                    knots,
+                    fit: fit.clone(),
+                    system: system.clone(),
+                    round: last_round.clone(),
+                    points: pts.clone(),
+                    params: u.clone(),
+                });
+            }
+            last = Some(fit);
+            last_system = system;
             if iterations >= max_iter {
                 break;
             }
@@ -232,6 +269,55 @@ pub(crate) fn fit_smooth(
             params: u,
         }),
     })
+}
+
+/// The smoothest exact fit of a parameter correction so far (see [`ROUGHNESS_RISE`]).
+struct Best {
+    eta: f64,
+    knots: usize,
+    fit: (Spline, NurbsCurve),
+    system: Option<System>,
+    round: Option<(Target, Ends, Vec<f64>)>,
+    points: Vec<DVec3>,
+    params: Vec<f64>,
+}
+
+/// The roughness a smoothing spline of degree k minimises (Dierckx 1993 §5.2: the sum of the
+/// squared jumps of its k-th derivative at the interior knots), from its coefficients: k
+/// differentiations of the B-spline leave one constant per span.
+fn roughness(spline: &Spline) -> f64 {
+    let k = spline.degree;
+    let t = &spline.knots;
+    let mut c = spline.coefs.clone();
+    for r in 0..k {
+        let p = (k - r) as f64;
+        let knots = &t[r..t.len() - r];
+        let deg = k - r;
+        c = c
+            .windows(2)
+            .enumerate()
+            .map(|(i, w)| {
+                let h = knots[i + deg + 1] - knots[i + 1];
+                if h > 0.0 {
+                    (w[1] - w[0]) * (p / h)
+                } else {
+                    DVec3::ZERO
+                }
+            })
+            .collect();
+    }
+    // Degree 0 on the knots t[k..len−k]: span i is [t[k+i], t[k+i+1]).
+    let spans = &t[k..t.len() - k];
+    let values: Vec<DVec3> = c
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| spans[i + 1] > spans[i])
+        .map(|(_, &v)| v)
+        .collect();
+    values
+        .windows(2)
+        .map(|w| (w[1] - w[0]).length_squared())
+        .sum()
 }
 
 /// Search S downwards from `M·tol²` until the largest orthogonal deviation of the fit is within
@@ -362,4 +448,50 @@ pub(crate) fn join(pieces: &[PieceFit], degree: usize) -> (Vec<f64>, Vec<DVec3>,
     }
     knots.extend(std::iter::repeat_n(offset, k + 1));
     (knots, coefs, joints)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn roughness_is_the_sum_of_the_squared_jumps_of_the_third_derivative() {
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 2.5, 3.0, 3.0, 3.0, 3.0];
+        let coefs = vec![
+            DVec3::ZERO,
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(2.0, -1.0, 0.5),
+            DVec3::new(3.0, 4.0, 0.0),
+            DVec3::new(4.0, 0.0, -1.0),
+            DVec3::new(5.0, 1.0, 0.0),
+        ];
+        let spline = Spline {
+            degree: 3,
+            knots: knots.clone(),
+            coefs: coefs.clone(),
+            p: 1.0,
+            fp: 0.0,
+            reached: true,
+        };
+        let curve = NurbsCurve::try_new(3, knots, coefs, None).unwrap();
+        let jump =
+            |t: f64| (curve.derivs(t + 1e-9).d3 - curve.derivs(t - 1e-9).d3).length_squared();
+        let want = jump(1.0) + jump(2.5);
+        assert!(want > 1.0);
+        assert!(
+            (roughness(&spline) - want).abs() < 1e-9 * want,
+            "{} vs {want}",
+            roughness(&spline)
+        );
+        // A polynomial has none.
+        let cubic = Spline {
+            degree: 3,
+            knots: vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            coefs: vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::ONE],
+            p: 1.0,
+            fp: 0.0,
+            reached: true,
+        };
+        assert_eq!(roughness(&cubic), 0.0);
+    }
 }

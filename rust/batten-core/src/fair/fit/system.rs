@@ -19,6 +19,7 @@ use super::{Ends, Spline, ZeroCurvature, REL_ACC};
 /// that later blocks can still change (`checkpoints`, one per span). The triangle is then bit
 /// for bit the one [`System::new`] builds on the new knots, at the cost of `2k` spans of
 /// data and `n − s` small blocks instead of all the data.
+#[derive(Clone)]
 pub(crate) struct System {
     pub(super) degree: usize,
     pub(super) knots: Vec<f64>,
