@@ -67,6 +67,16 @@ def test_base_plane_needs_a_flat():
     assert flat_of_bottom.base_plane(pts[:5], 1e-3) is None, "five points are no flat"
 
 
+def test_side_plane_is_the_widest_breadth_shared_enough():
+    y = np.concatenate([np.full(80, 7.0), np.full(160, 6.902), 7.05 + 0.004 * np.arange(5)])
+    pts = np.column_stack([np.zeros_like(y), y, np.zeros_like(y)])
+    # The widest breadth half the most shared one's points share: not the two narrower
+    # stations' (160 points), nor a bulge's scatter (5 points).
+    assert flat_of_bottom.side_plane(pts, 1e-3) == pytest.approx(7.0)
+    assert flat_of_bottom.side_plane(pts[80:], 1e-3) == pytest.approx(6.902)
+    assert flat_of_bottom.side_plane(pts[:5], 1e-3) is None, "five points are no flat"
+
+
 def test_stations_run_flat_into_a_flat_of_bottom_curve_and_the_bottom_is_flat(flat_hull):
     coll, fits = api.import_sections(flat_hull)
     fob = coll.objects[flat_of_bottom.NAME]
@@ -74,9 +84,13 @@ def test_stations_run_flat_into_a_flat_of_bottom_curve_and_the_bottom_is_flat(fl
     report = next(r for r in fits if r["curve"] == flat_of_bottom.NAME)
     assert report["kind"] == "flat_of_bottom" and report["points"] == 11
     stations = [r for r in fits if r["curve"].startswith("st")]
-    assert all([f["kind"] for f in r["flats"]] == ["bottom"] and not r["corners"] for r in stations), (
-        "a flat each, no knuckle"
+    assert all([f["kind"] for f in r["flats"]][:1] == ["bottom"] and not r["corners"] for r in stations), (
+        "a flat of bottom each, no knuckle"
     )
+    # The widest station (midships, y = 7 m) is the only one whose side is at the widest
+    # breadth: it alone runs straight up a flat of side too.
+    sides = [r["curve"] for r in fits if any(f["kind"] == "side" for f in r.get("flats", []))]
+    assert [c for c in sides if c.startswith("st")] == ["st05"], sides
     # The flat ends where the bilge arc leaves the base plane by the model tolerance.
     leave = math.sqrt(2 * R * 1e-3) + STEP
     curve = api.read_curves(fob)[0]

@@ -1084,8 +1084,8 @@ def import_sections(
     (``nodes_from_data``: within twice ``tolerance`` plus what their chords may miss the true
     curve by) and give each such node one point that every curve through it takes among its
     points, fair every curve within ``tolerance`` (m) keeping its end points and corners (a
-    station's run along the flat of bottom made straight in its plane and left tangentially;
-    see :mod:`batten.flat_of_bottom`), join
+    station's run along the flat of bottom, and any curve's run along the flat of side, made
+    straight in its plane and left tangentially; see :mod:`batten.flat_of_bottom`), join
     the corners (knuckles) of consecutive sections into chines (role ``knuckle``; a chine in one
     plane, a transom's edge, is carried on in that plane to the profile's and the deck edge's
     corners there, shaped like the nearest station; a flat end that the profile outlines
@@ -1110,7 +1110,7 @@ def import_sections(
     past ``tolerance``; the build names them as near misses), ``snap_move`` (m, the largest
     distance to a node before the move), ``tangent_nodes`` and ``tangent_turn_deg`` (smooth
     nodes where its tangent was turned into the node's plane, and the largest turn in degrees),
-    ``flats`` (where a section leaves a flat: ``kind`` ``"bottom"``, ``plane``,
+    ``flats`` (where a section leaves a flat: ``kind`` ``"bottom"`` or ``"side"``, ``plane``,
     ``index``, ``parameter``, ``point``), ``max_deviation`` and ``max_deviation_index``
     measured after the move (``rms_deviation`` is the fit's), and ``fit_tolerance``: a curve
     that leaves nodes out is fitted again closer (× ``SNAP_TIGHTEN``, up to ``SNAP_ROUNDS``
@@ -1148,8 +1148,12 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         model_tolerance,
     )
     data = [sections_in.PointCurve(sec.name, sec.role, pts) for sec, pts in zip(sections, noded, strict=True)]
-    # The flat of bottom: stations run straight in the base plane and leave it tangentially.
-    base = flat_of_bottom.base_plane(np.concatenate([sec.points for sec in data]), model_tolerance)
+    # The flats: stations run straight in the base plane and leave it tangentially; any curve
+    # runs straight along the flat of side (a station up to the deck, a waterline or the deck
+    # edge through the parallel middle body) and leaves it tangentially.
+    everything = np.concatenate([sec.points for sec in data])
+    base = flat_of_bottom.base_plane(everything, model_tolerance)
+    side = flat_of_bottom.side_plane(everything, model_tolerance)
     stations = [flat_of_bottom.is_station(sec.points, model_tolerance) for sec in data]
 
     def fit(i: int, within: float):
@@ -1157,6 +1161,8 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         planes = []
         if base is not None and stations[i]:
             planes.append(("bottom", ((0.0, 0.0, 1.0), base, model_tolerance)))
+        if side is not None:
+            planes.append(("side", ((0.0, 1.0, 0.0), side, model_tolerance)))
         curve, report = fair_points(
             sec.name,
             sec.points,

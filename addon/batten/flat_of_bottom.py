@@ -2,11 +2,16 @@
 topology, with its tangent attribute): the base plane the data lie flat in, and the curve
 joining the points where the stations leave it.
 
-Each station is faired with the base plane as a flat plane (``fair_points(flat_planes=[…])``):
+Each station is faired with the base plane as its first flat plane (``fair_points(flat_planes=…)``):
 its flat run becomes a straight piece in the plane and the bilge leaves it tangentially; the
 fit reports where the flat ends. Those ends, ordered along the ship, are joined by the flat of
 bottom curve (role ``fob``) in the base plane, so the faces between the keel and it are planar
 and the faces above it meet the flat tangentially.
+
+The flat of side is found the same way, at the widest breadth (:func:`side_plane`): every curve
+is faired with it as a flat plane too, so a station runs straight up it to the deck, and a
+waterline or the deck edge runs straight along it through the parallel middle body and leaves
+it tangentially at both ends (KCS's flat of side 3.7 → 2.2 mm from its plane).
 
 No Blender needed: the numbers come from the data and the fits.
 """
@@ -17,6 +22,15 @@ import numpy as np
 
 #: The base plane is sought among the points within this height (m) of the lowest one.
 BASE_SEARCH = 0.05
+#: The flat of side is sought among the points within this breadth (m) of the widest: wider
+#: than the base's search, as a hull's side may bulge past its flat (KVLCC2's data by 10 cm
+#: at x = 115 m, where the flat is at 29.0 m).
+SIDE_SEARCH = 0.2
+#: The flat of side is the widest breadth at least this share of the most shared breadth near
+#: the widest is shared by: a hull without a parallel middle body has one station at its
+#: widest and two either side of it a little narrower, which share their breadth twice as
+#: often; the flat of side is the widest one.
+SIDE_SHARE = 0.5
 #: Fewest points that make a flat: fewer points at one height are a keel line, not a flat.
 MIN_FLAT_POINTS = 8
 #: Fewest stations whose flats make a flat of bottom curve.
@@ -30,13 +44,41 @@ def base_plane(points: np.ndarray, tolerance: float) -> float | None:
     points within :data:`BASE_SEARCH` of the lowest, the height that most of them share
     (within ``tolerance``), their median; None when fewer than :data:`MIN_FLAT_POINTS` do."""
     z = np.asarray(points, dtype=float).reshape(-1, 3)[:, 2]
-    z = z[np.isfinite(z)]
-    if len(z) == 0:
+    return shared_level(z, tolerance)
+
+
+def side_plane(points: np.ndarray, tolerance: float) -> float | None:
+    """The half breadth (y, m) of the flat of side the points ``points`` (n, 3) lie in: among
+    the points within :data:`SIDE_SEARCH` of the widest, the widest breadth that at least
+    :data:`SIDE_SHARE` of the most shared one's count share (within ``tolerance``), their
+    median; None when fewer than :data:`MIN_FLAT_POINTS` do."""
+    y = np.asarray(points, dtype=float).reshape(-1, 3)[:, 1]
+    level = shared_level(-y, tolerance, SIDE_SEARCH, SIDE_SHARE)
+    return None if level is None else -level
+
+
+def shared_level(
+    values: np.ndarray, tolerance: float, search: float = BASE_SEARCH, share: float | None = None
+) -> float | None:
+    """Among the finite ``values`` within ``search`` of the least, the value that most of them
+    share (within ``tolerance``) — or with ``share``, the most shared within the tolerance of
+    the least value shared by at least that share of the most — and the median of those
+    sharing it; None when fewer than
+    :data:`MIN_FLAT_POINTS` do."""
+    v = np.asarray(values, dtype=float)
+    v = v[np.isfinite(v)]
+    if len(v) == 0:
         return None
-    near = np.sort(z[z <= z.min() + BASE_SEARCH])
-    # For each candidate height, how many points lie within the tolerance above and below it.
+    near = np.sort(v[v <= v.min() + search])
+    # For each candidate value, how many lie within the tolerance above and below it.
     counts = np.searchsorted(near, near + tolerance, side="right") - np.searchsorted(near, near - tolerance)
-    best = near[int(np.argmax(counts))]
+    if share is None:
+        best = near[int(np.argmax(counts))]
+    else:
+        # The least value shared enough, then the most shared value within the tolerance of it.
+        least = near[int(np.argmax(counts >= max(MIN_FLAT_POINTS, share * counts.max())))]
+        around = np.abs(near - least) <= tolerance
+        best = near[around][int(np.argmax(counts[around]))]
     shared = near[np.abs(near - best) <= tolerance]
     return float(np.median(shared)) if len(shared) >= MIN_FLAT_POINTS else None
 
@@ -49,8 +91,8 @@ def is_station(points: np.ndarray, tolerance: float) -> bool:
 
 def flat_ends(reports: list[dict], stations: list[bool], kind: str = "bottom") -> np.ndarray:
     """The points where the stations leave the flat (from their fits' ``flats`` reports, the
-    runs of that ``kind``), in order along x, one per station (the outermost where a station's
-    parts have several): (k, 3)."""
+    runs of that ``kind``: ``"bottom"`` or ``"side"``), in order along x, one per station (the
+    outermost where a station's parts have several): (k, 3)."""
     ends = [
         f["point"]
         for r, s in zip(reports, stations, strict=True)
