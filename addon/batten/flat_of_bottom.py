@@ -11,7 +11,7 @@ and the faces above it meet the flat tangentially.
 The flat of side is found the same way, at the widest breadth (:func:`side_plane`): every curve
 is faired with it as a flat plane too, so a station runs straight up it to the deck, and a
 waterline or the deck edge runs straight along it through the parallel middle body and leaves
-it tangentially at both ends (KCS's flat of side 3.7 → 2.2 mm from its plane).
+it tangentially at both ends (KCS's flat of side 3.7 → 1.6 mm from its plane).
 
 No Blender needed: the numbers come from the data and the fits.
 """

@@ -318,7 +318,7 @@ fn a_station_runs_flat_on_the_bottom_and_up_the_side() {
 }
 
 #[test]
-fn a_crossing_is_no_run_and_of_two_runs_in_a_plane_the_longer_is_kept() {
+fn a_crossing_is_no_run_and_two_runs_in_a_plane_are_both_kept() {
     // Crossing the side plane: two points within 1 mm (a crossing, 0.35 m apart).
     let cross: Vec<DVec3> = (0..60)
         .map(|i| {
@@ -333,14 +333,36 @@ fn a_crossing_is_no_run_and_of_two_runs_in_a_plane_the_longer_is_kept() {
         .report
         .flats
         .is_empty());
-    // Two flats in one plane with a 2 cm bulge between them: the longer one only.
+    // Two flats in one plane with a 2 cm bulge between them: both straight, and the piece
+    // between follows the bulge within the tolerance.
     let mut two = waterline(5.0);
     for p in two.iter_mut().filter(|p| p.x > 24.0 && p.x < 27.0) {
         p.y += 0.02 * ((p.x - 24.0) * std::f64::consts::PI / 3.0).sin();
     }
     let fit = fair_points(&two, &options(Some(SIDE))).unwrap();
-    let xs: Vec<f64> = fit.report.flats.iter().map(|f| f.point.x).collect();
-    assert_eq!(xs, [27.0, 40.0]);
+    let ends: Vec<(f64, f64)> = fit
+        .report
+        .flats
+        .iter()
+        .map(|f| (f.point.x, f.parameter))
+        .collect();
+    assert_eq!(
+        ends.iter().map(|e| e.0).collect::<Vec<_>>(),
+        [20.0, 24.0, 27.0, 40.0]
+    );
+    for pair in [(ends[0].1, ends[1].1), (ends[2].1, ends[3].1)] {
+        let off = (0..=100)
+            .map(|i| {
+                (fit.curve
+                    .point(pair.0 + (pair.1 - pair.0) * i as f64 / 100.0)
+                    .y
+                    - 6.0)
+                    .abs()
+            })
+            .fold(0.0, f64::max);
+        assert!(off < 1e-12, "{off}");
+    }
+    assert!(fit.report.max_deviation <= 0.005);
 }
 
 #[test]

@@ -157,30 +157,23 @@ impl FlatPlane {
 }
 
 /// The flat runs of `pts` in `planes` that a fit of degree `degree` can keep straight, in
-/// order along the points: the longest run in each plane (a flat is one stretch of a section;
-/// two runs in one plane have a wave of the data between them, which a piece held to the
-/// flat's tangent at both ends would make a bump of — KVLCC2's station 15 at the side, 29 mm
-/// out between two runs), of those a run that overlaps an earlier one is dropped, and so is one that
-/// would leave fewer than `degree + 1` points for the smooth piece before or after it (it
-/// needs them to leave the flat with the flat's tangent), and so is a run between the ends of
-/// fewer than `MIN_MIDDLE_RUN_POINTS`. A degree-1 fit is a polyline
-/// through its points (no tangent to carry off a flat): none. A degree-2 piece can take one
-/// fixed tangent only: one run, at an end of the points.
+/// order along the points: every run in every plane, but one that overlaps an earlier one, one
+/// that would leave fewer than `degree + 1` points for the smooth piece before or after it (it
+/// needs them to leave the flat with the flat's tangent), and one between the ends of fewer
+/// than [`MIN_MIDDLE_RUN_POINTS`] points. Two runs in one plane keep the wave of the data
+/// between them (KCS's wl_z10.80 dips 6 mm off its flat of side at x = 48–52 m): the piece
+/// between leaves one flat and enters the next with the flat's tangent. A degree-1 fit is a
+/// polyline through its points (no tangent to carry off a flat): none. A degree-2 piece can
+/// take one fixed tangent only: one run, at an end of the points.
 pub(crate) fn runs_of(planes: &[FlatPlane], pts: &[DVec3], degree: usize) -> Vec<FlatRun> {
     let m = pts.len();
     if degree < 2 || m == 0 {
         return Vec::new();
     }
-    let length = |r: &FlatRun| pts[r.last].distance(pts[r.first]);
     let mut all: Vec<FlatRun> = planes
         .iter()
         .enumerate()
-        .filter_map(|(i, plane)| {
-            plane
-                .runs(pts, i)
-                .into_iter()
-                .max_by(|a, b| length(a).total_cmp(&length(b)))
-        })
+        .flat_map(|(i, plane)| plane.runs(pts, i))
         .collect();
     all.sort_by_key(|r| (r.first, std::cmp::Reverse(r.last)));
     let mut kept: Vec<FlatRun> = Vec::new();
