@@ -75,6 +75,10 @@ def test_side_plane_is_the_widest_breadth_shared_enough():
     assert flat_of_bottom.side_plane(pts, 1e-3) == pytest.approx(7.0)
     assert flat_of_bottom.side_plane(pts[80:], 1e-3) == pytest.approx(6.902)
     assert flat_of_bottom.side_plane(pts[:5], 1e-3) is None, "five points are no flat"
+    # A port half (y < 0) has its flat of side at the same breadth.
+    assert flat_of_bottom.side_plane(pts * [1, -1, 1], 1e-3) == pytest.approx(7.0)
+    # A profile (every point in the centreplane) has none.
+    assert flat_of_bottom.side_plane(pts * [1, 0, 1], 1e-3) is None
 
 
 def test_stations_run_flat_into_a_flat_of_bottom_curve_and_the_bottom_is_flat(flat_hull):
@@ -131,3 +135,23 @@ def test_the_real_ships_flat_of_bottom_is_flat_within_1_mm(ship):
     data = json.loads((HULLS / ship / "network.json").read_text())
     points = np.array([p for c in data["curves"] for p in c["points"]])
     assert measure_ships.flatness(points, np.asarray(positions), 2, 0.0) < 1e-3
+
+
+def test_a_port_half_gets_the_same_flats(flat_hull, tmp_path):
+    data = json.loads(flat_hull.read_text())
+    for c in data["curves"]:
+        c["points"] = [[x, -y, z] for x, y, z in c["points"]]
+    port = tmp_path / "port.json"
+    port.write_text(json.dumps(data))
+    _, starboard = api.import_sections(flat_hull, collection="starboard")
+    _, fits = api.import_sections(port, collection="port")
+
+    def flats(reports):
+        return {
+            r["curve"]: [(f["kind"], f["index"]) for f in r.get("flats", [])]
+            for r in reports
+            if r.get("flats")
+        }
+
+    assert flats(fits) == flats(starboard)
+    assert [kind for kind, _ in flats(fits)["st05"]] == ["bottom", "side"], "the widest station's"

@@ -1162,7 +1162,9 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         if base is not None and stations[i]:
             planes.append(("bottom", ((0.0, 0.0, 1.0), base, model_tolerance)))
         if side is not None:
+            # Either side of the centreplane: a curve runs in the one its points are on.
             planes.append(("side", ((0.0, 1.0, 0.0), side, model_tolerance)))
+            planes.append(("side", ((0.0, 1.0, 0.0), -side, model_tolerance)))
         curve, report = fair_points(
             sec.name,
             sec.points,

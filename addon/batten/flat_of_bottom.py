@@ -48,13 +48,15 @@ def base_plane(points: np.ndarray, tolerance: float) -> float | None:
 
 
 def side_plane(points: np.ndarray, tolerance: float) -> float | None:
-    """The half breadth (y, m) of the flat of side the points ``points`` (n, 3) lie in: among
-    the points within :data:`SIDE_SEARCH` of the widest, the widest breadth that at least
-    :data:`SIDE_SHARE` of the most shared one's count share (within ``tolerance``), their
-    median; None when fewer than :data:`MIN_FLAT_POINTS` do."""
-    y = np.asarray(points, dtype=float).reshape(-1, 3)[:, 1]
+    """The half breadth (|y|, m) of the flat of side the points ``points`` (n, 3) lie in, on
+    either side of the centreplane: among the points within :data:`SIDE_SEARCH` of the widest,
+    the widest breadth that at least :data:`SIDE_SHARE` of the most shared one's count share
+    (within ``tolerance``), their median; None when fewer than :data:`MIN_FLAT_POINTS` do, or
+    when that is within :data:`SIDE_SEARCH` of the centreplane (a hull given as its profile
+    alone has no side)."""
+    y = np.abs(np.asarray(points, dtype=float).reshape(-1, 3)[:, 1])
     level = shared_level(-y, tolerance, SIDE_SEARCH, SIDE_SHARE)
-    return None if level is None else -level
+    return None if level is None or -level <= SIDE_SEARCH else -level
 
 
 def shared_level(
