@@ -65,8 +65,7 @@ def shared_level(
     """Among the finite ``values`` within ``search`` of the least, the value that most of them
     share (within ``tolerance``) — or with ``share``, the most shared within the tolerance of
     the least value shared by at least that share of the most — and the median of those
-    sharing it; None when fewer than
-    :data:`MIN_FLAT_POINTS` do."""
+    sharing it; None when fewer than :data:`MIN_FLAT_POINTS` do."""
     v = np.asarray(values, dtype=float)
     v = v[np.isfinite(v)]
     if len(v) == 0:
@@ -91,16 +90,16 @@ def is_station(points: np.ndarray, tolerance: float) -> bool:
     return len(x) > 0 and float(np.ptp(x)) <= tolerance
 
 
-def flat_ends(reports: list[dict], stations: list[bool], kind: str = "bottom") -> np.ndarray:
-    """The points where the stations leave the flat (from their fits' ``flats`` reports, the
-    runs of that ``kind``: ``"bottom"`` or ``"side"``), in order along x, one per station (the
-    outermost where a station's parts have several): (k, 3)."""
+def flat_ends(reports: list[dict], stations: list[bool]) -> np.ndarray:
+    """The points where the stations leave the flat of bottom (from their fits' ``flats``
+    reports of kind ``"bottom"``), in order along x, one per station (the outermost where a
+    station's parts, or a run between a bar keel and the bilge, have several): (k, 3)."""
     ends = [
         f["point"]
         for r, s in zip(reports, stations, strict=True)
         if s
         for f in r.get("flats", [])
-        if f.get("kind") == kind
+        if f.get("kind") == "bottom"
     ]
     ends = np.asarray(ends, dtype=float).reshape(-1, 3)
     ends = ends[np.lexsort((-np.abs(ends[:, 1]), ends[:, 0]))]
