@@ -45,12 +45,21 @@ const BASE: FlatPlane = FlatPlane {
     noise: 1e-3,
 };
 
-/// Largest |z| of the curve over its first `share` of the parameter domain, sampled finely.
-fn sag(curve: &batten_core::NurbsCurve, upto: f64) -> f64 {
-    let (a, _) = curve.domain();
-    (0..=400)
-        .map(|i| curve.point(a + (upto - a) * i as f64 / 400.0).z.abs())
+/// Largest |f| over `samples + 1` evenly spaced parameters of `curve` from `from` to `to`.
+fn largest(
+    curve: &batten_core::NurbsCurve,
+    (from, to): (f64, f64),
+    samples: usize,
+    f: impl Fn(DVec3) -> f64,
+) -> f64 {
+    (0..=samples)
+        .map(|i| f(curve.point(from + (to - from) * i as f64 / samples as f64)).abs())
         .fold(0.0, f64::max)
+}
+
+/// Largest |z| of the curve from the start of its domain to `upto`, sampled finely.
+fn sag(curve: &batten_core::NurbsCurve, upto: f64) -> f64 {
+    largest(curve, (curve.domain().0, upto), 400, |p| p.z)
 }
 
 #[test]
@@ -109,14 +118,7 @@ fn a_run_at_the_end_of_the_points_is_a_flat_too() {
     assert_eq!(flat.index, inner);
     let (_, b) = fit.curve.domain();
     let (a, _) = fit.curve.domain();
-    let worst = (0..=200)
-        .map(|i| {
-            fit.curve
-                .point(flat.parameter + (b - flat.parameter) * i as f64 / 200.0)
-                .z
-                .abs()
-        })
-        .fold(0.0, f64::max);
+    let worst = largest(&fit.curve, (flat.parameter, b), 200, |p| p.z);
     assert!(worst < 1e-12, "{worst}");
     assert!(a < flat.parameter && flat.parameter < b);
 }
@@ -258,9 +260,7 @@ fn a_run_between_the_ends_is_straight_and_left_tangentially_at_both_its_ends() {
     assert!(fit.report.corners.is_empty());
     let c = &fit.curve;
     let (a, b) = (ends[0].parameter, ends[1].parameter);
-    let off = (0..=400)
-        .map(|i| (c.point(a + (b - a) * i as f64 / 400.0).y - 6.0).abs())
-        .fold(0.0, f64::max);
+    let off = largest(c, (a, b), 400, |p| p.y - 6.0);
     assert!(off < 1e-12, "straight in the plane: {off}");
     for t in [a, b] {
         for d in [
@@ -300,13 +300,14 @@ fn a_station_runs_flat_on_the_bottom_and_up_the_side() {
     let c = &fit.curve;
     let (lo, hi) = c.domain();
     let (a, b) = (ends[0].parameter, ends[1].parameter);
-    let worst = |from: f64, to: f64, f: &dyn Fn(DVec3) -> f64| {
-        (0..=200)
-            .map(|i| f(c.point(from + (to - from) * i as f64 / 200.0)).abs())
-            .fold(0.0, f64::max)
-    };
-    assert!(worst(lo, a, &|p| p.z) < 1e-12, "the bottom is flat");
-    assert!(worst(b, hi, &|p| p.y - 6.0) < 1e-12, "the side is flat");
+    assert!(
+        largest(c, (lo, a), 200, |p| p.z) < 1e-12,
+        "the bottom is flat"
+    );
+    assert!(
+        largest(c, (b, hi), 200, |p| p.y - 6.0) < 1e-12,
+        "the side is flat"
+    );
     // The side's run starts at the arc's first point within 1 mm of y = 6: past 88.2°
     // (z = 2 (1 − cos a) > 1.937 m).
     assert!(
@@ -351,15 +352,7 @@ fn a_crossing_is_no_run_and_two_runs_in_a_plane_are_both_kept() {
         [20.0, 24.0, 27.0, 40.0]
     );
     for pair in [(ends[0].1, ends[1].1), (ends[2].1, ends[3].1)] {
-        let off = (0..=100)
-            .map(|i| {
-                (fit.curve
-                    .point(pair.0 + (pair.1 - pair.0) * i as f64 / 100.0)
-                    .y
-                    - 6.0)
-                    .abs()
-            })
-            .fold(0.0, f64::max);
+        let off = largest(&fit.curve, pair, 100, |p| p.y - 6.0);
         assert!(off < 1e-12, "{off}");
     }
     assert!(fit.report.max_deviation <= 0.005);
@@ -384,9 +377,7 @@ fn a_chine_where_the_flat_of_side_starts_stays_a_knuckle() {
     let c = &fit.curve;
     let t = fit.report.corner_parameters[0];
     let (_, hi) = c.domain();
-    let off = (0..=200)
-        .map(|i| (c.point(t + (hi - t) * i as f64 / 200.0).y - 5.0).abs())
-        .fold(0.0, f64::max);
+    let off = largest(c, (t, hi), 200, |p| p.y - 5.0);
     assert!(off < 1e-12, "the side is flat: {off}");
     let before = (c.point(t) - c.point(t - 1e-6)).normalize();
     let after = (c.point(t + 1e-6) - c.point(t)).normalize();

@@ -194,13 +194,14 @@ pub fn snap_to_nodes(
     }
     // A node is made coplanar where every curve through it was turned into its plane or is
     // held in it.
-    let mut coplanar = vec![true; nodes.len()];
-    for (k, node) in nodes.iter().enumerate() {
-        coplanar[k] = node
-            .tangents
-            .iter()
-            .all(|&(c, _, _)| held[c] || results[c].is_some());
-    }
+    let coplanar: Vec<bool> = nodes
+        .iter()
+        .map(|node| {
+            node.tangents
+                .iter()
+                .all(|&(c, _, _)| held[c] || results[c].is_some())
+        })
+        .collect();
     let turned: Vec<(NetworkCurve, CurveSnap)> = network
         .curves()
         .iter()

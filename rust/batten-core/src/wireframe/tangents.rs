@@ -162,18 +162,14 @@ pub(crate) fn held_plane(node: &SmoothNode, held: &[bool]) -> Option<SmoothNode>
     if is_held.iter().all(|&h| h) {
         return None;
     }
-    let fixed: Vec<DVec3> = units
-        .iter()
-        .zip(&is_held)
-        .filter(|(_, &h)| h)
-        .map(|(&u, _)| u)
-        .collect();
-    let free: Vec<DVec3> = units
-        .iter()
-        .zip(&is_held)
-        .filter(|(_, &h)| !h)
-        .map(|(&u, _)| u)
-        .collect();
+    let (mut fixed, mut free) = (Vec::new(), Vec::new());
+    for (&u, &h) in units.iter().zip(&is_held) {
+        if h {
+            fixed.push(u);
+        } else {
+            free.push(u);
+        }
+    }
     let first = *fixed.first()?;
     // Two held tangents that are not parallel fix the plane; otherwise it turns about the one
     // held direction to the plane the others' lines are closest to.
