@@ -60,3 +60,29 @@ def test_kcs_waterline_aft_of_its_flat_of_side_has_no_kink():
     assert [round(f["point"][0], 1) for f in report["flats"]] == [57.5, 138.0]
     # The step at x = 10 m turns at a radius of some 10 cm at the tightest.
     assert report["max_curvature"] < 20.0, report["max_curvature"]
+
+
+@pytest.mark.skipif(not HULLS.is_dir(), reason="shared/hulls is not beside the checkout")
+def test_kcs_forefoot_waterline_ends_without_a_curl():
+    """KCS's wl_z0.30 ends at the stem in a nose 3.5 cm wide whose last offset falls 3 cm aft: a
+    corner 5 cm from the end, then three points. The piece past the corner was their
+    interpolating quadratic, which turned at 30.6 /m and folded the forefoot's two patches; it is
+    now the blend of chord and interpolant nearest the chord within the tolerance: 10.3 /m at
+    the 3.5 mm the import fits this curve to (its nodes took it past 5 mm), straight within 5 mm."""
+    data = json.loads((HULLS / "kcs" / "network.json").read_text())
+    names = [c["name"] for c in data["curves"]]
+    points = [np.asarray(c["points"], dtype=float) for c in data["curves"]]
+    noded, _, _ = nodes_from_data(names, points, 0.005, 45.0, 0.001)
+    i = names.index("wl_z0.30")
+    for tolerance, most in [(0.0035, 12.0), (0.005, 1e-6)]:
+        curve, report = fair_points(
+            "wl_z0.30", np.asarray(noded[i]), tolerance=tolerance, corner_angle_deg=45.0, model_tolerance=0.001
+        )
+        assert report["max_deviation"] <= tolerance
+        # The corner at the nose, 5 cm from the end; past it a gentle bend, or (within 5 mm,
+        # the middle point 4.1 mm off the chord) a straight line.
+        (corner,) = report["corner_parameters"]
+        end = np.asarray(curve.evaluate([corner, curve.domain[1]]))
+        assert 0.04 < np.linalg.norm(end[1] - end[0]) < 0.06
+        _, kappa = curve.curvature(np.linspace(corner, curve.domain[1], 201)[1:])
+        assert np.linalg.norm(np.asarray(kappa), axis=1).max() < most
