@@ -76,7 +76,11 @@ def test_kcs_forefoot_waterline_ends_without_a_curl():
     i = names.index("wl_z0.30")
     for tolerance, most in [(0.0035, 12.0), (0.005, 1e-6)]:
         curve, report = fair_points(
-            "wl_z0.30", np.asarray(noded[i]), tolerance=tolerance, corner_angle_deg=45.0, model_tolerance=0.001
+            "wl_z0.30",
+            np.asarray(noded[i]),
+            tolerance=tolerance,
+            corner_angle_deg=45.0,
+            model_tolerance=0.001,
         )
         assert report["max_deviation"] <= tolerance
         # The corner at the nose, 5 cm from the end; past it a gentle bend, or (within 5 mm,
