@@ -385,3 +385,42 @@ fn a_chine_where_the_flat_of_side_starts_stays_a_knuckle() {
     assert!(before.angle_between(deadrise) < 1e-3, "{before}");
     assert!(after.angle_between(DVec3::Z) < 1e-4, "{after}");
 }
+
+/// A deck edge along the side y = 6, KVLCC2-like: off the side up to x = 20 (closing on it
+/// with y = 6 − 0.0125·(20 − x)²), on it from there, rising with the sheer by 1 m to x = 60
+/// (z = 26 − (60 − x)²/1600, level at x = 60), then straight at z = 26 to x = 110, and off
+/// it again.
+fn sheer_deck_edge() -> Vec<DVec3> {
+    (0..=130)
+        .map(|i| {
+            let x = i as f64;
+            let off = (20.0 - x).max(0.0) + (x - 110.0).max(0.0);
+            let below = 60.0 - x.clamp(20.0, 60.0);
+            DVec3::new(x, 6.0 - 0.0125 * off * off, 26.0 - below * below / 1600.0)
+        })
+        .collect()
+}
+
+#[test]
+fn a_stretch_on_the_side_that_curves_in_it_keeps_its_straight_end_straight() {
+    let pts = sheer_deck_edge();
+    let fit = fair_points(&pts, &options(Some(SIDE))).unwrap();
+    // The whole stretch on the side (x 20..110) is no straight run; its straight end is,
+    // from where the sheer stops rising (within the noise: x = 59) to x = 110.
+    let ends = &fit.report.flats;
+    assert_eq!(ends.iter().map(|f| f.index).collect::<Vec<_>>(), [59, 110]);
+    let c = &fit.curve;
+    let (a, b) = (ends[0].parameter, ends[1].parameter);
+    assert!(largest(c, (a, b), 400, |p| p.y - 6.0) < 1e-12);
+    assert!(largest(c, (a, b), 400, |p| p.z - 26.0) < 1e-3);
+    assert!(fit.report.max_deviation <= 0.005);
+    // Before, with no run at all, the one spline bowed off the side along the straight end.
+    let plain = fair_points(&pts, &options(None)).unwrap().curve;
+    let (lo, hi) = plain.domain();
+    let bow = (0..=4000)
+        .map(|i| plain.point(lo + (hi - lo) * i as f64 / 4000.0))
+        .filter(|p| p.x > 61.0 && p.x < 109.0)
+        .map(|p| (p.y - 6.0).abs())
+        .fold(0.0, f64::max);
+    assert!(bow > 1e-4, "{bow}");
+}

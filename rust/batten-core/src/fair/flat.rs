@@ -102,7 +102,8 @@ impl FlatPlane {
     /// Every flat run of `pts` in this plane (`plane` is its index among the curve's planes),
     /// in order: stretches of consecutive points within the noise of the plane and of the
     /// straight line through the stretch's ends, both ends within the tolerance of the plane,
-    /// at least [`MIN_FLAT_RUN`] long. A run may be at either end of the points (a station's
+    /// at least [`MIN_FLAT_RUN`] long; of a stretch that curves in the plane, its longer
+    /// straight end (`straight_end`). A run may be at either end of the points (a station's
     /// flat of bottom or side) or between them (a waterline along the flat of side).
     pub(crate) fn runs(&self, pts: &[DVec3], plane: usize) -> Vec<FlatRun> {
         let m = pts.len();
@@ -121,12 +122,41 @@ impl FlatPlane {
                     last = j;
                 }
             }
-            if let Some(run) = self.run_between(pts, plane, first, last) {
+            let run = self
+                .run_between(pts, plane, first, last)
+                .or_else(|| self.straight_end(pts, plane, first, last));
+            if let Some(run) = run {
                 runs.push(run);
             }
             i = j + 1;
         }
         runs
+    }
+
+    /// Of a stretch from `first` to `last` in the plane that curves in it, the longer of its
+    /// longest straight run from `first` and its longest straight run to `last` (each ending
+    /// on a point within the tolerance of the plane), when one is long enough: KVLCC2's deck
+    /// edge runs along the flat of side from x = 79 m, rising with the sheer to z = 26 m at
+    /// x = 131 m and straight from there to x = 237 m; as no straight run at all, it bowed
+    /// 2.4 mm off the flat at x = 231 m. The curved rest is fitted smooth, leaving the run
+    /// with its tangent.
+    fn straight_end(
+        &self,
+        pts: &[DVec3],
+        plane: usize,
+        first: usize,
+        last: usize,
+    ) -> Option<FlatRun> {
+        let inner = || (first + 1..last).filter(|&k| self.holds(pts[k]));
+        let from_first = inner()
+            .rev()
+            .find_map(|k| self.run_between(pts, plane, first, k));
+        let to_last = inner().find_map(|k| self.run_between(pts, plane, k, last));
+        let length = |r: &FlatRun| pts[r.first].distance(pts[r.last]);
+        [from_first, to_last]
+            .into_iter()
+            .flatten()
+            .max_by(|a, b| length(a).total_cmp(&length(b)))
     }
 
     /// The run from `first` to `last` when it is long and straight enough.
