@@ -1296,3 +1296,71 @@ fn a_ribbon_runs_on_continuously_past_a_corner_inside_its_side() {
         );
     }
 }
+
+/// A planar quad whose lower side waves once, 3 mm across 4 cm at x = 2.03 (a step in offset
+/// data, shorter than a sixty-fourth of the side), and is straight elsewhere.
+fn waved_quad() -> Vec<NurbsCurve> {
+    let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    let xs = [
+        0.0, 1.0, 1.99, 2.0, 2.01, 2.02, 2.03, 2.04, 2.05, 2.06, 3.0, 4.0,
+    ];
+    let ys = [
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.003, 0.003, 0.0, 0.0, 0.0, 0.0, 0.0,
+    ];
+    let n = xs.len();
+    let mut knots = vec![0.0; 4];
+    knots.extend((1..n - 3).map(|i| i as f64));
+    knots.extend(vec![(n - 3) as f64; 4]);
+    let wave = NurbsCurve::try_new(
+        3,
+        knots,
+        xs.iter().zip(ys).map(|(&x, y)| p(x, y)).collect(),
+        None,
+    )
+    .expect("valid curve");
+    vec![
+        wave,
+        bezier(&[p(4.0, 0.0), p(4.0, 3.0)]),
+        bezier(&[p(4.0, 3.0), p(0.0, 3.0)]),
+        bezier(&[p(0.0, 3.0), p(0.0, 0.0)]),
+    ]
+}
+
+#[test]
+fn a_ribbon_keeps_its_direction_through_a_wave_shorter_than_its_samples() {
+    let curves = waved_quad();
+    let boundary = single_sides(&curves);
+    for kind in [PatchKind::Gregory, PatchKind::SideBlend] {
+        let opts = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        let patch = Patch::try_new(&boundary, &[], &opts).expect("patch");
+        // The side's tangent swings by some 10° each way in the wave.
+        let n = 8000;
+        let tangent = |s: f64| (patch.side_point(0, s + 1e-7) - patch.side_point(0, s)).normalize();
+        let swing = (0..=n)
+            .map(|j| {
+                tangent(j as f64 / (n + 1) as f64)
+                    .angle_between(DVec3::X)
+                    .to_degrees()
+            })
+            .fold(0.0, f64::max);
+        assert!(swing > 8.0, "{swing}");
+        // Its ribbon does not swing with it: both corner ribbons point straight up the face
+        // (the neighbouring sides), and so does the ribbon all along (before: 1.05° off, where
+        // it turned with the wave's tangent between the transport's samples).
+        let off = (0..=n)
+            .map(|j| {
+                patch
+                    .ribbon(0, j as f64 / n as f64)
+                    .angle_between(DVec3::Y)
+                    .to_degrees()
+            })
+            .fold(0.0, f64::max);
+        assert!(
+            off < 0.01,
+            "{kind:?}: the ribbon turns {off}° off the face's cross direction"
+        );
+    }
+}

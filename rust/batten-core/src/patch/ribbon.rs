@@ -568,7 +568,8 @@ impl Turn {
 
 /// How far a side's tangent has turned in its tangent plane from `s = 0`: its corners
 /// ([`Turn`]) and, between them, its smooth turn (the integral of its geodesic curvature) at
-/// even samples, blended by a cubic Hermite.
+/// even samples, and from the sample nearest `s` to `s` measured on the side's own frame
+/// there.
 ///
 /// The ribbon `R = αĉ + βT̂` blends its corner angles linearly in the frame `ĉ, T̂`, which
 /// turns with the side's tangent. On a side that turns evenly (an arc) that is the natural
@@ -582,33 +583,49 @@ impl Turn {
 /// conditions hold), nothing anywhere on a side that turns evenly, continuous through corners
 /// (the turn's jump cancels the frame's), and leaves the normal, and so G1 with the
 /// neighbouring face, unchanged.
+///
+/// `τ(s)` is exact at every `s`, not only at the samples: the sampled turn up to the sample
+/// nearest `s`, then the turn from that sample's frame to the frame at `s`. Blended between the
+/// samples instead (a cubic Hermite, before), a wave of the side shorter than a sample step
+/// was partly missing from `τ` while the frame `ĉ, T̂` still turned with it, so the ribbon
+/// swung with the wave and the patch creased beside it: KVLCC2's wl_z5.00 steps 8 mm across
+/// 3 cm where it crosses station 20 (its offsets' seam between bulb and hull, fitted within
+/// 3.5 mm), and the face aft of the station creased along it (mesh faces at 40°).
 #[derive(Clone, Debug)]
 struct Transport {
     corners: Vec<Turn>,
-    /// The smooth turn at the samples, and its Hermite slopes.
+    /// The side's frame at the samples, with its segment and curve parameter.
+    frames: Vec<(SideSample, usize, f64)>,
+    /// The smooth turn at the samples (corners left out).
     values: Vec<f64>,
-    slopes: Vec<f64>,
     /// The whole turn `τ(1)`, corners included.
     total: f64,
 }
 
 impl Transport {
-    /// The side's turn `τ` at side parameter `s` (segment `k`, curve parameter `t`).
+    /// The side's turn `τ` at side parameter `s` (segment `k`, curve parameter `t`), where its
+    /// frame is `f`.
     #[inline]
-    fn turn(&self, s: f64, k: usize, t: f64) -> f64 {
+    fn turn(&self, s: f64, f: SideSample) -> f64 {
+        let n = self.values.len() - 1;
+        // The nearest sample: a side mirrored (run the other way) measures from the mirrored
+        // sample, so mirrored faces get mirrored ribbons.
+        let j = ((s.clamp(0.0, 1.0) * n as f64).round() as usize).min(n);
+        let (at, kj, tj) = self.frames[j];
         let corners: f64 = self
             .corners
             .iter()
-            .filter(|c| c.past(k, t))
+            .filter(|c| c.past(kj, tj))
             .map(|c| c.angle)
             .sum();
-        hermite_scalar(&self.values, &self.slopes, s) + corners
+        self.values[j] + corners + turn_between(at, f)
     }
 
-    /// How far the ribbon is turned at `s` (see the type's docs).
+    /// How far the ribbon is turned at `s`, where the side's frame is `f` (see the type's
+    /// docs).
     #[inline]
-    fn angle(&self, s: f64, k: usize, t: f64) -> f64 {
-        self.total * s.clamp(0.0, 1.0) - self.turn(s, k, t)
+    fn angle(&self, s: f64, f: SideSample) -> f64 {
+        self.total * s.clamp(0.0, 1.0) - self.turn(s, f)
     }
 }
 
@@ -651,11 +668,10 @@ fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport
     if straight && corners.is_empty() {
         return None;
     }
-    let slopes = hermite_slopes_even(&values);
     Some(Transport {
         corners,
+        frames: samples,
         values,
-        slopes,
         total,
     })
 }
@@ -776,7 +792,7 @@ impl PreparedRibbon {
                 let psi = b.atan2(a);
                 let min = MIN_RIBBON_ANGLE_DEGREES.to_radians();
                 let (lo, hi) = (psi.min(min), psi.max(std::f64::consts::PI - min));
-                let phi = (psi + tr.angle(s, k, t)).clamp(lo, hi) - psi;
+                let phi = (psi + tr.angle(s, f)).clamp(lo, hi) - psi;
                 // R ⊥ n̂ = ĉ × T̂: Rodrigues' rotation about n̂ in the tangent plane.
                 let axis = f.c.cross(f.cross);
                 let (sin, cos) = phi.sin_cos();
