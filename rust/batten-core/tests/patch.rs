@@ -1209,7 +1209,7 @@ fn a_normal_field_turning_100_degrees_between_its_nodes_turns_with_its_curve() {
 fn cornered_quad() -> Vec<NurbsCurve> {
     let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
     let third = 1.0 / 3.0;
-    vec![
+    closed_above(
         NurbsCurve::try_new(
             3,
             vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0],
@@ -1225,7 +1225,18 @@ fn cornered_quad() -> Vec<NurbsCurve> {
             None,
         )
         .expect("valid curve"),
-        bezier(&[p(4.0, 1.0), p(4.0, 3.0)]),
+    )
+}
+
+/// `lower` (from (0, 0) to some point at x = 4, in z = 0) and the sides that close it to a
+/// quad up to y = 3: up the right, back along the top, down the left.
+fn closed_above(lower: NurbsCurve) -> Vec<NurbsCurve> {
+    let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    let (_, end) = lower.domain();
+    let corner = lower.point(end);
+    vec![
+        lower,
+        bezier(&[corner, p(4.0, 3.0)]),
         bezier(&[p(4.0, 3.0), p(0.0, 3.0)]),
         bezier(&[p(0.0, 3.0), p(0.0, 0.0)]),
     ]
@@ -1318,12 +1329,7 @@ fn waved_quad() -> Vec<NurbsCurve> {
         None,
     )
     .expect("valid curve");
-    vec![
-        wave,
-        bezier(&[p(4.0, 0.0), p(4.0, 3.0)]),
-        bezier(&[p(4.0, 3.0), p(0.0, 3.0)]),
-        bezier(&[p(0.0, 3.0), p(0.0, 0.0)]),
-    ]
+    closed_above(wave)
 }
 
 #[test]
