@@ -134,12 +134,13 @@ impl FlatPlane {
     }
 
     /// Of a stretch from `first` to `last` in the plane that curves in it, the longer of its
-    /// longest straight run from `first` and its longest straight run to `last` (each ending
-    /// on a point within the tolerance of the plane), when one is long enough: KVLCC2's deck
-    /// edge runs along the flat of side from x = 79 m, rising with the sheer to z = 26 m at
-    /// x = 131 m and straight from there to x = 237 m; as no straight run at all, it bowed
-    /// 2.4 mm off the flat at x = 231 m. The curved rest is fitted smooth, leaving the run
-    /// with its tangent.
+    /// straight runs from `first` and to `last` (each grown a point at a time while it stays
+    /// straight, and ending on a point within the tolerance of the plane), when one is long
+    /// enough: KVLCC2's deck edge runs along the flat of side from x = 79 m, rising with the
+    /// sheer to z = 26 m at x = 131 m and straight from there to x = 237 m; as no straight run
+    /// at all, it bowed 2.4 mm off the flat at x = 231 m. The curved rest is fitted smooth,
+    /// leaving the run with its tangent. Growing stops where the run first bends, so the
+    /// search costs the run's length squared at most, not the stretch's cubed.
     fn straight_end(
         &self,
         pts: &[DVec3],
@@ -147,16 +148,39 @@ impl FlatPlane {
         first: usize,
         last: usize,
     ) -> Option<FlatRun> {
-        let inner = || (first + 1..last).filter(|&k| self.holds(pts[k]));
-        let from_first = inner()
-            .rev()
-            .find_map(|k| self.run_between(pts, plane, first, k));
-        let to_last = inner().find_map(|k| self.run_between(pts, plane, k, last));
+        let grow = |ends: &mut dyn Iterator<Item = (usize, usize)>| {
+            let mut best = None;
+            for (a, b) in ends {
+                if !self.straight(pts, a, b) {
+                    break;
+                }
+                let end = if a == first { b } else { a };
+                if self.holds(pts[end]) {
+                    best = self.run_between(pts, plane, a, b).or(best);
+                }
+            }
+            best
+        };
+        let from_first = grow(&mut (first + 1..last).map(|k| (first, k)));
+        let to_last = grow(&mut (first + 1..last).rev().map(|k| (k, last)));
         let length = |r: &FlatRun| pts[r.first].distance(pts[r.last]);
         [from_first, to_last]
             .into_iter()
             .flatten()
             .max_by(|a, b| length(a).total_cmp(&length(b)))
+    }
+
+    /// Whether the points `first..=last`, moved onto the plane, lie within the noise of the
+    /// straight line through the two ends.
+    fn straight(&self, pts: &[DVec3], first: usize, last: usize) -> bool {
+        let (a, b) = (self.project(pts[first]), self.project(pts[last]));
+        let Some(line) = (b - a).try_normalize() else {
+            return true;
+        };
+        (first..=last).all(|i| {
+            let q = self.project(pts[i]) - a;
+            (q - line * q.dot(line)).length() <= self.noise
+        })
     }
 
     /// The run from `first` to `last` when it is long and straight enough.
@@ -172,16 +196,11 @@ impl FlatPlane {
         if last == first || chord.length() < MIN_FLAT_RUN {
             return None;
         }
-        let line = chord.normalize();
-        let straight = (first..=last).all(|i| {
-            let q = self.project(pts[i]) - a;
-            (q - line * q.dot(line)).length() <= self.noise
-        });
-        straight.then_some(FlatRun {
+        self.straight(pts, first, last).then(|| FlatRun {
             plane,
             first,
             last,
-            direction: line,
+            direction: chord.normalize(),
         })
     }
 }

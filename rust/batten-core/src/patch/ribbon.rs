@@ -603,8 +603,7 @@ struct Transport {
 }
 
 impl Transport {
-    /// The side's turn `τ` at side parameter `s` (segment `k`, curve parameter `t`), where its
-    /// frame is `f`.
+    /// The side's turn `τ` at side parameter `s`, where its frame is `f`.
     #[inline]
     fn turn(&self, s: f64, f: SideSample) -> f64 {
         let n = self.values.len() - 1;
