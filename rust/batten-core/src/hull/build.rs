@@ -7,7 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
-use super::folds::{face_mesh_folds, in_plane_folds, MeshFolds, FOLD_ANGLE_DEGREES};
+use super::folds::{face_folds, face_mesh_folds, in_plane_folds, MeshFolds, FOLD_ANGLE_DEGREES};
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
 use super::report::{self, Findings, MeshShares};
@@ -28,6 +28,9 @@ struct FacePlan {
     boundary: FaceBoundary,
     ribbons: Vec<SideRibbon>,
     layout: PatchLayout,
+    /// Per side: whether every edge of it is a smooth edge shared with another face, whose
+    /// patch takes the same tangent plane along it ([`face_folds`]).
+    smooth: Vec<bool>,
 }
 
 /// The sides of `face` as patch sides (composite where the topology's side has several
@@ -58,6 +61,15 @@ fn plan_face(
     let mut sides = Vec::with_capacity(n_sides);
     let mut ribbons = Vec::with_capacity(n_sides);
     let mut layout = Vec::with_capacity(n_sides);
+    let mut smooth = Vec::with_capacity(n_sides);
+    let shared_by_two = |k: usize| {
+        topology
+            .faces
+            .iter()
+            .filter(|f| f.edges.iter().any(|e| e.index() == k))
+            .count()
+            == 2
+    };
     for side in &face.sides {
         let mut segments = Vec::with_capacity(side.edges.len());
         let mut normals = Vec::with_capacity(side.edges.len());
@@ -87,6 +99,11 @@ fn plan_face(
                 forward: fwd,
             });
         }
+        smooth.push(
+            side.edges
+                .iter()
+                .all(|e| knuckle[e.index()].is_none() && shared_by_two(e.index())),
+        );
         sides.push(Side::new(segments));
         ribbons.push(SideRibbon { segments: normals });
         layout.push(placed);
@@ -98,6 +115,7 @@ fn plan_face(
         boundary: FaceBoundary::new(sides),
         ribbons,
         layout,
+        smooth,
     })
 }
 
@@ -289,7 +307,7 @@ fn unfolded(
     if !mesh.is_finite() {
         return (patch, Some(mesh), Need::NONE);
     }
-    let need = refinement(&patch, &mesh, resolution);
+    let need = refinement(&patch, &mesh, resolution, &plan.smooth);
     if let Some((blended, mesh, need)) = cusp_unfolded(plan, &patch, opts, resolution, &need) {
         return (blended, Some(mesh), need);
     }
@@ -308,7 +326,7 @@ fn unfolded(
         if n.times == level {
             n.folds
         } else {
-            face_mesh_folds(&p.face_mesh(level * resolution))
+            face_folds(p, &p.face_mesh(level * resolution), &plan.smooth)
         }
     };
     let (folds, other_folds) = (folds_at(&patch, &need), folds_at(&blended, &other_need));
@@ -408,7 +426,7 @@ fn side_blended_mesh(
     if !mesh.is_finite() {
         return None;
     }
-    let need = refinement(&blended, &mesh, resolution);
+    let need = refinement(&blended, &mesh, resolution, &plan.smooth);
     Some((blended, mesh, need))
 }
 
@@ -536,10 +554,10 @@ const REFINE_MAX_INTERVALS: usize = 32;
 /// smallest largest angle if it is at most half the first (a tight turn the finer mesh
 /// follows). A fold keeps its angle however fine the mesh: its face is not refined, and the
 /// fold check reports it.
-fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize) -> Need {
+fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize, smooth: &[bool]) -> Need {
     let first = Need {
         times: 1,
-        folds: face_mesh_folds(mesh),
+        folds: face_folds(patch, mesh, smooth),
     };
     if first.folds.worst <= REFINE_DEGREES {
         return first;
@@ -550,7 +568,7 @@ fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize) -> Need {
         && m * resolution <= REFINE_MAX_INTERVALS
         && patch.mesh_vertex_count(m * resolution) <= FOLD_CHECK_VERTICES
     {
-        let folds = face_mesh_folds(&patch.face_mesh(m * resolution));
+        let folds = face_folds(patch, &patch.face_mesh(m * resolution), smooth);
         if folds.worst <= REFINE_DEGREES {
             return Need { times: m, folds };
         }

@@ -52,6 +52,56 @@ fn sorted_sides(faces: &[&[u32]]) -> Vec<(u32, u32, usize)> {
     sides
 }
 
+/// How badly a patch's own mesh folds ([`MeshFolds`]): between its neighbouring polygons
+/// ([`face_mesh_folds`]), and between each polygon along a side that `smooth` marks (a
+/// smooth edge shared with another face) and the surface's tangent plane there, which the
+/// patch's ribbons give and the neighbouring face shares ([`boundary_folds`]).
+pub(crate) fn face_folds(patch: &Patch, mesh: &FaceMesh, smooth: &[bool]) -> MeshFolds {
+    let inside = face_mesh_folds(mesh);
+    let edge = boundary_folds(patch, mesh, smooth);
+    MeshFolds {
+        pairs: inside.pairs + edge.pairs,
+        worst: inside.worst.max(edge.worst),
+        excess: inside.excess + edge.excess,
+    }
+}
+
+/// The polygons of a patch's mesh along its boundary that stand more than
+/// [`FOLD_ANGLE_DEGREES`] off the surface's tangent plane at their boundary side (its normal
+/// `ĉ × R`, side tangent and ribbon): the inside of the patch turning away within the first
+/// row of its mesh. The neighbouring face across the edge has that tangent plane too, so such
+/// a polygon folds against it where they meet, which the polygons of one patch alone do not
+/// show (KCS's five-sided face aft of station 1.5 against the face above it along
+/// wl_z1.50: 35.7°).
+pub(crate) fn boundary_folds(patch: &Patch, mesh: &FaceMesh, smooth: &[bool]) -> MeshFolds {
+    let positions = mesh.positions();
+    let polys: Vec<&[u32]> = mesh.polygons().collect();
+    let fold_cos = FOLD_ANGLE_DEGREES.to_radians().cos();
+    let (mut out, mut least_cos) = (MeshFolds::default(), 1.0f64);
+    for (f, side, s) in mesh.boundary_sides() {
+        if !smooth.get(side).copied().unwrap_or(false) {
+            continue;
+        }
+        let np = polygon_normal(|v| positions[v as usize], polys[f]);
+        let h = 1e-6;
+        let tangent =
+            patch.side_point(side, (s + h).min(1.0)) - patch.side_point(side, (s - h).max(0.0));
+        let ne = tangent.cross(patch.ribbon(side, s)).normalize_or_zero();
+        if np == DVec3::ZERO || ne == DVec3::ZERO {
+            continue;
+        }
+        // Either orientation: a polygon turned right over is the inside check's to find.
+        let cos = np.dot(ne).abs().min(1.0);
+        least_cos = least_cos.min(cos);
+        if cos < fold_cos {
+            out.pairs += 1;
+            out.excess += cos.acos().to_degrees() - FOLD_ANGLE_DEGREES;
+        }
+    }
+    out.worst = least_cos.acos().to_degrees();
+    out
+}
+
 /// How badly a patch's own mesh folds ([`MeshFolds`]), measured between its neighbouring
 /// polygons as [`fold_findings`] measures the welded mesh (one arc cosine per folded pair: the
 /// build measures every face it makes).

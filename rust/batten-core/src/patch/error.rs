@@ -194,7 +194,8 @@ pub enum PatchWarning {
     SideBlended {
         /// The corner-based patch that folded.
         replaced: crate::PatchKind,
-        /// Its pairs of neighbouring mesh polygons more than the fold angle apart.
+        /// Its pairs of neighbouring mesh polygons more than the fold angle apart (a polygon
+        /// along a smooth edge paired with the tangent plane the face across it takes there).
         replaced_pairs: usize,
         /// Its largest angle between neighbouring mesh polygons, degrees.
         replaced_degrees: f64,
@@ -254,8 +255,9 @@ impl std::fmt::Display for PatchWarning {
                 let name = corner_patch_name(*replaced);
                 write!(
                     f,
-                    "its {name} patch folds ({replaced_pairs} pair(s) of neighbouring mesh faces \
-                     at up to {replaced_degrees:.1}°); the side-blended patch is used \
+                    "its {name} patch folds ({replaced_pairs} pair(s) of neighbouring mesh faces, \
+                     its own or across its smooth edges, at up to {replaced_degrees:.1}°); the \
+                     side-blended patch is used \
                      ({pairs} pair(s), up to {degrees:.1}°)"
                 )
             }

@@ -114,6 +114,8 @@ impl Interior {
 pub(crate) struct FaceMesh {
     positions: Vec<DVec3>,
     boundary: usize,
+    /// The side and side parameter `s` of each boundary vertex (empty where not known).
+    ring: Vec<(usize, f64)>,
     faces: Vec<u32>,
     sizes: Vec<u8>,
 }
@@ -337,9 +339,14 @@ impl Patch {
                 }
             }
         }
+        let ring = (0..n)
+            .flat_map(|i| (starts[i]..starts[i + 1]).map(move |q| (i, q)))
+            .map(|(i, q)| (i, lambdas[q]))
+            .collect();
         FaceMesh {
             positions,
             boundary: b,
+            ring,
             faces,
             sizes,
         }
@@ -461,6 +468,38 @@ impl FaceMesh {
     /// The vertex indices of each of its polygons, in order.
     pub(crate) fn polygons(&self) -> impl Iterator<Item = &[u32]> + '_ {
         polygons(&self.faces, &self.sizes)
+    }
+
+    /// Where each polygon side that lies on the face's boundary is, as its polygon's index and
+    /// the side of the face and the side parameter `s` at the side's middle.
+    pub(crate) fn boundary_sides(&self) -> Vec<(usize, usize, f64)> {
+        let b = self.boundary;
+        if self.ring.len() != b || b < 2 {
+            return Vec::new();
+        }
+        let mut out = Vec::new();
+        for (f, poly) in self.polygons().enumerate() {
+            for (k, &v) in poly.iter().enumerate() {
+                let w = poly[(k + 1) % poly.len()];
+                let (v, w) = (v as usize, w as usize);
+                if v >= b || w >= b {
+                    continue;
+                }
+                // Consecutive ring vertices, either way round.
+                let (first, next) = if (v + 1) % b == w {
+                    (v, w)
+                } else if (w + 1) % b == v {
+                    (w, v)
+                } else {
+                    continue;
+                };
+                let (side, s0) = self.ring[first];
+                let (next_side, s1) = self.ring[next];
+                let s1 = if next_side == side { s1 } else { 1.0 };
+                out.push((f, side, 0.5 * (s0 + s1)));
+            }
+        }
+        out
     }
 }
 
@@ -619,6 +658,7 @@ mod weld_tests {
         FaceMesh {
             positions: [a, b, c, m].map(DVec3::from).to_vec(),
             boundary: 3,
+            ring: Vec::new(),
             faces: vec![0, 1, 3, 1, 2, 3, 2, 0, 3],
             sizes: vec![3, 3, 3],
         }
