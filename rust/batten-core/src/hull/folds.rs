@@ -76,22 +76,28 @@ pub(crate) fn face_folds(patch: &Patch, mesh: &FaceMesh, smooth: &[bool]) -> Mes
 pub(crate) fn boundary_folds(patch: &Patch, mesh: &FaceMesh, smooth: &[bool]) -> MeshFolds {
     let positions = mesh.positions();
     let polys: Vec<&[u32]> = mesh.polygons().collect();
+    tally(
+        mesh.boundary_sides()
+            .into_iter()
+            .filter(|&(_, side, _)| smooth.get(side).copied().unwrap_or(false))
+            .filter_map(|(f, side, s)| {
+                let np = polygon_normal(|v| positions[v as usize], polys[f]);
+                let h = 1e-6;
+                let tangent = patch.side_point(side, (s + h).min(1.0))
+                    - patch.side_point(side, (s - h).max(0.0));
+                let ne = tangent.cross(patch.ribbon(side, s)).normalize_or_zero();
+                // Either orientation: a polygon turned right over is the inside check's to
+                // find.
+                (np != DVec3::ZERO && ne != DVec3::ZERO).then(|| np.dot(ne).abs().min(1.0))
+            }),
+    )
+}
+
+/// The [`MeshFolds`] of pairs with these cosines between their normals.
+fn tally(cosines: impl Iterator<Item = f64>) -> MeshFolds {
     let fold_cos = FOLD_ANGLE_DEGREES.to_radians().cos();
     let (mut out, mut least_cos) = (MeshFolds::default(), 1.0f64);
-    for (f, side, s) in mesh.boundary_sides() {
-        if !smooth.get(side).copied().unwrap_or(false) {
-            continue;
-        }
-        let np = polygon_normal(|v| positions[v as usize], polys[f]);
-        let h = 1e-6;
-        let tangent =
-            patch.side_point(side, (s + h).min(1.0)) - patch.side_point(side, (s - h).max(0.0));
-        let ne = tangent.cross(patch.ribbon(side, s)).normalize_or_zero();
-        if np == DVec3::ZERO || ne == DVec3::ZERO {
-            continue;
-        }
-        // Either orientation: a polygon turned right over is the inside check's to find.
-        let cos = np.dot(ne).abs().min(1.0);
+    for cos in cosines {
         least_cos = least_cos.min(cos);
         if cos < fold_cos {
             out.pairs += 1;
@@ -114,25 +120,17 @@ pub(crate) fn face_mesh_folds(mesh: &FaceMesh) -> MeshFolds {
         .collect();
     let mut sides = sorted_sides(&faces);
     sides.sort_unstable();
-    let fold_cos = FOLD_ANGLE_DEGREES.to_radians().cos();
-    let (mut out, mut least_cos) = (MeshFolds::default(), 1.0f64);
-    for run in sides.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
-        let [(_, _, f), (_, _, g)] = run[..] else {
-            continue;
-        };
-        let (nf, ng) = (normals[f], normals[g]);
-        if nf == DVec3::ZERO || ng == DVec3::ZERO {
-            continue;
-        }
-        let cos = nf.dot(ng).clamp(-1.0, 1.0);
-        least_cos = least_cos.min(cos);
-        if cos < fold_cos {
-            out.pairs += 1;
-            out.excess += cos.acos().to_degrees() - FOLD_ANGLE_DEGREES;
-        }
-    }
-    out.worst = least_cos.acos().to_degrees();
-    out
+    tally(
+        sides
+            .chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
+            .filter_map(|run| {
+                let [(_, _, f), (_, _, g)] = run[..] else {
+                    return None;
+                };
+                let (nf, ng) = (normals[f], normals[g]);
+                (nf != DVec3::ZERO && ng != DVec3::ZERO).then(|| nf.dot(ng).clamp(-1.0, 1.0))
+            }),
+    )
 }
 
 /// Cells along each axis of the grid [`in_plane_folds`] lays over a patch's domain: fine
