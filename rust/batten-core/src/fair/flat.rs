@@ -148,21 +148,23 @@ impl FlatPlane {
         first: usize,
         last: usize,
     ) -> Option<FlatRun> {
-        let grow = |ends: &mut dyn Iterator<Item = (usize, usize)>| {
+        // Grown from `from` towards each of `ends` in turn: the run between them while it
+        // stays straight, kept where the end is within the tolerance and the run long enough.
+        let grow = |from: usize, ends: &mut dyn Iterator<Item = usize>| {
             let mut best = None;
-            for (a, b) in ends {
+            for end in ends {
+                let (a, b) = (from.min(end), from.max(end));
                 if !self.straight(pts, a, b) {
                     break;
                 }
-                let end = if a == first { b } else { a };
                 if self.holds(pts[end]) {
-                    best = self.run_between(pts, plane, a, b).or(best);
+                    best = self.long_run(pts, plane, a, b).or(best);
                 }
             }
             best
         };
-        let from_first = grow(&mut (first + 1..last).map(|k| (first, k)));
-        let to_last = grow(&mut (first + 1..last).rev().map(|k| (k, last)));
+        let from_first = grow(first, &mut (first + 1..last));
+        let to_last = grow(last, &mut (first + 1..last).rev());
         let length = |r: &FlatRun| pts[r.first].distance(pts[r.last]);
         [from_first, to_last]
             .into_iter()
@@ -191,12 +193,15 @@ impl FlatPlane {
         first: usize,
         last: usize,
     ) -> Option<FlatRun> {
-        let (a, b) = (self.project(pts[first]), self.project(pts[last]));
-        let chord = b - a;
-        if last == first || chord.length() < MIN_FLAT_RUN {
-            return None;
-        }
-        self.straight(pts, first, last).then(|| FlatRun {
+        self.long_run(pts, plane, first, last)
+            .filter(|_| self.straight(pts, first, last))
+    }
+
+    /// The run from `first` to `last`, straight or not, when it is at least [`MIN_FLAT_RUN`]
+    /// long, its direction that of its chord in the plane.
+    fn long_run(&self, pts: &[DVec3], plane: usize, first: usize, last: usize) -> Option<FlatRun> {
+        let chord = self.project(pts[last]) - self.project(pts[first]);
+        (last != first && chord.length() >= MIN_FLAT_RUN).then(|| FlatRun {
             plane,
             first,
             last,

@@ -532,16 +532,9 @@ mod tests {
         assert_eq!(roughness(&cubic), 0.0);
     }
 
-    /// The greatest curvature of `curve` over its domain (2,001 samples).
+    /// The greatest curvature of `curve` (the fairness metrics' dense sampling).
     fn max_curvature(curve: &NurbsCurve) -> f64 {
-        let (a, b) = curve.domain();
-        (0..=2000)
-            .map(|i| {
-                curve
-                    .curvature_vector(a + (b - a) * f64::from(i) / 2000.0)
-                    .length()
-            })
-            .fold(0.0, f64::max)
+        crate::fair::metrics::fairness_metrics(curve).max_curvature
     }
 
     #[test]

@@ -264,9 +264,15 @@ impl Patch {
         let across =
             (self.eval_v(x + inward * h) * 4.0 - p * 3.0 - self.eval_v(x + inward * (2.0 * h)))
                 / (2.0 * h);
+        self.side_tangent(i, s).cross(across).normalize_or_zero()
+    }
+
+    /// d/ds of side `i` at `s`: central differences of [`Patch::side_point`], one-sided at the
+    /// side's ends.
+    pub(crate) fn side_tangent(&self, i: usize, s: f64) -> DVec3 {
+        let h = DERIV_STEP;
         let (lo, hi) = ((s - h).max(0.0), (s + h).min(1.0));
-        let along = (self.side_point(i, hi) - self.side_point(i, lo)) / (hi - lo);
-        along.cross(across).normalize_or_zero()
+        (self.side_point(i, hi) - self.side_point(i, lo)) / (hi - lo)
     }
 
     /// The boundary curve of side `i` at side parameter `s ∈ [0, 1]` (the designer curve, with
