@@ -154,23 +154,10 @@ fn a_noisy_flat_runs_on_over_points_within_the_noise_and_ends_within_the_toleran
 }
 
 #[test]
-fn no_flat_where_the_run_is_short_curved_or_the_whole_curve() {
+fn no_flat_where_the_run_is_short_or_the_whole_curve() {
     // Shorter than MIN_FLAT_RUN.
     let short = section(0.5 * MIN_FLAT_RUN, 2.0);
     assert!(fair_points(&short, &options(Some(BASE)))
-        .unwrap()
-        .report
-        .flats
-        .is_empty());
-    // In the plane but curved: a quarter circle in z = 0, then up.
-    let mut curved: Vec<DVec3> = (0..40)
-        .map(|i| {
-            let a = std::f64::consts::FRAC_PI_2 * i as f64 / 40.0;
-            DVec3::new(3.0 * a.sin(), 3.0 * (1.0 - a.cos()), 0.0)
-        })
-        .collect();
-    curved.extend((1..40).map(|i| DVec3::new(3.0, 3.0, 0.1 * i as f64)));
-    assert!(fair_points(&curved, &options(Some(BASE)))
         .unwrap()
         .report
         .flats
@@ -402,25 +389,70 @@ fn sheer_deck_edge() -> Vec<DVec3> {
 }
 
 #[test]
-fn a_stretch_on_the_side_that_curves_in_it_keeps_its_straight_end_straight() {
+fn a_stretch_on_the_side_that_curves_in_it_stays_on_it_and_keeps_its_straight_end_straight() {
     let pts = sheer_deck_edge();
     let fit = fair_points(&pts, &options(Some(SIDE))).unwrap();
-    // The whole stretch on the side (x 20..110) is no straight run; its straight end is,
-    // from where the sheer stops rising (within the noise: x = 59) to x = 110.
+    // The whole stretch on the side (x 20..110) is no straight run: its straight end is, from
+    // where the sheer stops rising (within the noise: x = 59) to x = 110, and the rest of it a
+    // run that curves in the plane. The curve leaves the flat at x = 20 and 110 only.
     let ends = &fit.report.flats;
-    assert_eq!(ends.iter().map(|f| f.index).collect::<Vec<_>>(), [59, 110]);
+    assert_eq!(ends.iter().map(|f| f.index).collect::<Vec<_>>(), [20, 110]);
+    assert!(fit.report.corners.is_empty(), "{:?}", fit.report.corners);
     let c = &fit.curve;
     let (a, b) = (ends[0].parameter, ends[1].parameter);
-    assert!(largest(c, (a, b), 400, |p| p.y - 6.0) < 1e-12);
-    assert!(largest(c, (a, b), 400, |p| p.z - 26.0) < 1e-3);
+    assert!(largest(c, (a, b), 4000, |p| p.y - 6.0) < 1e-12);
+    // Straight from x = 59, the sheer followed before it, and smooth where the two meet.
+    // The curve runs along x here: its parameter at x = 59 by bisection.
+    let (mut lo, mut hi) = (a, b);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if c.point(mid).x < pts[59].x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let join = lo;
+    assert!(largest(c, (join, b), 400, |p| p.z - 26.0) < 1e-3);
+    let sheer = |p: DVec3| 26.0 - (60.0 - p.x.clamp(20.0, 60.0)).powi(2) / 1600.0;
+    assert!(largest(c, (a, join), 400, |p| p.z - sheer(p)) <= 0.005);
+    let turn = |t: f64| {
+        let (before, after) = (c.derivs(t - 1e-7).d1, c.derivs(t + 1e-7).d1);
+        before.angle_between(after).to_degrees()
+    };
+    for t in [a, join, b] {
+        assert!(turn(t) < 1e-3, "turns {}° at {t}", turn(t));
+    }
     assert!(fit.report.max_deviation <= 0.005);
-    // Before, with no run at all, the one spline bowed off the side along the straight end.
+    // Before, fitted smooth from x = 20 to the straight end, it bowed off the side.
     let plain = fair_points(&pts, &options(None)).unwrap().curve;
     let (lo, hi) = plain.domain();
     let bow = (0..=4000)
         .map(|i| plain.point(lo + (hi - lo) * i as f64 / 4000.0))
-        .filter(|p| p.x > 61.0 && p.x < 109.0)
+        .filter(|p| p.x > 21.0 && p.x < 109.0)
         .map(|p| (p.y - 6.0).abs())
         .fold(0.0, f64::max);
     assert!(bow > 1e-4, "{bow}");
+}
+
+#[test]
+fn a_quarter_circle_in_the_base_plane_stays_in_it() {
+    // In the plane but curved: a quarter circle in z = 0, then up at a knuckle.
+    let mut curved: Vec<DVec3> = (0..=40)
+        .map(|i| {
+            let a = std::f64::consts::FRAC_PI_2 * i as f64 / 40.0;
+            DVec3::new(3.0 * a.sin(), 3.0 * (1.0 - a.cos()), 0.0)
+        })
+        .collect();
+    curved.extend((1..40).map(|i| DVec3::new(3.0, 3.0, 0.1 * i as f64)));
+    let fit = fair_points(&curved, &options(Some(BASE))).unwrap();
+    assert_eq!(fit.report.corners, [40]);
+    let knuckle = fit.report.corner_parameters[0];
+    let c = &fit.curve;
+    assert!(largest(c, (c.domain().0, knuckle), 4000, |p| p.z) < 1e-12);
+    assert!(
+        largest(c, (c.domain().0, knuckle), 400, |p| p.x.hypot(p.y - 3.0)
+            - 3.0)
+            <= 0.005
+    );
 }

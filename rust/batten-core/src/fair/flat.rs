@@ -55,8 +55,10 @@ pub(crate) struct FlatRun {
     pub first: usize,
     /// Index of the run's last point.
     pub last: usize,
-    /// Unit direction of the run's line, from its first point to its last.
-    pub direction: DVec3,
+    /// Unit direction of the run's line, from its first point to its last; `None` for a run
+    /// that curves in the plane (a deck edge rising with the sheer along the flat of side),
+    /// whose points are moved onto the plane rather than a line.
+    pub direction: Option<DVec3>,
 }
 
 impl FlatPlane {
@@ -122,15 +124,37 @@ impl FlatPlane {
                     last = j;
                 }
             }
-            let run = self
-                .run_between(pts, plane, first, last)
-                .or_else(|| self.straight_end(pts, plane, first, last));
-            if let Some(run) = run {
-                runs.push(run);
+            match self.run_between(pts, plane, first, last) {
+                Some(run) => runs.push(run),
+                None => runs.extend(self.curved(pts, plane, first, last)),
             }
             i = j + 1;
         }
         runs
+    }
+
+    /// The runs of a stretch from `first` to `last` in the plane that curves in it: its
+    /// straight end (`straight_end`) and the rest of it as a run that curves in the plane, or
+    /// the whole stretch as one such run, in order along the points. KVLCC2's deck edge from
+    /// x = 79 m to 131 m, fitted smooth between a plain piece and its straight end, bowed
+    /// 2.3 mm off the flat of side; on the plane its curve stays there.
+    fn curved(&self, pts: &[DVec3], plane: usize, first: usize, last: usize) -> Vec<FlatRun> {
+        let planar = |a: usize, b: usize| {
+            (b > a)
+                .then(|| self.long_run(pts, plane, a, b))
+                .flatten()
+                .map(|r| FlatRun {
+                    direction: None,
+                    ..r
+                })
+        };
+        match self.straight_end(pts, plane, first, last) {
+            Some(s) => [planar(first, s.first), Some(s), planar(s.last, last)]
+                .into_iter()
+                .flatten()
+                .collect(),
+            None => planar(first, last).into_iter().collect(),
+        }
     }
 
     /// Of a stretch from `first` to `last` in the plane that curves in it, the longer of its
@@ -205,7 +229,7 @@ impl FlatPlane {
             plane,
             first,
             last,
-            direction: chord.normalize(),
+            direction: Some(chord.normalize()),
         })
     }
 }
@@ -218,7 +242,9 @@ impl FlatPlane {
 /// between them (KCS's wl_z10.80 dips 6 mm off its flat of side at x = 48–52 m): the piece
 /// between leaves one flat and enters the next with the flat's tangent. A degree-1 fit is a
 /// polyline through its points (no tangent to carry off a flat): none. A degree-2 piece can
-/// take one fixed tangent only: one run, at an end of the points.
+/// take one fixed tangent only: one run, at an end of the points. A run that curves in the
+/// plane needs `degree + 2` points (its own piece, a tangent fixed at each joint); it may end
+/// where a straight run in its plane starts, or start where one ends.
 pub(crate) fn runs_of(planes: &[FlatPlane], pts: &[DVec3], degree: usize) -> Vec<FlatRun> {
     let m = pts.len();
     if degree < 2 || m == 0 {
@@ -232,7 +258,15 @@ pub(crate) fn runs_of(planes: &[FlatPlane], pts: &[DVec3], degree: usize) -> Vec
     all.sort_by_key(|r| (r.first, std::cmp::Reverse(r.last)));
     let mut kept: Vec<FlatRun> = Vec::new();
     for run in all {
+        // A run that curves in the plane needs the points of a smooth piece of its own (with
+        // a tangent fixed at each joint); it may share a joint with a straight run in its plane.
+        if run.direction.is_none() && run.last - run.first < degree + 1 {
+            continue;
+        }
         let before = match kept.last() {
+            Some(prev) if run.first == prev.last => {
+                prev.plane == run.plane && (prev.direction.is_none() != run.direction.is_none())
+            }
             Some(prev) => run.first > prev.last && run.first - prev.last >= degree,
             None => run.first == 0 || run.first >= degree,
         };
@@ -251,12 +285,16 @@ pub(crate) fn runs_of(planes: &[FlatPlane], pts: &[DVec3], degree: usize) -> Vec
 }
 
 impl FlatRun {
-    /// The run's points in `pts` moved onto its line (in the plane), the others as they are.
+    /// The run's points in `pts` moved onto its line in the plane (onto the plane, for a run
+    /// that curves in it), the others as they are.
     pub(crate) fn straighten(&self, pts: &mut [DVec3], plane: &FlatPlane) {
         let a = plane.project(pts[self.first]);
         for p in &mut pts[self.first..=self.last] {
-            let q = plane.project(*p) - a;
-            *p = a + self.direction * q.dot(self.direction);
+            let q = plane.project(*p);
+            *p = match self.direction {
+                Some(d) => a + d * (q - a).dot(d),
+                None => q,
+            };
         }
     }
 

@@ -369,21 +369,51 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     bounds.extend_from_slice(&corners);
     bounds.push(m - 1);
     let count = bounds.len() - 1;
-    // A flat's direction in the frame, fixed at both sides of each of its smooth joints.
-    let at_flat = |index: usize| {
+    // A straight flat's direction in the frame, fixed at both sides of each of its smooth
+    // joints.
+    let at_straight = |index: usize| {
         runs.iter()
-            .find(|r| r.ends_at(index) && smooth_joints.contains(&index))
-            .map(|r| (frame.to_local(r.direction) - frame.to_local(DVec3::ZERO)).normalize())
+            .filter(|r| r.ends_at(index) && smooth_joints.contains(&index))
+            .find_map(|r| r.direction)
+            .map(|d| (frame.to_local(d) - frame.to_local(DVec3::ZERO)).normalize())
     };
-    let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
-    for (i, w) in bounds.windows(2).enumerate() {
+    // The pieces that are runs curving in their plane are fitted first, so that the pieces
+    // beside them take their end tangents.
+    let planar_piece = |w: &[usize]| {
+        runs.iter()
+            .any(|r| r.direction.is_none() && r.first == w[0] && r.last == w[1])
+    };
+    let mut order: Vec<usize> = (0..count).collect();
+    order.sort_by_key(|&i| !planar_piece(&bounds[i..=i + 1]));
+    let mut local_fits: Vec<Option<PieceFit>> = vec![None; count];
+    for i in order {
+        let w = &bounds[i..=i + 1];
         let piece = &fit_local[w[0]..=w[1]];
+        // At a smooth joint: a straight flat's direction, or the end tangent of the fitted
+        // curved flat there (`piece` on the joint's other side).
+        let at_flat = |index: usize, other: Option<usize>| {
+            at_straight(index).or_else(|| {
+                let other = other.filter(|_| smooth_joints.contains(&index))?;
+                let fit = local_fits[other].as_ref()?;
+                let c = &fit.spline.coefs;
+                let d = if other < i {
+                    c[c.len() - 1] - c[c.len() - 2]
+                } else {
+                    c[1] - c[0]
+                };
+                d.try_normalize()
+            })
+        };
         let dirs = Directions {
-            start: if i == 0 { start_dir } else { at_flat(w[0]) },
+            start: if i == 0 {
+                start_dir
+            } else {
+                at_flat(w[0], Some(i - 1))
+            },
             end: if i + 1 == count {
                 end_dir
             } else {
-                at_flat(w[1])
+                at_flat(w[1], Some(i + 1))
             },
         };
         let iters = options.max_parameter_iterations;
@@ -424,6 +454,11 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                 fit_smooth(piece, k, Target::exact(s * share), dirs, iters, None, None)?
             }
         };
+        local_fits[i] = Some(fit);
+    }
+    let mut pieces: Vec<PieceFit> = Vec::with_capacity(count);
+    for (fit, w) in local_fits.into_iter().zip(bounds.windows(2)) {
+        let fit = fit.expect("every piece is fitted");
         pieces.push(frame.piece_to_world(fit, (fit_pts[w[0]], fit_pts[w[1]]))?);
     }
 
@@ -434,11 +469,16 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
     let mut at = 0;
     while at < corners.len() {
         let c = corners[at];
-        match runs
+        let mut ending = runs
             .iter()
-            .find(|r| r.ends_at(c) && smooth_joints.contains(&c))
-        {
-            Some(run) => {
+            .filter(|r| r.ends_at(c) && smooth_joints.contains(&c));
+        match (ending.next(), ending.next()) {
+            // Where a curved run meets a straight one, the curve stays on the flat.
+            (Some(_), Some(_)) => {
+                corners.remove(at);
+                corner_parameters.remove(at);
+            }
+            (Some(run), None) => {
                 corners.remove(at);
                 flat_ends.push(FlatEnd {
                     plane: run.plane,
@@ -447,7 +487,7 @@ pub fn fair_points(points: &[DVec3], options: &FairOptions) -> Result<FairedCurv
                     point: fit_pts[c],
                 });
             }
-            None => at += 1,
+            (None, _) => at += 1,
         }
     }
     let curve = NurbsCurve::try_new(k, knots.clone(), coefs, None)?;
