@@ -35,7 +35,8 @@ def best(f) -> float:
 def bench(name: str, coll, draft: float, lpp=None, fp=None) -> None:
     curves = api.read_curves(coll)
     t = time.perf_counter()
-    _arrays, _report, model = build_hull_model(curves, api.DEFAULT_TOLERANCE, None, name)
+    planes = api.tangent_planes(coll)
+    _arrays, _report, model = build_hull_model(curves, api.DEFAULT_TOLERANCE, None, name, planes)
     built = time.perf_counter() - t
     t = time.perf_counter()
     cells = model.cells

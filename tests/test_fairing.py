@@ -147,7 +147,9 @@ def test_real_ship_sections_import_within_5_mm(ship):
         sys.path.insert(0, str(ROOT / "blender_scripts"))
         from measure_ships import clipped_triangles, surface_distance
 
-        (positions, corners, sizes, _), _ = build_surface(api.read_curves(coll), resolution=32)
+        (positions, corners, sizes, _), _ = build_surface(
+            api.read_curves(coll), resolution=32, tangent_planes=api.tangent_planes(coll)
+        )
         by_name = {c["name"]: c["points"] for c in data}
         points = np.array([by_name[name][k] for name, ks in dropped.items() for k in ks])
         far = surface_distance(points, clipped_triangles(positions, corners, sizes, np.inf)).max()
@@ -245,7 +247,9 @@ def test_kvlcc2_builds_closed_at_the_defaults_with_its_volume():
     # loop while node normals were oriented by the sign of their dot product (2 holes).
     holes = [w for w in report["warnings"] if w["kind"] == "hole"]
     assert not holes, [w["message"] for w in holes]
-    (positions, corners, sizes, _), _ = build_surface(api.read_curves(coll))
+    (positions, corners, sizes, _), _ = build_surface(
+        api.read_curves(coll), tangent_planes=api.tangent_planes(coll)
+    )
     fig = mesh_figures(clipped_triangles(positions, corners, sizes, ref["T"]))
     c = ref["computed"]
     volume = 100 * (fig["volume"] / c["displaced_volume"] - 1)

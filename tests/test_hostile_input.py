@@ -385,3 +385,27 @@ def test_points_too_far_for_squared_distances_are_refused():
     far = [[0, 0, 0], [0, -4.5e154, 0], [0, 0, 0], [0, -4.5e154, 0], [0, 0, 0]]
     with pytest.raises(bn.FairError, match="curve 'st': point 1 is more than 1e150 m from the origin"):
         bn.fair_points("st", far, tolerance=1e148, degree=2, model_tolerance=1e-3)
+
+
+@pytest.mark.parametrize(
+    ("planes", "says"),
+    [
+        ([[0.0, 0.0, 0.0, 1.0]], "non-zero normal"),
+        ([[0.0, 1.0, 0.0]], "four finite numbers"),
+        ([[0.0, 1.0, 0.0, float("nan")]], "four finite numbers"),
+        (3.0, "must be a list of"),
+    ],
+)
+def test_a_bad_tangent_plane_on_the_collection_is_an_invalid_argument_and_builds_nothing(
+    examples_dir, planes, says
+):
+    coll = api.load_network(examples_dir / "wigley.json", collection="bad planes")
+    coll[api.TANGENT_PLANES_PROPERTY] = planes
+    with pytest.raises(
+        api.InvalidArgumentError, match=f"collection 'bad planes': batten_tangent_planes.*{says}"
+    ):
+        api.build(coll)
+    assert f"{coll.name} surface" not in bpy.data.objects, "nothing drawn"
+    # The binding refuses it too, as an invalid argument, not a crash.
+    with pytest.raises(bn.BattenError):
+        bn.build_surface(api.read_curves(coll), tangent_planes=[[0.0, 0.0, 0.0, 1.0]])

@@ -30,7 +30,9 @@ def _kept_model(coll):
 def _fresh(coll):
     """The model of a full build of the collection's curves now."""
     curves = api.read_curves(coll)
-    return build_hull_model(curves, api.DEFAULT_TOLERANCE, DEFAULT_RESOLUTION, coll.name)[2]
+    return build_hull_model(
+        curves, api.DEFAULT_TOLERANCE, DEFAULT_RESOLUTION, coll.name, api.tangent_planes(coll)
+    )[2]
 
 
 def test_drags_keep_the_other_faces_cells_and_give_a_full_build_s_figures(kcs):

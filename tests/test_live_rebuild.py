@@ -25,7 +25,9 @@ def _positions(obj) -> np.ndarray:
 
 def _full(coll):
     """A full build of the collection's curves now: mesh arrays and report."""
-    return build_surface(api.read_curves(coll), api.DEFAULT_TOLERANCE, RESOLUTION, coll.name)
+    return build_surface(
+        api.read_curves(coll), api.DEFAULT_TOLERANCE, RESOLUTION, coll.name, api.tangent_planes(coll)
+    )
 
 
 @pytest.fixture

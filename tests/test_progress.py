@@ -227,7 +227,7 @@ def test_the_core_stops_fitting_faces_when_told(call):
     # The export's fitting reports each face from the core's workers and stops starting faces
     # once the callback says so: far fewer faces fitted than the surface has.
     coll = api.load_network(EXAMPLES / "wigley_lines.json")
-    model = batten_native.build_hull_model(api.read_curves(coll))[2]
+    model = batten_native.build_hull_model(api.read_curves(coll), tangent_planes=api.tangent_planes(coll))[2]
     args = {
         "cad_text": (model, "iges", 1e-4, False, "hull", "hull.igs", "", (2026, 1, 1, 0, 0, 0)),
         "cad_faces": (model, 1e-4, False),

@@ -1243,6 +1243,11 @@ def _import_sections_steps(path, *, tolerance, degree, corner_angle_deg, model_t
         coll[FP_PROPERTY] = datums["lpp"]
     if "draft" in datums:
         coll[DESIGN_DRAFT_PROPERTY] = datums["draft"]
+    # The surface is tangent to the flats the curves were fitted to run straight in.
+    planes = [[0.0, 1.0, 0.0, side], [0.0, 1.0, 0.0, -side]] if side is not None else []
+    planes += [[0.0, 0.0, 1.0, base]] if base is not None else []
+    if planes:
+        coll[TANGENT_PLANES_PROPERTY] = planes
     return coll, reports
 
 
@@ -1352,6 +1357,49 @@ def _surface_object(name: str):
     return None
 
 
+#: Custom property of a hull collection: the planes its surface is tangent to wherever its
+#: curves run in them, each ``[nx, ny, nz, offset]`` for the plane ``n · p = offset`` — the flat
+#: of side (either side of the centreplane) and the flat of bottom that
+#: :func:`import_sections` finds in the data, or set by hand.
+TANGENT_PLANES_PROPERTY = "batten_tangent_planes"
+
+
+def tangent_planes(source) -> list[list[float]]:
+    """The planes the surface of ``source`` is tangent to where its curves run in them (see
+    :data:`TANGENT_PLANES_PROPERTY`): a collection's own, or for an object or a list of
+    objects the first collection holding one that has them; ``[]`` when none has."""
+    if isinstance(source, bpy.types.Collection):
+        holders = [source]
+    elif isinstance(source, bpy.types.Object):
+        holders = list(source.users_collection)
+    elif isinstance(source, Iterable) and not isinstance(source, str | bytes):
+        holders = [c for o in source if isinstance(o, bpy.types.Object) for c in o.users_collection]
+    else:
+        holders = []
+    for holder in holders:
+        planes = holder.get(TANGENT_PLANES_PROPERTY)
+        if planes is not None:
+            return _checked_planes(planes, holder.name)
+    return []
+
+
+def _checked_planes(planes, holder: str) -> list[list[float]]:
+    """``planes`` as lists of four floats; InvalidArgumentError naming ``holder`` (a collection)
+    when one is not four finite numbers with a non-zero normal."""
+    where = f"collection '{holder}': {TANGENT_PLANES_PROPERTY}"
+    try:
+        out = [[float(v) for v in plane] for plane in planes]
+    except (TypeError, ValueError) as e:
+        raise InvalidArgumentError(f"{where} must be a list of [nx, ny, nz, offset]: {e}") from e
+    for plane in out:
+        if len(plane) != 4 or not all(math.isfinite(v) for v in plane) or not any(plane[:3]):
+            raise InvalidArgumentError(
+                f"{where} holds {plane}: a plane is [nx, ny, nz, offset], four finite numbers "
+                "with a non-zero normal"
+            )
+    return out
+
+
 def build(
     source,
     *,
@@ -1394,6 +1442,10 @@ def build(
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the
     patch error as ``{"kind", "message"}``, else None).
 
+    Where a curve runs in one of the source's tangent planes (:func:`tangent_planes`: the flat
+    of side and bottom an import found), the faces along it take that plane as their tangent
+    plane, so a flat of side stays flat between the curves that outline it.
+
     ``live=True`` (Live mode, scripts that move curves in a loop) keeps the hull between calls
     and rebuilds it incrementally: when the curves' connectivity is unchanged only the faces
     the moved curves reach are built again and only the mesh's vertex positions are
@@ -1406,11 +1458,12 @@ def build(
     curves, object_of = _read_source(source)
     name = _source_name(source)
     with errors_named_by_object(object_of):
+        planes = tangent_planes(source)
         if live:
-            arrays, report, model = hull_models.live_build(name, curves, tolerance, resolution)
+            arrays, report, model = hull_models.live_build(name, curves, tolerance, resolution, planes)
         else:
-            arrays, report, model = build_hull_model(curves, tolerance, resolution, name)
-            hull_models.keep(name, curves, tolerance, resolution, model)
+            arrays, report, model = build_hull_model(curves, tolerance, resolution, name, planes)
+            hull_models.keep(name, curves, tolerance, resolution, model, tangent_planes=planes)
     positions, corners, sizes, patch = arrays
     obj = _surface_object(name)
     moved_only = (
@@ -1619,7 +1672,9 @@ def _hull_model(source, *, measured: bool = True):
     report is not yet measured will do."""
     curves, object_of = _read_source(source)
     with errors_named_by_object(object_of):
-        return hull_models.model_for(_source_name(source), curves, measured=measured)
+        return hull_models.model_for(
+            _source_name(source), curves, measured=measured, tangent_planes=tangent_planes(source)
+        )
 
 
 def _datums(source, lpp, fp):

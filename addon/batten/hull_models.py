@@ -28,6 +28,9 @@ class _Kept(NamedTuple):
     #: False for a live rebuild's surface whose report (warnings, knuckle edges) is not yet
     #: measured: its patches and mesh are exact, its report is the last measured one.
     measured: bool = True
+    #: The planes the surface is tangent to where curves run in them, each
+    #: ``(nx, ny, nz, offset)`` (``build_hull_model``'s ``tangent_planes``).
+    tangent_planes: tuple = ()
 
 
 _kept: dict[str, _Kept] = {}
@@ -37,45 +40,69 @@ _kept: dict[str, _Kept] = {}
 _live: dict[str, LiveHull] = {}
 
 
-def keep(name: str, curves: list, tolerance: float, resolution: int, model, measured: bool = True) -> None:
+def keep(
+    name: str,
+    curves: list,
+    tolerance: float,
+    resolution: int,
+    model,
+    measured: bool = True,
+    tangent_planes=(),
+) -> None:
     """Keep ``model``, built from ``curves`` with these settings, as ``name``'s surface;
     ``measured`` False when its report waits for :func:`settle`."""
-    _kept[name] = _Kept(curves, tolerance, resolution, model, measured)
+    _kept[name] = _Kept(curves, tolerance, resolution, model, measured, _planes(tangent_planes))
 
 
-def model_for(name: str, curves: list, *, measured: bool = True):
+def _planes(tangent_planes) -> tuple:
+    """The tangent planes as a tuple of 4-tuples of floats (comparable, hashable)."""
+    return tuple(tuple(float(v) for v in p) for p in tangent_planes)
+
+
+def model_for(name: str, curves: list, *, measured: bool = True, tangent_planes=None):
     """The surface of ``curves`` under ``name``: the kept one when the curves are those it was
-    built from, else built now with the last build's settings (or the defaults) and kept.
+    built from (and, when ``tangent_planes`` is given, with those planes), else built now with
+    the last build's settings (or the defaults; ``tangent_planes`` when given) and kept.
     ``measured`` asks for a surface whose report is measured (sections and exports read its
     knuckle edges and warnings): a live rebuild's is measured first (:func:`settle`)."""
     kept = _kept.get(name)
+    planes = _planes(tangent_planes) if tangent_planes is not None else None
     # The curves compared as they are (their names, roles and geometry), not by writing their
     # JSON: a live drag's figures pay microseconds for this, not milliseconds.
-    if kept is not None and same_curves(kept.curves, curves):
+    if (
+        kept is not None
+        and same_curves(kept.curves, curves)
+        and (planes is None or planes == kept.tangent_planes)
+    ):
         if measured and not kept.measured:
             settle(name)
             return _kept[name].model
         return kept.model
     tolerance = kept_tolerance(name)
     resolution = kept.resolution if kept else DEFAULT_RESOLUTION
-    _arrays, _report, model = build_hull_model(curves, tolerance, resolution, name)
-    _kept[name] = _Kept(curves, tolerance, resolution, model)
+    if planes is None:
+        planes = kept.tangent_planes if kept else ()
+    _arrays, _report, model = build_hull_model(curves, tolerance, resolution, name, planes)
+    _kept[name] = _Kept(curves, tolerance, resolution, model, True, planes)
     return model
 
 
-def live_build(name: str, curves: list, tolerance: float, resolution: int):
+def live_build(name: str, curves: list, tolerance: float, resolution: int, tangent_planes=()):
     """``(arrays, report, model)`` of ``curves`` from ``name``'s live hull: rebuilt when it
     was built with these settings (incrementally unless the curves' names, roles or
     connectivity changed, which its report says), else built anew and kept. The model is
     kept for hydrostatics as by :func:`keep`."""
     live = _live.get(name)
-    if live is not None and live.tolerance == tolerance and live.resolution == resolution:
+    planes = _planes(tangent_planes)
+    kept = _kept.get(name)
+    same_planes = kept is not None and kept.tangent_planes == planes
+    if live is not None and live.tolerance == tolerance and live.resolution == resolution and same_planes:
         arrays, report, model = live.rebuild(curves)
     else:
-        live = LiveHull(curves, tolerance, resolution, name)
+        live = LiveHull(curves, tolerance, resolution, name, planes)
         arrays, report, model = live.result()
         _live[name] = live
-    keep(name, curves, tolerance, resolution, model, measured=report["measured"])
+    keep(name, curves, tolerance, resolution, model, measured=report["measured"], tangent_planes=planes)
     return arrays, report, model
 
 

@@ -72,7 +72,8 @@ pub use hydro_transform::{
     MIN_LENGTH_FRACTION, VOLUME_TOLERANCE,
 };
 pub use network::{
-    Incidence, Junction, Junctions, Network, NetworkCurve, Role, NETWORK_FORMAT, NETWORK_VERSION,
+    Incidence, Junction, Junctions, Network, NetworkCurve, Role, TangentPlane, NETWORK_FORMAT,
+    NETWORK_VERSION,
 };
 pub use patch::{
     gram_schmidt_cross_tangent, tessellate_patches, Domain, EdgeNormal, FaceBoundary, Patch,

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use batten_core::{
     build_hull, tessellate_patches, HullOptions, LiveHull, Network, NetworkCurve, NurbsCurve,
-    PatchKind, Rebuild,
+    PatchKind, Rebuild, TangentPlane,
 };
 use glam::DVec3;
 
@@ -334,4 +334,28 @@ fn a_drag_beside_side_blended_faces_matches_a_full_build() {
     );
     assert!(blended(&live) > 0, "still side-blended faces");
     assert_same_as_full(&mut live, &next);
+}
+
+/// With a tangent plane (the barge's flat of side: its curves there are exact, so the plane
+/// only confirms their normal fields), a drag of a station in the end ends in a full build's
+/// surface, and the same curves without the plane rebuild in full, saying why.
+#[test]
+fn a_hull_with_a_tangent_plane_rebuilds_as_a_full_build_does() {
+    let side = vec![TangentPlane::try_new(DVec3::Y, 10.0).expect("a plane")];
+    let bare = load("pmb_barge.json");
+    let net = bare.clone().with_tangent_planes(side.clone());
+    let mut live = LiveHull::new(&net, &options()).expect("builds");
+    let st = curve(&net, "st10");
+    let next = moved(&net, st, 2, DVec3::new(0.0, 4e-5, 0.0)).with_tangent_planes(side);
+    match live.rebuild(&next).expect("rebuilds") {
+        Rebuild::Incremental { .. } => {}
+        other => panic!("expected an incremental rebuild, got {other:?}"),
+    }
+    assert_same_as_full(&mut live, &next);
+    let no_plane = moved(&bare, st, 2, DVec3::new(0.0, 4e-5, 0.0));
+    match live.rebuild(&no_plane).expect("rebuilds") {
+        Rebuild::Full { reason: Some(why) } => assert!(why.contains("tangent"), "{why}"),
+        other => panic!("expected a full rebuild, got {other:?}"),
+    }
+    assert_same_as_full(&mut live, &no_plane);
 }

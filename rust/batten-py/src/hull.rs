@@ -1,8 +1,10 @@
 //! The hull surface: network → topology → patches → one welded mesh, as numpy arrays.
 
 use batten_core::{
-    build_hull, HullOptions, HullSurface, Network, Warning, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
+    build_hull, HullOptions, HullSurface, Network, TangentPlane, Warning, DEFAULT_RESOLUTION,
+    DEFAULT_TOLERANCE,
 };
+use glam::DVec3;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -73,30 +75,32 @@ fn int32_indices(indices: &[u32], what: &str) -> PyResult<Vec<i32>> {
 /// of [x, y, z] along the edge). `name` (the collection's) names the network in errors. The
 /// GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None, tangent_planes=None))]
 pub(crate) fn build_surface<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,
     resolution: Option<&Bound<'py, PyAny>>,
     name: Option<&Bound<'py, PyAny>>,
+    tangent_planes: Option<Vec<[f64; 4]>>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>)> {
-    let (arrays, report, _) = build(py, curves, tolerance, resolution, name)?;
+    let (arrays, report, _) = build(py, curves, tolerance, resolution, name, tangent_planes)?;
     Ok((arrays, report))
 }
 
 /// As [`build_surface`], with a third result: the [`HullModel`] of the surface's patches, for
 /// hydrostatics and sections on the exact surface. The GIL is released.
 #[pyfunction]
-#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None))]
+#[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None, tangent_planes=None))]
 pub(crate) fn build_hull_model<'py>(
     py: Python<'py>,
     curves: Vec<PyRef<'py, Curve>>,
     tolerance: f64,
     resolution: Option<&Bound<'py, PyAny>>,
     name: Option<&Bound<'py, PyAny>>,
+    tangent_planes: Option<Vec<[f64; 4]>>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullModel)> {
-    let (arrays, report, hull) = build(py, curves, tolerance, resolution, name)?;
+    let (arrays, report, hull) = build(py, curves, tolerance, resolution, name, tangent_planes)?;
     Ok((arrays, report, HullModel::new(hull)))
 }
 
@@ -107,8 +111,10 @@ fn build<'py>(
     tolerance: f64,
     resolution: Option<&Bound<'py, PyAny>>,
     name: Option<&Bound<'py, PyAny>>,
+    tangent_planes: Option<Vec<[f64; 4]>>,
 ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, HullSurface)> {
-    let (network, options) = network_and_options(&curves, tolerance, resolution, name)?;
+    let (network, options) =
+        network_and_options(&curves, tolerance, resolution, name, tangent_planes)?;
     let hull = py.detach(|| {
         guard("building the hull surface", || {
             build_hull(&network, &options).map_err(core_err)
@@ -118,12 +124,15 @@ fn build<'py>(
     Ok((arrays, d, hull))
 }
 
-/// The parse of `build`'s arguments: the options and the network of `curves`.
+/// The parse of `build`'s arguments: the options and the network of `curves`, with the
+/// planes its surface is tangent to where curves run in them (`tangent_planes`: each
+/// `[nx, ny, nz, offset]` for the plane `n · p = offset`).
 pub(crate) fn network_and_options(
     curves: &[PyRef<'_, Curve>],
     tolerance: f64,
     resolution: Option<&Bound<'_, PyAny>>,
     name: Option<&Bound<'_, PyAny>>,
+    tangent_planes: Option<Vec<[f64; 4]>>,
 ) -> PyResult<(Network, HullOptions)> {
     let resolution =
         optional_whole(resolution, || "resolution".to_owned())?.unwrap_or(DEFAULT_RESOLUTION);
@@ -132,7 +141,13 @@ pub(crate) fn network_and_options(
         Some(n) => text(n, || "the network name".to_owned())?,
         None => String::new(),
     };
-    let network = network_of(&name, curves)?;
+    let planes = tangent_planes
+        .unwrap_or_default()
+        .into_iter()
+        .map(|[x, y, z, offset]| TangentPlane::try_new(DVec3::new(x, y, z), offset))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(core_err)?;
+    let network = network_of(&name, curves)?.with_tangent_planes(planes);
     Ok((network, options))
 }
 

@@ -77,15 +77,17 @@ impl LiveHull {
 impl LiveHull {
     /// Build `curves` in full (as `build_hull_model`, whose errors it raises).
     #[new]
-    #[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None))]
+    #[pyo3(signature = (curves, tolerance=DEFAULT_TOLERANCE, resolution=None, name=None, tangent_planes=None))]
     fn new(
         py: Python<'_>,
         curves: Vec<PyRef<'_, Curve>>,
         tolerance: f64,
         resolution: Option<&Bound<'_, PyAny>>,
         name: Option<&Bound<'_, PyAny>>,
+        tangent_planes: Option<Vec<[f64; 4]>>,
     ) -> PyResult<LiveHull> {
-        let (network, options) = network_and_options(&curves, tolerance, resolution, name)?;
+        let (network, options) =
+            network_and_options(&curves, tolerance, resolution, name, tangent_planes)?;
         let inner = py.detach(|| {
             guard("building the hull surface", || {
                 CoreLiveHull::new(&network, &options).map_err(core_err)
@@ -104,14 +106,17 @@ impl LiveHull {
         self.handed_out(py, Some(&[]))
     }
 
-    /// Rebuild for `curves` (the same curves, moved; names and order as built) and return
-    /// `result()`. On an error nothing changes. The GIL is released.
+    /// Rebuild for `curves` (the same curves, moved; names and order as built; the tangent
+    /// planes those it was built with) and return `result()`. On an error nothing changes.
+    /// The GIL is released.
     fn rebuild<'py>(
         &mut self,
         py: Python<'py>,
         curves: Vec<PyRef<'py, Curve>>,
     ) -> PyResult<(MeshArrays<'py>, Bound<'py, PyDict>, Py<HullModel>)> {
-        let network = network_of(&self.inner.network().name, &curves)?;
+        let built = self.inner.network();
+        let network =
+            network_of(&built.name, &curves)?.with_tangent_planes(built.tangent_planes().to_vec());
         let inner = &mut self.inner;
         py.detach(|| {
             guard("rebuilding the hull surface", || {

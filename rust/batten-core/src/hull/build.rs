@@ -7,6 +7,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::edges::FaceEdges;
+use super::flats::held_on_planes;
 use super::folds::{face_folds, face_mesh_folds, in_plane_folds, MeshFolds, FOLD_ANGLE_DEGREES};
 use super::knuckles::{corner_points, curve_corner_points, knuckle_edges, Knuckle};
 use super::patched::{LayoutSegment, PatchLayout, PatchedFace};
@@ -21,6 +22,7 @@ use crate::patch::{
     PatchOptions, PatchWarning, Side, SideParam, SideRibbon, SurfaceMesh, Weld, CUSP_DEGREES,
     MAX_SIDES,
 };
+use crate::tolerance::Tolerance;
 use crate::topo::{TopoFace, Topology};
 
 /// A face described for the patch module, and where each of its edges went.
@@ -62,14 +64,6 @@ fn plan_face(
     let mut ribbons = Vec::with_capacity(n_sides);
     let mut layout = Vec::with_capacity(n_sides);
     let mut smooth = Vec::with_capacity(n_sides);
-    let shared_by_two = |k: usize| {
-        topology
-            .faces
-            .iter()
-            .filter(|f| f.edges.iter().any(|e| e.index() == k))
-            .count()
-            == 2
-    };
     for side in &face.sides {
         let mut segments = Vec::with_capacity(side.edges.len());
         let mut normals = Vec::with_capacity(side.edges.len());
@@ -102,7 +96,7 @@ fn plan_face(
         smooth.push(
             side.edges
                 .iter()
-                .all(|e| knuckle[e.index()].is_none() && shared_by_two(e.index())),
+                .all(|e| knuckle[e.index()].is_none() && shared_by_two(topology, e.index())),
         );
         sides.push(Side::new(segments));
         ribbons.push(SideRibbon { segments: normals });
@@ -247,11 +241,24 @@ fn faced_topology(network: &Network, options: &HullOptions) -> Result<Topology, 
     Ok(topology)
 }
 
+/// Whether edge `k` bounds two faces (an inner edge, not the surface's boundary).
+fn shared_by_two(topology: &Topology, k: usize) -> bool {
+    topology
+        .faces
+        .iter()
+        .filter(|f| f.edges.iter().any(|e| e.index() == k))
+        .count()
+        == 2
+}
+
 /// The normal field of edge `k` (none for a knuckle or a region-less edge), or the warning
-/// that its crossing curves gave none.
+/// that its crossing curves gave none. An inner edge's field is held at the normal of each of
+/// the network's tangent planes where its curve runs in it (`flats`); a boundary edge's is
+/// not, as a surface that ends on a plane need not be tangent to it (a V-bottom's keel).
 fn edge_normal(
     k: usize,
     network: &Network,
+    tolerance: Tolerance,
     topology: &Topology,
     edges: &FaceEdges,
     knuckle: &[Option<Knuckle>],
@@ -260,7 +267,16 @@ fn edge_normal(
         return (None, None);
     }
     match shared_normal(k, topology, edges, knuckle) {
-        Ok(normal) => (normal, None),
+        Ok(normal) => {
+            let planes = network.tangent_planes();
+            let held = normal.map(|n| match &edges.info[k] {
+                Some(info) if !planes.is_empty() && shared_by_two(topology, k) => {
+                    held_on_planes(n, &info.segment, planes, tolerance.get())
+                }
+                _ => n,
+            });
+            (held, None)
+        }
         Err(error) => (
             None,
             Some(no_ribbon_warning(network, topology, k, error.into())),
@@ -809,7 +825,7 @@ impl Stages {
         let knuckle = knuckle_edges(network, &topology, &edges, &corners, near_miss);
         let (shared, edge_warnings): (Vec<_>, Vec<_>) = (0..topology.brep.edges.len())
             .into_par_iter()
-            .map(|k| edge_normal(k, network, &topology, &edges, &knuckle))
+            .map(|k| edge_normal(k, network, options.tolerance, &topology, &edges, &knuckle))
             .unzip();
         let mut stages = Stages {
             topology,
@@ -839,6 +855,11 @@ impl Stages {
         options: &HullOptions,
     ) -> Result<Result<(Stages, usize), String>, Error> {
         let (old, new) = (before.curves(), network.curves());
+        if before.tangent_planes() != network.tangent_planes() {
+            return Ok(Err(
+                "the planes the surface is tangent to changed".to_string()
+            ));
+        }
         if old.len() != new.len()
             || old
                 .iter()
@@ -934,7 +955,7 @@ impl Stages {
             .into_par_iter()
             .map(|k| {
                 if dirty_normal[k] {
-                    edge_normal(k, network, &topology, &edges, &knuckle)
+                    edge_normal(k, network, options.tolerance, &topology, &edges, &knuckle)
                 } else {
                     (self.shared[k].clone(), self.edge_warnings[k].clone())
                 }

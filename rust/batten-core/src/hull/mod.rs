@@ -24,6 +24,7 @@
 mod build;
 mod curvature;
 mod edges;
+mod flats;
 mod folds;
 mod holes;
 mod knuckles;

@@ -5,6 +5,7 @@ mod approach;
 mod format;
 mod nodes;
 
+use glam::DVec3;
 use std::collections::HashSet;
 
 use serde::{Deserialize, Serialize};
@@ -97,12 +98,50 @@ pub struct NetworkCurve {
     pub curve: NurbsCurve,
 }
 
-/// A hull's curve network: named curves with roles, in the order they were given.
+/// A plane the hull surface is tangent to wherever a curve of its network runs in it: the
+/// flat of side (the greatest breadth) or the flat of bottom (the base plane). A smooth
+/// surface on one side of a plane that touches it along a curve is tangent to it there, so
+/// the faces along such a run take the plane as their tangent plane (the seed 002 §5 tangent
+/// attribute of the flat of side and bottom curves, given here for the whole plane).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentPlane {
+    /// Unit normal of the plane.
+    pub normal: DVec3,
+    /// The plane is `normal · p = offset`.
+    pub offset: f64,
+}
+
+impl TangentPlane {
+    /// The plane `normal · p = offset` with its normal made unit; [`Error::InvalidInput`]
+    /// for a zero or non-finite normal or a non-finite offset.
+    pub fn try_new(normal: DVec3, offset: f64) -> Result<TangentPlane, Error> {
+        let length = normal.length();
+        if !(normal.is_finite() && length > 0.0 && length.is_finite() && offset.is_finite()) {
+            return Err(Error::InvalidInput(format!(
+                "a tangent plane needs a non-zero finite normal and a finite offset, not \
+                 normal {normal} and offset {offset}"
+            )));
+        }
+        Ok(TangentPlane {
+            normal: normal / length,
+            offset: offset / length,
+        })
+    }
+
+    /// Signed distance of `p` from the plane, along its normal.
+    pub fn distance(&self, p: DVec3) -> f64 {
+        self.normal.dot(p) - self.offset
+    }
+}
+
+/// A hull's curve network: named curves with roles, in the order they were given, and the
+/// planes the surface is tangent to where curves run in them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Network {
     /// The network's name (the collection or file it came from).
     pub name: String,
     curves: Vec<NetworkCurve>,
+    tangent_planes: Vec<TangentPlane>,
 }
 
 impl Network {
@@ -120,12 +159,25 @@ impl Network {
         Ok(Network {
             name: name.into(),
             curves,
+            tangent_planes: Vec::new(),
         })
+    }
+
+    /// The same network with `planes` as the planes its surface is tangent to where its
+    /// curves run in them (see [`TangentPlane`]; none by default).
+    pub fn with_tangent_planes(mut self, planes: Vec<TangentPlane>) -> Network {
+        self.tangent_planes = planes;
+        self
     }
 
     /// The curves, in order.
     pub fn curves(&self) -> &[NetworkCurve] {
         &self.curves
+    }
+
+    /// The planes the surface is tangent to where curves run in them.
+    pub fn tangent_planes(&self) -> &[TangentPlane] {
+        &self.tangent_planes
     }
 
     /// Check every curve is long enough to matter at this tolerance: a curve shorter than the

@@ -337,6 +337,50 @@ impl EdgeNormal {
         }
     }
 
+    /// The field held at `normal` (either sign: each node's own) over the parameter
+    /// intervals `held` (sorted, disjoint): where the edge's curve runs in a plane the surface
+    /// is tangent to (the hull's flat of side or bottom, at its greatest breadth or lowest
+    /// point: a smooth surface touching such a plane along a curve is tangent to it there).
+    /// The nodes inside an interval take the plane's normal, each interval's ends become
+    /// nodes too, and all of those have zero slope, so the blend is exactly the plane's normal
+    /// over the interval and joins the nodes outside it smoothly.
+    pub(crate) fn held(&self, held: &[(f64, f64)], normal: DVec3) -> EdgeNormal {
+        let Some(normal) = normal.try_normalize() else {
+            return self.clone();
+        };
+        let inside = |t: f64| held.iter().any(|&(a, b)| a <= t && t <= b);
+        let mut keys: Vec<(f64, DVec3, DVec3)> = self
+            .ts
+            .iter()
+            .zip(&self.normals)
+            .zip(&self.slopes)
+            .map(|((&t, &n), &d)| (t, n, d))
+            .collect();
+        for &(a, b) in held {
+            for t in [a, b] {
+                if !keys.iter().any(|k| k.0 == t) {
+                    keys.push((t, self.normal(t), DVec3::ZERO));
+                }
+            }
+        }
+        keys.sort_by(|x, y| x.0.total_cmp(&y.0));
+        for key in &mut keys {
+            if inside(key.0) {
+                key.1 = if key.1.dot(normal) < 0.0 {
+                    -normal
+                } else {
+                    normal
+                };
+                key.2 = DVec3::ZERO;
+            }
+        }
+        EdgeNormal {
+            ts: keys.iter().map(|k| k.0).collect(),
+            normals: keys.iter().map(|k| k.1).collect(),
+            slopes: keys.iter().map(|k| k.2).collect(),
+        }
+    }
+
     /// The unit normal at curve parameter `t` (not yet made perpendicular to the curve): the
     /// node normals blended by a cubic Hermite with three-point slopes.
     #[inline]

@@ -1,6 +1,6 @@
 """Type stubs of the compiled module batten_native._native."""
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Final, final
 
 import numpy as np
@@ -292,6 +292,7 @@ def build_hull_model(
     tolerance: float = ...,  # DEFAULT_TOLERANCE
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
     name: str | None = None,
+    tangent_planes: Sequence[Sequence[float]] | None = None,  # each [nx, ny, nz, offset]
 ) -> tuple[
     tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict, HullModel
 ]: ...
@@ -319,6 +320,7 @@ def build_surface(
     tolerance: float = ...,  # DEFAULT_TOLERANCE
     resolution: int | None = None,  # None: DEFAULT_RESOLUTION
     name: str | None = None,
+    tangent_planes: Sequence[Sequence[float]] | None = None,  # each [nx, ny, nz, offset]
 ) -> tuple[tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]], dict]: ...
 
 _MeshArrays = tuple[_F64, npt.NDArray[np.int32], npt.NDArray[np.int32], npt.NDArray[np.int32]]
@@ -333,6 +335,7 @@ class LiveHull:
         tolerance: float = ...,  # DEFAULT_TOLERANCE
         resolution: int | None = None,  # None: DEFAULT_RESOLUTION
         name: str | None = None,
+        tangent_planes: Sequence[Sequence[float]] | None = None,  # each [nx, ny, nz, offset]
     ) -> LiveHull: ...
     def result(self) -> tuple[_MeshArrays, dict, HullModel]: ...
     def rebuild(self, curves: list[Curve]) -> tuple[_MeshArrays, dict, HullModel]: ...
