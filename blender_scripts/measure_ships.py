@@ -134,15 +134,45 @@ def surface_distance(points: np.ndarray, tris: np.ndarray) -> np.ndarray:
     return best
 
 
-#: A data point lies on the flat of side (bottom) when it is within this (m) of half the
-#: breadth (of the baseline); a mesh vertex is in the flat when its nearest data points all are.
+#: A data point lies on the flat of side (bottom) when it is within this (m) of the data's own
+#: side (base) plane, the one the import finds (``flat_of_bottom.side_plane``/``base_plane``:
+#: KCS's side is at |y| = 16.1003 m, not the reference's B/2 = 16.1 m).
 FLAT = 1e-3
+#: The data near the plane (m) that the flat region is drawn between.
+FLAT_NEAR = 1.0
+#: A mesh vertex farther than this (m) from the plane is not on the flat, whatever the data say.
+FLAT_VERTEX_NEAR = 0.05
 FLAT_NEIGHBOURS = 6
 
 
 def flatness(points: np.ndarray, positions: np.ndarray, axis: int, value: float) -> float:
-    """Largest distance (m) from the plane ``x[axis] = value`` of the mesh vertices in the flat
-    the data show there (module constants), 0 when there is none."""
+    """Largest distance (m) from the plane ``x[axis] = value`` of the mesh vertices where the
+    data are flat, 0 when they are nowhere: the data near the plane are triangulated in it
+    (Delaunay), and a vertex is on the flat when the triangle it falls in has all three corners
+    flat (module constants) — the region the data outline as flat, where they stay on the plane
+    between their points as well as at them."""
+    from scipy.spatial import Delaunay, QhullError
+
+    other = [a for a in range(3) if a != axis]
+    near = np.abs(points[:, axis] - value) <= FLAT_NEAR
+    flat = np.abs(points[near, axis] - value) <= FLAT
+    if flat.sum() < 3:
+        return 0.0
+    try:
+        tri = Delaunay(points[near][:, other])
+    except QhullError:
+        return 0.0
+    simplex = tri.find_simplex(positions[:, other])
+    inside = (np.abs(positions[:, axis] - value) <= FLAT_VERTEX_NEAR) & (simplex >= 0)
+    inside[inside] = flat[tri.simplices[simplex[inside]]].all(axis=1)
+    return float(np.abs(positions[inside, axis] - value).max()) if inside.any() else 0.0
+
+
+def flatness_nearest(points: np.ndarray, positions: np.ndarray, axis: int, value: float) -> float:
+    """:func:`flatness` as the earlier measure had it: a mesh vertex is on the flat when its
+    :data:`FLAT_NEIGHBOURS` nearest data points all are. Where the data leave the flat along a
+    curve whose next point is farther than those six (KVLCC2's wl_z23.50 at x = 82 m, between a
+    point 0.5 mm and one 2.5 mm off the side), it counts the surface leaving with them."""
     from scipy.spatial import cKDTree
 
     flat = np.abs(points[:, axis] - value) <= FLAT
@@ -167,14 +197,22 @@ def measure(api, ship: Path, resolution: int) -> dict:
     r = result.report
     from batten_native import build_surface
 
-    (positions, corners, sizes, _), _ = build_surface(api.read_curves(coll), resolution=resolution)
+    (positions, corners, sizes, _), _ = build_surface(
+        api.read_curves(coll), resolution=resolution, tangent_planes=api.tangent_planes(coll)
+    )
     T, lpp = ref["T"], ref["Lpp"]
     fig = mesh_figures(clipped_triangles(positions, corners, sizes, T))
     c = ref["computed"]
     points = np.array([p for curve in data["curves"] for p in curve["points"]])
-    fine, _ = build_surface(api.read_curves(coll), resolution=DISTANCE_RESOLUTION)
+    fine, _ = build_surface(
+        api.read_curves(coll), resolution=DISTANCE_RESOLUTION, tangent_planes=api.tangent_planes(coll)
+    )
     dist = surface_distance(points, clipped_triangles(*fine[:3], np.inf))
-    half_breadth = ref["B"] / 2
+    from batten import flat_of_bottom
+    from batten_native import DEFAULT_SECTION_MODEL_TOLERANCE
+
+    side = flat_of_bottom.side_plane(points, DEFAULT_SECTION_MODEL_TOLERANCE)
+    base = flat_of_bottom.base_plane(points, DEFAULT_SECTION_MODEL_TOLERANCE)
     warnings = {}
     for w in r["warnings"]:
         warnings[w["kind"]] = warnings.get(w["kind"], 0) + 1
@@ -213,8 +251,13 @@ def measure(api, ship: Path, resolution: int) -> dict:
         "max_point_distance_from_surface_mm": 1e3 * float(dist.max()),
         "points_beyond_5_mm": int((dist > 0.005).sum()),
         "points": len(points),
-        "flat_of_side_max_mm": 1e3 * flatness(points, positions, 1, half_breadth),
-        "flat_of_bottom_max_mm": 1e3 * flatness(points, positions, 2, 0.0),
+        "flat_of_side_plane_m": side,
+        "flat_of_side_max_mm": 1e3 * flatness(points, positions, 1, side) if side is not None else None,
+        "flat_of_side_max_mm_nearest6": 1e3 * flatness_nearest(points, positions, 1, side)
+        if side is not None
+        else None,
+        "flat_of_bottom_plane_m": base,
+        "flat_of_bottom_max_mm": 1e3 * flatness(points, positions, 2, base) if base is not None else None,
         "crease_angles_deg": r["crease_angles_deg"],
         "volume": fig["volume"],
         "volume_diff_pct": 100 * (fig["volume"] / c["displaced_volume"] - 1),
