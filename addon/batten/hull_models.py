@@ -1,10 +1,11 @@
 """The exact surfaces of the hulls built in this session, kept for hydrostatics.
 
 :func:`batten.api.build` keeps each source's :class:`batten_native.HullModel` here under the
-source's name, with the curves it was built from and the build's tolerance and resolution.
-Hydrostatics reuse it while the curves are unchanged (compared as curves:
-:func:`batten_native.same_curves`) and rebuild it (with the same settings) when they have
-changed, so figures never describe a surface other than the one the curves give now.
+source's name, with the curves it was built from and the build's tolerance, resolution and
+tangent planes (:func:`batten.api.tangent_planes`). Hydrostatics reuse it while the curves and
+planes are unchanged (the curves compared as curves: :func:`batten_native.same_curves`) and
+rebuild it (with the same settings) when they have changed, so figures never describe a
+surface other than the one the curves give now.
 """
 
 from __future__ import annotations
