@@ -124,3 +124,31 @@ def test_a_connection_breaking_move_is_refused_naming_the_curve(barge):
         api.transform(barge, breadth=-1.0)
     with pytest.raises(api.InvalidArgumentError):
         api.transform(barge)
+
+
+def test_a_transformed_copy_keeps_its_tangent_planes_where_its_flats_went(barge):
+    """The flat of side an import would give the barge (and the same plane with its normal
+    reversed) moves with the breadth onto the copy, and on to the original when the copy is
+    committed; a plane no curve runs in (the port side's, one across the hull) stays as it is."""
+    planes = [[0.0, 1.0, 0.0, HB], [0.0, 1.0, 0.0, -HB], [0.0, -1.0, 0.0, -HB], [1.0, 0.0, 0.0, 50.0]]
+    barge[api.TANGENT_PLANES_PROPERTY] = planes
+    result = api.transform(barge, breadth=2.0 * (HB + 1.0))
+    moved = api.tangent_planes(result.collection)
+    np.testing.assert_allclose(
+        moved,
+        [
+            [0.0, 1.0, 0.0, HB + 1.0],
+            [0.0, 1.0, 0.0, -HB],
+            [0.0, -1.0, 0.0, -HB - 1.0],
+            [1.0, 0.0, 0.0, 50.0],
+        ],
+        atol=1e-6,
+    )
+    assert api.tangent_planes(barge) == planes, "the original's stay until commit"
+    # The copy builds with the moved planes, without a fold (as the original).
+    assert not api.build(result.collection).report["folds"]
+    # A hydrostatic transformation keeps the breadth: the planes stay where they were.
+    fuller = api.transform_hydrostatic(barge, draft=T, cb=api.hydrostatics(barge, T)["cb"] + 0.01)
+    np.testing.assert_allclose(api.tangent_planes(fuller.collection), planes, atol=1e-6)
+    api.commit(result)
+    np.testing.assert_allclose(api.tangent_planes(barge), moved, atol=1e-12)

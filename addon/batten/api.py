@@ -1400,6 +1400,57 @@ def _checked_planes(planes, holder: str) -> list[list[float]]:
     return out
 
 
+def _planes_moved_with(
+    planes: list[list[float]], before: list[Curve], after: list[Curve]
+) -> list[list[float]]:
+    """The tangent planes ``planes`` of the hull with curves ``before``, moved to where the
+    same curves run in them ``after`` a change (a transformation's copy): the curves with two
+    control points or more in a plane before (a flat run's control points all lie in its
+    plane) say where it went, at the offset most of their control points share after (the
+    median of those within the import's model tolerance of it; nearest the old offset among
+    equals). A plane no curve ran in stays as it is; one they no longer share is left out."""
+    tol = DEFAULT_SECTION_MODEL_TOLERANCE
+    points = {c.name: np.asarray(c.control_points, dtype=float).reshape(-1, 3) for c in after}
+    moved = []
+    for plane in planes:
+        normal, offset = np.asarray(plane[:3], dtype=float), float(plane[3])
+        within = tol * float(np.linalg.norm(normal))
+        on = [
+            c.name
+            for c in before
+            if int(
+                np.sum(
+                    np.abs(np.asarray(c.control_points, dtype=float).reshape(-1, 3) @ normal - offset)
+                    <= within
+                )
+            )
+            >= 2
+        ]
+        if not on:
+            # No curve ran in it (the port side's plane of a starboard half): nothing moved it.
+            moved.append([float(v) for v in plane])
+            continue
+        values = np.sort(np.concatenate([points[n] @ normal for n in on if n in points] or [np.zeros(0)]))
+        if len(values) < 2:
+            continue
+        counts = np.searchsorted(values, values + within, side="right") - np.searchsorted(
+            values, values - within
+        )
+        if counts.max() < 2:
+            continue
+        best = values[counts == counts.max()]
+        level = best[int(np.argmin(np.abs(best - offset)))]
+        moved.append([*map(float, plane[:3]), float(np.median(values[np.abs(values - level) <= within]))])
+    return moved
+
+
+def _move_planes(coll, planes: list[list[float]], before: list[Curve], after: list[Curve]) -> None:
+    """Give ``coll`` (whose curves are ``after``) the tangent planes ``planes`` of the hull of
+    ``before``, moved with them (:func:`_planes_moved_with`); nothing when there are none."""
+    if planes:
+        coll[TANGENT_PLANES_PROPERTY] = _planes_moved_with(planes, before, after)
+
+
 def build(
     source,
     *,
@@ -2418,6 +2469,7 @@ def transform(
     report["description"] = description
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, description, resolution=resolution)
+    _move_planes(coll, tangent_planes(source), curves, new_curves)
     return TransformResult(coll, report)
 
 
@@ -2528,6 +2580,7 @@ def transform_hydrostatic(
     report["description"] = f"hydrostatic ({how}): " + ", ".join(asked)
     sources = form_stack.source_objects(source, object_of)
     coll = form_stack.push_copy(original, new_curves, sources, report["description"], resolution=resolution)
+    _move_planes(coll, tangent_planes(source), curves, new_curves)
     datums = {"lpp": report["x_fp"] - report["x_ap"], "fp": report["x_fp"]}
     xs = np.linspace(report["x_ap"], report["x_fp"], SAC_STATIONS)
     report["sac"] = {
@@ -2654,6 +2707,8 @@ def commit(result) -> bpy.types.Collection:
         raise InvalidArgumentError(f"collection '{copy.name}' is not a transformation copy")
     curves, object_of = _read_source(copy)
     curves_out.replace_splines_of(form_stack.replacements(copy, curves, object_of))
+    if TANGENT_PLANES_PROPERTY in copy:
+        original[TANGENT_PLANES_PROPERTY] = tangent_planes(copy)
     # The refitted curves have new parameters: attached ends reference their points again.
     hierarchy.refresh([o for o in bpy.data.objects if o.type == "CURVE"])
     form_stack.drop_stack(original)
