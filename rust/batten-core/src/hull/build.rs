@@ -44,6 +44,7 @@ fn plan_face(
     edges: &FaceEdges,
     knuckle: &[Option<Knuckle>],
     shared: &[Option<EdgeNormal>],
+    inner: &[bool],
 ) -> Result<FacePlan, FaceError> {
     let n_sides = face.sides.len();
     if !(3..=MAX_SIDES).contains(&n_sides) {
@@ -96,7 +97,7 @@ fn plan_face(
         smooth.push(
             side.edges
                 .iter()
-                .all(|e| knuckle[e.index()].is_none() && shared_by_two(topology, e.index())),
+                .all(|e| knuckle[e.index()].is_none() && inner[e.index()]),
         );
         sides.push(Side::new(segments));
         ribbons.push(SideRibbon { segments: normals });
@@ -215,6 +216,8 @@ pub(crate) struct Stages {
     /// The corner points of every curve.
     pub(crate) corners: Vec<Vec<DVec3>>,
     pub(crate) knuckle: Vec<Option<Knuckle>>,
+    /// Per edge: whether it bounds two faces ([`inner_edges`]).
+    pub(crate) inner: Vec<bool>,
     /// The shared normal field of every smooth edge.
     pub(crate) shared: Vec<Option<EdgeNormal>>,
     /// Per edge: the warning that its crossing curves gave no ribbon.
@@ -241,24 +244,33 @@ fn faced_topology(network: &Network, options: &HullOptions) -> Result<Topology, 
     Ok(topology)
 }
 
-/// Whether edge `k` bounds two faces (an inner edge, not the surface's boundary).
-fn shared_by_two(topology: &Topology, k: usize) -> bool {
-    topology
-        .faces
-        .iter()
-        .filter(|f| f.edges.iter().any(|e| e.index() == k))
-        .count()
-        == 2
+/// Per edge of `topology`: whether it bounds two faces (an inner edge, not the surface's
+/// boundary). One pass over the faces' edges, each face counted once per edge.
+fn inner_edges(topology: &Topology) -> Vec<bool> {
+    let n = topology.brep.edges.len();
+    let (mut count, mut last_face) = (vec![0usize; n], vec![usize::MAX; n]);
+    for (fi, face) in topology.faces.iter().enumerate() {
+        for e in &face.edges {
+            let k = e.index();
+            if last_face[k] != fi {
+                last_face[k] = fi;
+                count[k] += 1;
+            }
+        }
+    }
+    count.into_iter().map(|c| c == 2).collect()
 }
 
 /// The normal field of edge `k` (none for a knuckle or a region-less edge), or the warning
-/// that its crossing curves gave none. An inner edge's field is held at the normal of each of
-/// the network's tangent planes where its curve runs in it (`flats`); a boundary edge's is
-/// not, as a surface that ends on a plane need not be tangent to it (a V-bottom's keel).
+/// that its crossing curves gave none. An inner edge's field (`inner`: it bounds two faces)
+/// is held at the normal of each of the network's tangent planes where its curve runs in it
+/// (`flats`); a boundary edge's is not, as a surface that ends on a plane need not be tangent
+/// to it (a V-bottom's keel).
 fn edge_normal(
     k: usize,
     network: &Network,
     tolerance: Tolerance,
+    inner: bool,
     topology: &Topology,
     edges: &FaceEdges,
     knuckle: &[Option<Knuckle>],
@@ -270,7 +282,7 @@ fn edge_normal(
         Ok(normal) => {
             let planes = network.tangent_planes();
             let held = normal.map(|n| match &edges.info[k] {
-                Some(info) if !planes.is_empty() && shared_by_two(topology, k) => {
+                Some(info) if inner && !planes.is_empty() => {
                     held_on_planes(n, &info.segment, planes, tolerance.get())
                 }
                 _ => n,
@@ -496,6 +508,7 @@ fn face_outcomes(
                     &stages.edges,
                     &stages.knuckle,
                     &stages.shared,
+                    &stages.inner,
                 )?;
                 let patch = Patch::try_new(&plan.boundary, &plan.ribbons, &opts)?;
                 let (patch, mesh, need) = unfolded(&plan, patch, &opts, options.resolution);
@@ -797,6 +810,7 @@ fn refolded(
         &stages.edges,
         &stages.knuckle,
         &stages.shared,
+        &stages.inner,
     ) else {
         return (patch.clone(), mesh, folds.worst);
     };
@@ -823,15 +837,20 @@ impl Stages {
         let corners = corner_points(network);
         let near_miss = options.tolerance.near_miss();
         let knuckle = knuckle_edges(network, &topology, &edges, &corners, near_miss);
+        let inner = inner_edges(&topology);
         let (shared, edge_warnings): (Vec<_>, Vec<_>) = (0..topology.brep.edges.len())
             .into_par_iter()
-            .map(|k| edge_normal(k, network, options.tolerance, &topology, &edges, &knuckle))
+            .map(|k| {
+                let tol = options.tolerance;
+                edge_normal(k, network, tol, inner[k], &topology, &edges, &knuckle)
+            })
             .unzip();
         let mut stages = Stages {
             topology,
             edges,
             corners,
             knuckle,
+            inner,
             shared,
             edge_warnings,
             faces: Vec::new(),
@@ -927,6 +946,7 @@ impl Stages {
             .collect();
         let near_miss = options.tolerance.near_miss();
         let knuckle = knuckle_edges(network, &topology, &edges, &corners, near_miss);
+        let inner = inner_edges(&topology);
         let knuckle_changed: Vec<bool> = knuckle
             .iter()
             .zip(&self.knuckle)
@@ -955,7 +975,8 @@ impl Stages {
             .into_par_iter()
             .map(|k| {
                 if dirty_normal[k] {
-                    edge_normal(k, network, options.tolerance, &topology, &edges, &knuckle)
+                    let tol = options.tolerance;
+                    edge_normal(k, network, tol, inner[k], &topology, &edges, &knuckle)
                 } else {
                     (self.shared[k].clone(), self.edge_warnings[k].clone())
                 }
@@ -991,6 +1012,7 @@ impl Stages {
             edges,
             corners,
             knuckle,
+            inner,
             shared,
             edge_warnings,
             faces: Vec::new(),
