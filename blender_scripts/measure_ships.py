@@ -197,16 +197,13 @@ def measure(api, ship: Path, resolution: int) -> dict:
     r = result.report
     from batten_native import build_surface
 
-    (positions, corners, sizes, _), _ = build_surface(
-        api.read_curves(coll), resolution=resolution, tangent_planes=api.tangent_planes(coll)
-    )
+    curves, planes = api.read_curves(coll), api.tangent_planes(coll)
+    (positions, corners, sizes, _), _ = build_surface(curves, resolution=resolution, tangent_planes=planes)
     T, lpp = ref["T"], ref["Lpp"]
     fig = mesh_figures(clipped_triangles(positions, corners, sizes, T))
     c = ref["computed"]
     points = np.array([p for curve in data["curves"] for p in curve["points"]])
-    fine, _ = build_surface(
-        api.read_curves(coll), resolution=DISTANCE_RESOLUTION, tangent_planes=api.tangent_planes(coll)
-    )
+    fine, _ = build_surface(curves, resolution=DISTANCE_RESOLUTION, tangent_planes=planes)
     dist = surface_distance(points, clipped_triangles(*fine[:3], np.inf))
     from batten import flat_of_bottom
     from batten_native import DEFAULT_SECTION_MODEL_TOLERANCE
