@@ -235,7 +235,7 @@ def fine_wigley() -> list:
 
 def main() -> None:
     for file in ("wigley_lines.json", "frigate_network.json"):
-        _, curves = bn.network_from_json((ROOT / "examples" / file).read_text())
+        _, curves, _ = bn.network_from_json((ROOT / "examples" / file).read_text())
         run(file, curves)
     run("Wigley, 21 stations x 8 waterlines", fine_wigley())
     if KCS.exists() and "--no-kcs" not in sys.argv:

@@ -47,7 +47,7 @@ def _case(label, curves, target, draft):
 
 
 def main() -> None:
-    _, frigate = bn.network_from_json((ROOT / "examples" / "frigate_network.json").read_text())
+    _, frigate, _ = bn.network_from_json((ROOT / "examples" / "frigate_network.json").read_text())
     form = bn.form_topology(frigate, draft=4.8)["parameters"]
     _case("frigate breadth +5 %", frigate, ("breadth", 1.05 * form["breadth"]), 4.8)
     _case("frigate depth +1 m", frigate, ("depth", form["depth"] + 1.0), 4.8)

@@ -117,7 +117,7 @@ def test_float32_blender_curves_build_the_same_hull_as_the_file(examples_dir, ex
     import batten_native as bn
 
     path = examples_dir / f"{example}.json"
-    _name, exact = bn.network_from_json(path.read_text())
+    _name, exact, _planes = bn.network_from_json(path.read_text())
     _arrays, reference = bn.build_surface(exact, 1e-4, 12)
     report = api.build(api.load_network(path), resolution=12).report
     assert report["enclosed_volume_half"] == pytest.approx(reference["volume"], rel=1e-5)

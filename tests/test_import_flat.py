@@ -167,6 +167,31 @@ def test_the_real_ships_flat_of_side_is_flat_within_1_mm(ship):
         assert measure_ships.flatness(points, np.asarray(bare), 1, side) > 1e-3
 
 
+@pytest.mark.skipif(not HULLS.is_dir(), reason="shared/hulls is not beside the checkout")
+def test_an_imported_ship_saved_as_a_network_file_builds_the_same_surface(tmp_path):
+    """export_network then load_network keeps KCS's flats: the loaded collection's surface
+    keeps to the flat of side within 1 mm as the imported one does (without its planes it
+    stood 1.1 mm off), and its volume is the imported one's."""
+    sys.path.insert(0, str(SCRIPTS))
+    import measure_ships
+
+    coll, _fits = api.import_sections(HULLS / "kcs" / "network.json")
+    path = api.export_network(coll, tmp_path / "kcs.json")
+    loaded = api.load_network(path, collection="kcs loaded")
+    assert api.tangent_planes(loaded) == api.tangent_planes(coll) != []
+    side = api.tangent_planes(loaded)[0][3]
+    points = np.array(
+        [p for c in json.loads((HULLS / "kcs" / "network.json").read_text())["curves"] for p in c["points"]]
+    )
+    curves = api.read_curves(loaded)
+    (after, _, _, _), report = build_surface(curves, resolution=16, tangent_planes=api.tangent_planes(loaded))
+    assert measure_ships.flatness(points, np.asarray(after), 1, side) < 1e-3
+    _, before = build_surface(api.read_curves(coll), resolution=16, tangent_planes=api.tangent_planes(coll))
+    assert report["volume"] == pytest.approx(before["volume"], rel=1e-9)
+    (bare, _, _, _), _ = build_surface(curves, resolution=16)
+    assert measure_ships.flatness(points, np.asarray(bare), 1, side) > 1e-3
+
+
 def test_a_port_half_gets_the_same_flats(flat_hull, tmp_path):
     data = json.loads(flat_hull.read_text())
     for c in data["curves"]:

@@ -108,13 +108,18 @@ def test_zero_length_and_duplicate_names():
 def test_json_round_trip_is_exact():
     c = cubic(name="a", weights=np.array([1, 0.3, 2.5, 1]))
     text = bn.network_to_json("net", [c, c.renamed(name="b", role="knuckle")])
-    name, back = bn.network_from_json(text)
-    assert name == "net"
+    name, back, planes = bn.network_from_json(text)
+    assert name == "net" and planes == []
     assert [x.name for x in back] == ["a", "b"]
     assert back[1].role == "knuckle"
     assert np.array_equal(back[0].control_points, c.control_points)
     assert np.array_equal(back[0].weights, c.weights)
     assert bn.network_to_json("net", back) == text
+    flats = [[0.0, 1.0, 0.0, 16.1003], [0.0, 0.0, 1.0, 0.0]]
+    with_planes = bn.network_to_json("net", back, flats)
+    assert bn.network_from_json(with_planes)[2] == flats
+    with pytest.raises(bn.BattenError, match="non-zero finite normal"):
+        bn.network_to_json("net", back, [[0.0, 0.0, 0.0, 1.0]])
 
 
 def test_a_panic_in_the_core_is_a_batten_error_not_a_crash():

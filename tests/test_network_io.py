@@ -84,6 +84,36 @@ def test_bad_file_creates_nothing(tmp_path):
     assert (len(bpy.data.objects), len(bpy.data.collections)) == (n_objects, n_coll)
 
 
+def test_a_network_file_keeps_the_collections_tangent_planes(tmp_path):
+    """The flat of side and bottom a collection's surface is tangent to go into the file
+    (version 2) and come back on the loaded collection; a file without them stays version 1."""
+    src = api.load_example("wigley.json")
+    plain = json.loads(api.export_network(src, tmp_path / "plain.json").read_text())
+    assert plain["version"] == 1 and "tangent_planes" not in plain
+    planes = [[0.0, 1.0, 0.0, 1.25], [0.0, 0.0, 1.0, -0.625]]
+    src[api.TANGENT_PLANES_PROPERTY] = planes
+    path = api.export_network(src, tmp_path / "flats.json")
+    data = json.loads(path.read_text())
+    assert data["version"] == 2 and data["tangent_planes"] == planes
+    assert api.read_network_planes(path) == planes and api.read_network_planes(tmp_path / "plain.json") == []
+    coll = api.load_network(path, collection="Loaded")
+    assert api.tangent_planes(coll) == planes
+    assert api.TANGENT_PLANES_PROPERTY not in api.load_network(tmp_path / "plain.json", collection="Plain")
+
+    # A bad plane is named, and nothing is drawn.
+    data["tangent_planes"][1] = [0.0, 0.0, 0.0, 1.0]
+    path.write_text(json.dumps(data))
+    n_objects, n_coll = len(bpy.data.objects), len(bpy.data.collections)
+    with pytest.raises(api.NetworkFileError, match=r"flats.json.*tangent plane 1.*non-zero"):
+        api.load_network(path)
+    data["tangent_planes"] = planes
+    data["version"] = 1
+    path.write_text(json.dumps(data))
+    with pytest.raises(api.NetworkFileError, match=r"tangent_planes.*needs version 2"):
+        api.load_network(path)
+    assert (len(bpy.data.objects), len(bpy.data.collections)) == (n_objects, n_coll)
+
+
 def test_degree_above_blender_is_refused_cleanly(tmp_path):
     import batten_native as bn
 

@@ -123,6 +123,7 @@ __all__ = [
     "build",
     "settle",
     "read_network",
+    "read_network_planes",
     "DEFAULT_TOLERANCE",
     "ROLES",
     "BattenError",
@@ -310,7 +311,9 @@ def _read_source(source) -> _SourceCurves:
 
 
 def export_network(source, path, *, name: str | None = None, tolerance: float = DEFAULT_TOLERANCE) -> Path:
-    """Write the curves of ``source`` to ``path`` as a batten network (versioned JSON).
+    """Write the curves of ``source`` to ``path`` as a batten network (versioned JSON), with
+    the planes its surface is tangent to (:func:`tangent_planes`), so that
+    :func:`load_network` gives back a collection that builds the same surface.
 
     Curves shorter than ``tolerance`` are refused (zero-length curve). The file is written
     whole or not at all (NetworkFileError naming it when it cannot be). Returns the path.
@@ -318,7 +321,7 @@ def export_network(source, path, *, name: str | None = None, tolerance: float = 
     curves, object_of = _read_source(source)
     with errors_named_by_object(object_of):
         check_lengths(curves, tolerance)
-    text = network_to_json(name if name is not None else _source_name(source), curves)
+    text = network_to_json(name if name is not None else _source_name(source), curves, tangent_planes(source))
     path = file_path(path, "network file")
     try:
         return write_atomically(path, text)
@@ -328,13 +331,29 @@ def export_network(source, path, *, name: str | None = None, tolerance: float = 
 
 def read_network(path) -> tuple[str, list[Curve]]:
     """The network file at ``path`` as ``(name, curves)``; NetworkFileError naming the file
-    (and the problem) if it cannot be read or is not a valid network."""
+    (and the problem) if it cannot be read or is not a valid network. Its tangent planes are
+    :func:`read_network_planes`'."""
+    name, curves, _planes = _read_network_file(path)
+    return name, curves
+
+
+def read_network_planes(path) -> list[list[float]]:
+    """The tangent planes (see :data:`TANGENT_PLANES_PROPERTY`) of the network file at
+    ``path``, each ``[nx, ny, nz, offset]``; ``[]`` for a file without any. NetworkFileError
+    as :func:`read_network`."""
+    return _read_network_file(path)[2]
+
+
+def _read_network_file(path) -> tuple[str, list[Curve], list[list[float]]]:
+    """The network file at ``path`` as ``(name, curves, tangent planes)`` (see
+    :func:`read_network`)."""
     path = file_path(path, "network file")
     text = read_text(path, "network file")
     try:
-        return network_from_json(text)
+        name, curves, planes = network_from_json(text)
     except BattenError as e:
         raise NetworkFileError(f"network file '{path}': {e}") from e
+    return name, curves, [list(p) for p in planes]
 
 
 def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):
@@ -342,11 +361,15 @@ def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):
     after the network, or ``collection`` if a name is given) linked to the scene.
 
     The file is read and checked whole before anything is created; if drawing fails midway,
-    everything created is removed again. Returns the collection.
+    everything created is removed again. The file's tangent planes, if it has any, are the
+    collection's :data:`TANGENT_PLANES_PROPERTY`. Returns the collection.
     """
-    name, curves = read_network(path)
+    name, curves, planes = _read_network_file(path)
     coll_name = collection if isinstance(collection, str) else (name or file_path(path, "network file").stem)
-    return _draw_collection(coll_name, curves, resolution=resolution)
+    coll = _draw_collection(coll_name, curves, resolution=resolution)
+    if planes:
+        coll[TANGENT_PLANES_PROPERTY] = planes
+    return coll
 
 
 def _draw_collection(name: str, curves: list[Curve], *, resolution: int = CURVE_RESOLUTION):

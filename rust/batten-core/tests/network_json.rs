@@ -1,6 +1,8 @@
 //! The network JSON format: exact round trip, version refusal, named errors.
 
-use batten_core::{Error, KnotLayout, Network, NetworkCurve, NurbsCurve, Role, Tolerance};
+use batten_core::{
+    Error, KnotLayout, Network, NetworkCurve, NurbsCurve, Role, TangentPlane, Tolerance,
+};
 use glam::DVec3;
 
 fn network() -> Network {
@@ -132,4 +134,61 @@ fn roles_have_stable_names() {
         "case-insensitive"
     );
     assert_eq!(Role::from_name("bulb"), None, "unknown");
+}
+
+/// The flat of side and of bottom of an imported ship, as `api.import_sections` gives them.
+fn with_planes() -> Network {
+    network().with_tangent_planes(vec![
+        TangentPlane::try_new(DVec3::Y, 16.1003).unwrap(),
+        TangentPlane::try_new(DVec3::Y, -16.1003).unwrap(),
+        TangentPlane::try_new(DVec3::new(0.0, 0.6, 0.8), 0.1 / 3.0).unwrap(),
+    ])
+}
+
+#[test]
+fn tangent_planes_round_trip_exactly_as_version_2() {
+    let net = with_planes();
+    let text = net.to_json();
+    assert!(
+        text.contains("\"version\": 2"),
+        "planes need version 2: {text}"
+    );
+    let back = Network::from_json(&text).unwrap();
+    assert_eq!(
+        back.tangent_planes(),
+        net.tangent_planes(),
+        "bitwise-equal planes"
+    );
+    assert_eq!(back, net, "and curves");
+    assert_eq!(back.to_json(), text, "and the same text");
+    assert!(
+        !network().to_json().contains("tangent_planes"),
+        "a network without planes is written as before (version 1)"
+    );
+}
+
+#[test]
+fn tangent_planes_in_a_version_1_file_and_bad_planes_are_refused_by_index() {
+    let text = with_planes().to_json();
+    let v1 = text.replace("\"version\": 2", "\"version\": 1");
+    let err = Network::from_json(&v1).unwrap_err().to_string();
+    assert!(
+        err.contains("tangent_planes") && err.contains("version 2"),
+        "{err}"
+    );
+    for (bad, what) in [
+        (serde_json::json!([0.0, 0.0, 0.0, 1.0]), "non-zero"),
+        (serde_json::json!([0.0, 1.0, 0.0]), "[nx, ny, nz, offset]"),
+        (serde_json::json!("side"), "[nx, ny, nz, offset]"),
+    ] {
+        let mut file: serde_json::Value = serde_json::from_str(&text).unwrap();
+        file["tangent_planes"][1] = bad.clone();
+        let err = Network::from_json(&file.to_string())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("tangent plane 1") && err.contains(what),
+            "{bad}: {err}"
+        );
+    }
 }

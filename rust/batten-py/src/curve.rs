@@ -1,6 +1,6 @@
 //! `batten_native.Curve`: a named designer curve (NURBS) with its role.
 
-use batten_core::{CurveError, KnotLayout, Network, NetworkCurve, NurbsCurve, Role};
+use batten_core::{CurveError, KnotLayout, Network, NetworkCurve, NurbsCurve, Role, TangentPlane};
 use glam::DVec3;
 use numpy::{
     AllowTypeChange, PyArray1, PyArray2, PyArrayLike1, PyArrayLike2, PyArrayMethods,
@@ -102,6 +102,26 @@ pub(crate) fn points_array<'py>(
 /// `NetworkFileError` otherwise).
 pub(crate) fn network_of(name: &str, curves: &[PyRef<'_, Curve>]) -> PyResult<Network> {
     Network::try_new(name, curves.iter().map(|c| c.inner.clone()).collect()).map_err(core_err)
+}
+
+/// Tangent planes given as `[nx, ny, nz, offset]` (the plane `n · p = offset`); a zero or
+/// non-finite one is a `BattenError` saying so.
+pub(crate) fn tangent_planes_of(planes: Option<Vec<[f64; 4]>>) -> PyResult<Vec<TangentPlane>> {
+    planes
+        .unwrap_or_default()
+        .into_iter()
+        .map(|[x, y, z, offset]| TangentPlane::try_new(DVec3::new(x, y, z), offset))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(core_err)
+}
+
+/// The tangent planes of `network` as `[nx, ny, nz, offset]`.
+pub(crate) fn planes_of(network: &Network) -> Vec<[f64; 4]> {
+    network
+        .tangent_planes()
+        .iter()
+        .map(|p| [p.normal.x, p.normal.y, p.normal.z, p.offset])
+        .collect()
 }
 
 /// The curves of `network`, in order, as Python `Curve`s.

@@ -1,16 +1,14 @@
 //! The hull surface: network → topology → patches → one welded mesh, as numpy arrays.
 
 use batten_core::{
-    build_hull, HullOptions, HullSurface, Network, TangentPlane, Warning, DEFAULT_RESOLUTION,
-    DEFAULT_TOLERANCE,
+    build_hull, HullOptions, HullSurface, Network, Warning, DEFAULT_RESOLUTION, DEFAULT_TOLERANCE,
 };
-use glam::DVec3;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{optional_whole, text};
-use crate::curve::{network_of, Curve};
+use crate::curve::{network_of, tangent_planes_of, Curve};
 use crate::errors::{core_err, guard, NoSurfaceError};
 use crate::hull_model::HullModel;
 
@@ -141,12 +139,7 @@ pub(crate) fn network_and_options(
         Some(n) => text(n, || "the network name".to_owned())?,
         None => String::new(),
     };
-    let planes = tangent_planes
-        .unwrap_or_default()
-        .into_iter()
-        .map(|[x, y, z, offset]| TangentPlane::try_new(DVec3::new(x, y, z), offset))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(core_err)?;
+    let planes = tangent_planes_of(tangent_planes)?;
     let network = network_of(&name, curves)?.with_tangent_planes(planes);
     Ok((network, options))
 }

@@ -7,19 +7,22 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::args::{self, text};
-use crate::curve::{curves_of, network_of, points_array, Curve};
+use crate::curve::{curves_of, network_of, planes_of, points_array, tangent_planes_of, Curve};
 use crate::errors::{arg_err, core_err, guard};
 
-/// The network of `curves` (a list of `Curve`) as batten's versioned JSON text.
+/// The network of `curves` (a list of `Curve`) and its `tangent_planes` (each
+/// `[nx, ny, nz, offset]`) as batten's versioned JSON text.
 #[pyfunction]
-#[pyo3(signature = (name, curves))]
+#[pyo3(signature = (name, curves, tangent_planes=None))]
 pub(crate) fn network_to_json(
     py: Python<'_>,
     name: &Bound<'_, PyAny>,
     curves: Vec<PyRef<'_, Curve>>,
+    tangent_planes: Option<Vec<[f64; 4]>>,
 ) -> PyResult<String> {
     let name = text(name, || "the network name".to_owned())?;
-    let network = network_of(&name, &curves)?;
+    let network =
+        network_of(&name, &curves)?.with_tangent_planes(tangent_planes_of(tangent_planes)?);
     py.detach(|| guard("writing network", || Ok(network.to_json())))
 }
 
@@ -31,20 +34,24 @@ pub(crate) fn same_curves(a: Vec<PyRef<'_, Curve>>, b: Vec<PyRef<'_, Curve>>) ->
     a.len() == b.len() && a.iter().zip(&b).all(|(x, y)| x.inner == y.inner)
 }
 
-/// Read batten's JSON network text: returns `(name, [Curve, ...])`; a bad curve raises
-/// `BattenError` naming it.
+/// Read batten's JSON network text: returns `(name, [Curve, ...], tangent_planes)`, each plane
+/// `[nx, ny, nz, offset]`; a bad curve or plane raises `BattenError` naming it.
 #[pyfunction]
 pub(crate) fn network_from_json(
     py: Python<'_>,
     text: &Bound<'_, PyAny>,
-) -> PyResult<(String, Vec<Curve>)> {
+) -> PyResult<(String, Vec<Curve>, Vec<[f64; 4]>)> {
     let text = args::text(text, || "the network text".to_owned())?;
     let network = py.detach(|| {
         guard("reading network", || {
             Network::from_json(&text).map_err(core_err)
         })
     })?;
-    Ok((network.name.clone(), curves_of(&network)))
+    Ok((
+        network.name.clone(),
+        curves_of(&network),
+        planes_of(&network),
+    ))
 }
 
 /// Check names are unique and no curve is shorter than `tolerance` (a zero-length curve);

@@ -5,29 +5,37 @@
 //!  "curves": [{"name": "keel", "role": "keel", "degree": 3,
 //!              "knots": [...], "points": [[x, y, z], ...], "weights": null}]}
 //! ```
-//! Floats are written in shortest round-trip form and read with correct rounding, so
-//! writing and reading a network gives back bitwise the same curves.
+//! Version 2 adds the network's tangent planes (see [`TangentPlane`]), as
+//! `"tangent_planes": [[nx, ny, nz, offset], ...]`; a network without any is written as
+//! version 1, so that older readers still read it. Floats are written in shortest round-trip
+//! form and read with correct rounding, so writing and reading a network gives back bitwise
+//! the same curves and planes.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::{Network, NetworkCurve, Role};
+use super::{Network, NetworkCurve, Role, TangentPlane};
 use crate::curve::NurbsCurve;
 use crate::error::Error;
 
 /// The `format` tag of a network file.
 pub const NETWORK_FORMAT: &str = "batten-network";
 /// The newest network file version; files of a newer version are refused with a clear error.
-pub const NETWORK_VERSION: u32 = 1;
+pub const NETWORK_VERSION: u32 = 2;
+
+/// The first version that holds tangent planes.
+const PLANES_VERSION: u32 = 2;
 
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct FileV1 {
+struct FileOut {
     format: String,
     version: u32,
     #[serde(default)]
     name: String,
     curves: Vec<CurveRecord>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    tangent_planes: Vec<[f64; 4]>,
 }
 
 #[derive(Serialize, Deserialize)]
@@ -57,6 +65,9 @@ struct FileIn {
     #[serde(default)]
     name: String,
     curves: Vec<serde_json::Value>,
+    /// Version 2 on.
+    #[serde(default)]
+    tangent_planes: Option<Vec<serde_json::Value>>,
 }
 
 #[derive(Deserialize)]
@@ -66,12 +77,18 @@ struct Header {
 }
 
 impl Network {
-    /// The network as JSON text (format version [`NETWORK_VERSION`]).
+    /// The network as JSON text: format version 1, or 2 (the first to hold them) when it has
+    /// tangent planes.
     pub fn to_json(&self) -> String {
-        let file = FileV1 {
+        let planes = self.tangent_planes();
+        let file = FileOut {
             format: NETWORK_FORMAT.to_owned(),
-            version: NETWORK_VERSION,
+            version: if planes.is_empty() { 1 } else { PLANES_VERSION },
             name: self.name.clone(),
+            tangent_planes: planes
+                .iter()
+                .map(|p| [p.normal.x, p.normal.y, p.normal.z, p.offset])
+                .collect(),
             curves: self
                 .curves()
                 .iter()
@@ -93,7 +110,8 @@ impl Network {
         serde_json::to_string_pretty(&file).expect("a network always serialises")
     }
 
-    /// Read a network from JSON text, validating every curve; an error names the curve.
+    /// Read a network from JSON text, validating every curve and tangent plane; an error names
+    /// the curve or the plane.
     pub fn from_json(text: &str) -> Result<Network, Error> {
         // A byte-order mark is not JSON, but editors write one.
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -104,8 +122,8 @@ impl Network {
                 "not a batten network (expected \"format\": \"{NETWORK_FORMAT}\")"
             )));
         }
-        match header.version {
-            Some(v) if (1..=NETWORK_VERSION).contains(&v) => {}
+        let version = match header.version {
+            Some(v) if (1..=NETWORK_VERSION).contains(&v) => v,
             Some(v) if v > NETWORK_VERSION => {
                 return Err(Error::Format(format!(
                     "version {v} is newer than this batten reads ({NETWORK_VERSION})"
@@ -117,7 +135,7 @@ impl Network {
                 )))
             }
             None => return Err(Error::Format("missing \"version\"".to_owned())),
-        }
+        };
         let file: FileIn = serde_json::from_str(text).map_err(|e| Error::Format(e.to_string()))?;
         let curves = file
             .curves
@@ -140,6 +158,29 @@ impl Network {
                     .map_err(|e| e.named(r.name))
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Network::try_new(file.name, curves)
+        let planes = match file.tangent_planes {
+            Some(_) if version < PLANES_VERSION => {
+                return Err(Error::Format(format!(
+                    "\"tangent_planes\" needs version {PLANES_VERSION} or newer, the file says \
+                     {version}"
+                )))
+            }
+            Some(planes) => planes
+                .into_iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    let [nx, ny, nz, offset]: [f64; 4] =
+                        serde_json::from_value(v).map_err(|e| {
+                            Error::Format(format!(
+                                "tangent plane {i}: {e} (a plane is [nx, ny, nz, offset])"
+                            ))
+                        })?;
+                    TangentPlane::try_new(DVec3::new(nx, ny, nz), offset)
+                        .map_err(|e| Error::Format(format!("tangent plane {i}: {e}")))
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+            None => Vec::new(),
+        };
+        Ok(Network::try_new(file.name, curves)?.with_tangent_planes(planes))
     }
 }
