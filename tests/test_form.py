@@ -129,7 +129,8 @@ def test_a_connection_breaking_move_is_refused_naming_the_curve(barge):
 def test_a_transformed_copy_keeps_its_tangent_planes_where_its_flats_went(barge):
     """The flat of side an import would give the barge (and the same plane with its normal
     reversed) moves with the breadth onto the copy, and on to the original when the copy is
-    committed; a plane no curve runs in (the port side's, one across the hull) stays as it is."""
+    committed; the port side's, which no curve runs in, goes to its mirror image; a plane no
+    curve runs in that mirrors none (one across the hull) stays as it is."""
     planes = [[0.0, 1.0, 0.0, HB], [0.0, 1.0, 0.0, -HB], [0.0, -1.0, 0.0, -HB], [1.0, 0.0, 0.0, 50.0]]
     barge[api.TANGENT_PLANES_PROPERTY] = planes
     result = api.transform(barge, breadth=2.0 * (HB + 1.0))
@@ -138,7 +139,7 @@ def test_a_transformed_copy_keeps_its_tangent_planes_where_its_flats_went(barge)
         moved,
         [
             [0.0, 1.0, 0.0, HB + 1.0],
-            [0.0, 1.0, 0.0, -HB],
+            [0.0, 1.0, 0.0, -HB - 1.0],
             [0.0, -1.0, 0.0, -HB - 1.0],
             [1.0, 0.0, 0.0, 50.0],
         ],

@@ -1431,10 +1431,48 @@ def _planes_moved_with(
     control points or more in a plane before (a flat run's control points all lie in its
     plane) say where it went, at the offset most of their control points share after (the
     median of those within the import's model tolerance of it; nearest the old offset among
-    equals). A plane no curve ran in stays as it is; one they no longer share is left out."""
+    equals). A plane no curve ran in that is the mirror image across the centreplane of one
+    they ran in (the port side's flat of a starboard half) goes to the mirror image of where
+    that one went; any other stays as it is. One they no longer share is left out."""
     tol = DEFAULT_SECTION_MODEL_TOLERANCE
+    moved = _planes_moved_by_curves(planes, before, after, tol)
+    out = []
+    for plane, went in zip(planes, moved, strict=True):
+        if went is not None:
+            if went:
+                out.append(went)
+            continue
+        mirror = [plane[0], -plane[1], plane[2], plane[3]]
+        twin = next(
+            (w for p, w in zip(planes, moved, strict=True) if w and _same_plane(mirror, p, tol)),
+            None,
+        )
+        if twin is None:
+            out.append([float(v) for v in plane])
+            continue
+        image = [twin[0], -twin[1], twin[2], twin[3]]
+        sign = 1.0 if np.dot(image[:3], plane[:3]) > 0.0 else -1.0
+        out.append([float(sign * v) for v in image])
+    return out
+
+
+def _same_plane(a: list[float], b: list[float], tol: float) -> bool:
+    """Whether planes ``a`` and ``b`` (each ``[nx, ny, nz, offset]``, normals of any length
+    and either sense) are one plane: normals parallel, offsets within ``tol``."""
+    na, nb = np.asarray(a[:3], dtype=float), np.asarray(b[:3], dtype=float)
+    la, lb = float(np.linalg.norm(na)), float(np.linalg.norm(nb))
+    sign = 1.0 if np.dot(na, nb) > 0.0 else -1.0
+    return bool(np.allclose(na / la, sign * nb / lb, atol=1e-9) and abs(a[3] / la - sign * b[3] / lb) <= tol)
+
+
+def _planes_moved_by_curves(
+    planes: list[list[float]], before: list[Curve], after: list[Curve], tol: float
+) -> list[list[float] | None]:
+    """Per plane of ``planes``, where the curves running in it ``before`` run in it ``after``
+    (see :func:`_planes_moved_with`): the moved plane, ``[]`` where they no longer share one,
+    ``None`` where no curve ran in it."""
     points = {c.name: np.asarray(c.control_points, dtype=float).reshape(-1, 3) for c in after}
-    moved = []
+    moved: list[list[float] | None] = []
     for plane in planes:
         normal, offset = np.asarray(plane[:3], dtype=float), float(plane[3])
         within = tol * float(np.linalg.norm(normal))
@@ -1450,16 +1488,17 @@ def _planes_moved_with(
             >= 2
         ]
         if not on:
-            # No curve ran in it (the port side's plane of a starboard half): nothing moved it.
-            moved.append([float(v) for v in plane])
+            moved.append(None)
             continue
         values = np.sort(np.concatenate([points[n] @ normal for n in on if n in points] or [np.zeros(0)]))
         if len(values) < 2:
+            moved.append([])
             continue
         counts = np.searchsorted(values, values + within, side="right") - np.searchsorted(
             values, values - within
         )
         if counts.max() < 2:
+            moved.append([])
             continue
         best = values[counts == counts.max()]
         level = best[int(np.argmin(np.abs(best - offset)))]
