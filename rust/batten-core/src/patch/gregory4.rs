@@ -16,7 +16,8 @@ use glam::{DVec2, DVec3};
 
 use super::boundary::PreparedSide;
 use super::corner::CornerData;
-use super::ribbon::{hermite_basis, PreparedRibbon};
+use super::hermite::hermite_basis;
+use super::ribbon::PreparedRibbon;
 
 /// A corner of the unit square for the tensor-product Hermite interpolant `P12`: position,
 /// derivatives along `u` and `v` and twist `∂²/∂u∂v`, in the square's axes.

@@ -29,7 +29,7 @@ const NODES_PER_PIECE: usize = 4;
 
 /// Gauss–Legendre abscissae and weights on [−1, 1] (5 points: exact for degree 9), for the arc
 /// length of one interval between nodes.
-const GAUSS: [(f64, f64); 5] = [
+pub(super) const GAUSS: [(f64, f64); 5] = [
     (0.0, 0.568_888_888_888_888_9),
     (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
     (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
