@@ -63,6 +63,11 @@ impl ArcParam {
             }
         }
         ts.push(hi);
+        // A break within an ulp or two of the next gives samples that round onto each other.
+        ts.dedup_by(|b, a| *b <= *a);
+        if ts.len() < 2 {
+            return None;
+        }
         let speed = |t: f64| curve.derivs(t).d1.length();
         let integral = |f: &dyn Fn(f64) -> f64, a: f64, b: f64| {
             let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
@@ -90,6 +95,9 @@ impl ArcParam {
         for w in ts.windows(2) {
             keys.push(keys.last().copied().unwrap_or(0.0) + integral(&rate, w[0], w[1]));
         }
+        if !keys.iter().all(|k| k.is_finite()) {
+            return None;
+        }
         let chord = |i: usize| (keys[i + 1] - keys[i]) / (ts[i + 1] - ts[i]);
         let n = ts.len();
         let slopes: Vec<f64> = (0..n)
@@ -99,7 +107,12 @@ impl ArcParam {
                     (_, true) => 3.0 * chord(n - 2),
                     _ => 3.0 * chord(i - 1).min(chord(i)),
                 };
-                rate(ts[i]).clamp(0.0, cap)
+                let r = rate(ts[i]);
+                if cap.is_finite() {
+                    r.clamp(0.0, cap.max(0.0))
+                } else {
+                    r
+                }
             })
             .collect();
         Some(ArcParam { ts, keys, slopes })
@@ -195,5 +208,19 @@ pub(crate) mod tests {
             map.at(hi + 0.1) > end && map.at(lo - 0.1) < 0.0,
             "continued past the ends"
         );
+    }
+
+    #[test]
+    fn a_knot_an_ulp_inside_the_interval_gives_a_finite_map() {
+        // Found by the fuzzer (a hull 1e7 m from the origin): samples an ulp apart made the
+        // chord 0/0, and the slopes' clamp panicked on its NaN bound.
+        let c = crowded_line();
+        let knot = c.knots()[5];
+        let lo = f64::from_bits(knot.to_bits() - 1);
+        let map = ArcParam::new(&c, lo, c.domain().1).expect("a map");
+        for j in 0..=100 {
+            let t = lo + (c.domain().1 - lo) * j as f64 / 100.0;
+            assert!(map.at(t).is_finite(), "finite at {t}");
+        }
     }
 }
