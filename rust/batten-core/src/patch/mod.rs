@@ -17,7 +17,7 @@
 //!   patch following that would crowd and crease its inside where the pieces are short.
 //! - An edge's normal field turns with its curve's parameter, which crowds where a section
 //!   turns, but at most `MAX_CROWDING` times faster than its mean rate along the edge
-//!   (`arc_param`): a fit crowds its parameter even more at a seam in its data, and a field
+//!   (`field_key`): a fit crowds its parameter even more at a seam in its data, and a field
 //!   turning there creased the faces beside it.
 //! - The cross-derivative magnitude follows the neighbouring sides at the corners (linear in
 //!   between): a long, narrow patch is not bulged by unit-length ribbons.
@@ -30,7 +30,6 @@
 //! - A side of (nearly) zero length, a gap between sides larger than 10× the model tolerance,
 //!   and non-finite input are refused with a [`PatchError`] naming the curves.
 
-mod arc_param;
 mod boundary;
 mod charrot_gregory;
 mod corner;
@@ -38,6 +37,7 @@ mod curvature;
 mod domain;
 mod error;
 mod face_patch;
+mod field_key;
 mod gregory4;
 mod hermite;
 mod ribbon;

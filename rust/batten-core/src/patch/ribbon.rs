@@ -29,9 +29,9 @@
 
 use glam::{DVec2, DVec3};
 
-use super::arc_param::ArcParam;
 use super::boundary::{PreparedSide, SideSegment};
 use super::error::{PatchError, PatchWarning};
+use super::field_key::FieldKey;
 use super::hermite::hermite_basis;
 
 /// The paper's minimum angle between a side and a crossing curve (§3.2.2): crossing tangents
@@ -116,21 +116,21 @@ pub fn gram_schmidt_cross_tangent(
 ///
 /// Nodes are keyed by the curve's own parameter, so the two faces sharing the segment (which
 /// traverse it in opposite directions) evaluate the same normal at the same point. Between
-/// nodes the unit normals are blended by a cubic Hermite (three-point slopes) in the arc
-/// length along the curve ([`ArcParam`]; in `t` where that cannot be measured) and
-/// normalised; outside the first and last node the end normals are held. The sign is
+/// nodes the unit normals are blended by a cubic Hermite (three-point slopes) in a key of the
+/// curve parameter that never crowds more than `FieldKey` allows (`t` itself where the curve
+/// has no measurable length) and normalised; outside the first and last node the end normals are held. The sign is
 /// arbitrary; each face orients it outwards.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EdgeNormal {
     /// The nodes' curve parameters.
     ts: Vec<f64>,
-    /// Where the blend runs between them: the arc length at each node, or `ts` again.
+    /// Where the blend runs between them: the key of each node (`FieldKey`), or `ts` again.
     keys: Vec<f64>,
     normals: Vec<DVec3>,
     /// Slopes of the blend per unit of `keys`.
     slopes: Vec<DVec3>,
-    /// The curve's arc length against its parameter, where it could be measured.
-    arc: Option<ArcParam>,
+    /// The key of the curve's parameter, where the curve has a measurable length.
+    key: Option<FieldKey>,
 }
 
 impl EdgeNormal {
@@ -138,12 +138,13 @@ impl EdgeNormal {
     /// would take −0 for 0 and refuse NaN).
     pub(crate) fn same_bits(&self, other: &EdgeNormal) -> bool {
         let vec_bits = |v: &DVec3| v.to_array().map(f64::to_bits);
-        let arcs = match (&self.arc, &other.arc) {
+        let keyed = match (&self.key, &other.key) {
             (Some(a), Some(b)) => a.same_bits(b),
             (None, None) => true,
             _ => false,
         };
-        arcs && self.ts.len() == other.ts.len()
+        keyed
+            && self.ts.len() == other.ts.len()
             && self
                 .keys
                 .iter()
@@ -256,14 +257,14 @@ impl EdgeNormal {
         if inner.is_empty() {
             return Ok(None);
         }
-        let arc = ArcParam::new(&segment.curve, lo, hi);
-        let near = EdgeNormal::from_pairs(inner.clone(), arc.clone());
+        let key = FieldKey::new(&segment.curve, lo, hi);
+        let near = EdgeNormal::from_pairs(inner.clone(), key.clone());
         if outer.is_empty() || near.ts.len() < 2 {
             return Ok(Some(near));
         }
         let mut all = outer;
         all.extend(inner);
-        let far = EdgeNormal::from_pairs(all, arc);
+        let far = EdgeNormal::from_pairs(all, key);
         // How far the nodes beyond turn the field from the straight blend of the segment's
         // own nodes. A gentle turn is the surface's curvature along the curve, which the
         // three-node blend follows; past `BEYOND_TRUSTED_DEGREES` the tangent plane turns
@@ -328,15 +329,15 @@ impl EdgeNormal {
         let (lo, hi, _) = node_range(segment);
         Ok(EdgeNormal::from_pairs(
             pairs,
-            ArcParam::new(&segment.curve, lo, hi),
+            FieldKey::new(&segment.curve, lo, hi),
         ))
     }
 
     /// From node parameters, unit normals and (where known) the curve's unit tangents there,
-    /// blended in the arc length `arc` gives (in the parameter without one).
+    /// blended in the key `key` gives (in the parameter without one).
     fn from_pairs(
         mut pairs: Vec<(f64, DVec3, Option<DVec3>)>,
-        arc: Option<ArcParam>,
+        key: Option<FieldKey>,
     ) -> EdgeNormal {
         pairs.sort_by(|(ta, _, _), (tb, _, _)| ta.total_cmp(tb));
         // Merge nodes at the same parameter; align signs along the curve.
@@ -358,7 +359,7 @@ impl EdgeNormal {
                 normals.push(n);
             }
         }
-        let keys: Vec<f64> = match &arc {
+        let keys: Vec<f64> = match &key {
             Some(a) => ts.iter().map(|&t| a.at(t)).collect(),
             None => ts.clone(),
         };
@@ -368,14 +369,14 @@ impl EdgeNormal {
             keys,
             normals,
             slopes,
-            arc,
+            key,
         }
     }
 
     /// Where the blend runs at curve parameter `t` (see [`EdgeNormal::keys`]).
     #[inline]
-    fn key(&self, t: f64) -> f64 {
-        match &self.arc {
+    fn key_at(&self, t: f64) -> f64 {
+        match &self.key {
             Some(a) => a.at(t),
             None => t,
         }
@@ -404,7 +405,7 @@ impl EdgeNormal {
         for &(a, b) in held {
             for t in [a, b] {
                 if !keys.iter().any(|k| k.0 == t) {
-                    keys.push((t, self.key(t), self.normal(t), DVec3::ZERO));
+                    keys.push((t, self.key_at(t), self.normal(t), DVec3::ZERO));
                 }
             }
         }
@@ -424,15 +425,15 @@ impl EdgeNormal {
             keys: keys.iter().map(|k| k.1).collect(),
             normals: keys.iter().map(|k| k.2).collect(),
             slopes: keys.iter().map(|k| k.3).collect(),
-            arc: self.arc.clone(),
+            key: self.key.clone(),
         }
     }
 
     /// The unit normal at curve parameter `t` (not yet made perpendicular to the curve): the
-    /// node normals blended by a cubic Hermite with three-point slopes, in arc length.
+    /// node normals blended by a cubic Hermite with three-point slopes, in the field's key.
     #[inline]
     pub fn normal(&self, t: f64) -> DVec3 {
-        hermite_unit(&self.keys, &self.normals, &self.slopes, self.key(t))
+        hermite_unit(&self.keys, &self.normals, &self.slopes, self.key_at(t))
     }
 
     /// The node parameters.
@@ -1183,7 +1184,7 @@ mod same_bits_tests {
             keys: vec![0.0, 1.0],
             normals: vec![DVec3::new(n, 0.0, 1.0), DVec3::Z],
             slopes: vec![DVec3::ZERO, DVec3::ZERO],
-            arc: None,
+            key: None,
         }
     }
 
@@ -1204,10 +1205,10 @@ mod same_bits_tests {
 #[cfg(test)]
 mod edge_normal_tests {
     use super::*;
-    use crate::patch::arc_param::tests::{crowded_line, t_at};
+    use crate::patch::field_key::tests::{crowded_line, t_at};
 
     #[test]
-    fn an_edge_normal_turns_along_the_arc_not_where_the_parameter_crowds() {
+    fn an_edge_normal_does_not_turn_where_its_curves_parameter_crowds() {
         let c = crowded_line();
         let (lo, hi) = c.domain();
         let seg = SideSegment::new(c.clone(), lo, hi);

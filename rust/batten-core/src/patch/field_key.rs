@@ -1,4 +1,5 @@
-//! Where along an edge its normal field turns: the curve's own parameter, kept from crowding.
+//! Where along an edge its normal field turns: the curve's own parameter, kept from crowding
+//! ([`FieldKey`]).
 //!
 //! An edge's normal field ([`EdgeNormal`](super::EdgeNormal)) blends the normals at its nodes
 //! along the curve, in the curve's parameter. A fitted curve's parameter runs slowly where its
@@ -37,16 +38,16 @@ const SOFTNESS: i32 = 4;
 /// past the interval's ends at the end slopes (nodes beyond an edge's ends shape its field's
 /// slopes there).
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) struct ArcParam {
+pub(crate) struct FieldKey {
     ts: Vec<f64>,
     keys: Vec<f64>,
     slopes: Vec<f64>,
 }
 
-impl ArcParam {
+impl FieldKey {
     /// The map over `[lo, hi]` of `curve` (`lo < hi` within its domain); `None` where the
     /// curve has no measurable length there (the field then stays in the curve parameter).
-    pub(crate) fn new(curve: &NurbsCurve, lo: f64, hi: f64) -> Option<ArcParam> {
+    pub(crate) fn new(curve: &NurbsCurve, lo: f64, hi: f64) -> Option<FieldKey> {
         let (d0, d1) = curve.domain();
         let (lo, hi) = (lo.max(d0), hi.min(d1));
         if !(lo.is_finite() && hi.is_finite() && lo < hi) {
@@ -115,7 +116,7 @@ impl ArcParam {
                 }
             })
             .collect();
-        Some(ArcParam { ts, keys, slopes })
+        Some(FieldKey { ts, keys, slopes })
     }
 
     /// The key at curve parameter `t` (from 0 at the interval's start; negative before it).
@@ -138,7 +139,7 @@ impl ArcParam {
     }
 
     /// Whether `other` is this map bit for bit.
-    pub(crate) fn same_bits(&self, other: &ArcParam) -> bool {
+    pub(crate) fn same_bits(&self, other: &FieldKey) -> bool {
         let bits = |a: &[f64], b: &[f64]| {
             a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
         };
@@ -180,7 +181,7 @@ pub(crate) mod tests {
     fn the_key_runs_with_the_parameter_but_never_crowds_more_than_k_times() {
         let c = crowded_line();
         let (lo, hi) = c.domain();
-        let map = ArcParam::new(&c, lo, hi).unwrap();
+        let map = FieldKey::new(&c, lo, hi).unwrap();
         let (a, b) = (t_at(&c, 2.98), t_at(&c, 3.06));
         let t_share = (b - a) / (hi - lo);
         let key_share = (map.at(b) - map.at(a)) / (map.at(hi) - map.at(lo));
@@ -217,7 +218,7 @@ pub(crate) mod tests {
         let c = crowded_line();
         let knot = c.knots()[5];
         let lo = f64::from_bits(knot.to_bits() - 1);
-        let map = ArcParam::new(&c, lo, c.domain().1).expect("a map");
+        let map = FieldKey::new(&c, lo, c.domain().1).expect("a map");
         for j in 0..=100 {
             let t = lo + (c.domain().1 - lo) * j as f64 / 100.0;
             assert!(map.at(t).is_finite(), "finite at {t}");
