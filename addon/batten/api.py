@@ -331,8 +331,8 @@ def export_network(source, path, *, name: str | None = None, tolerance: float = 
 
 def read_network(path) -> tuple[str, list[Curve]]:
     """The network file at ``path`` as ``(name, curves)``; NetworkFileError naming the file
-    (and the problem) if it cannot be read or is not a valid network. Its tangent planes are
-    :func:`read_network_planes`'."""
+    (and the problem) if it cannot be read or is not a valid network. Its tangent planes:
+    :func:`read_network_planes`."""
     name, curves, _planes = _read_network_file(path)
     return name, curves
 
