@@ -118,8 +118,8 @@ pub fn gram_schmidt_cross_tangent(
 /// traverse it in opposite directions) evaluate the same normal at the same point. Between
 /// nodes the unit normals are blended by a cubic Hermite (three-point slopes) in a key of the
 /// curve parameter that never crowds more than `FieldKey` allows (`t` itself where the curve
-/// has no measurable length) and normalised; outside the first and last node the end normals are held. The sign is
-/// arbitrary; each face orients it outwards.
+/// has no measurable length) and normalised; outside the first and last node the end normals
+/// are held. The sign is arbitrary; each face orients it outwards.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EdgeNormal {
     /// The nodes' curve parameters.
