@@ -353,7 +353,7 @@ def _read_network_file(path) -> tuple[str, list[Curve], list[list[float]]]:
         name, curves, planes = network_from_json(text)
     except BattenError as e:
         raise NetworkFileError(f"network file '{path}': {e}") from e
-    return name, curves, [list(p) for p in planes]
+    return name, curves, planes
 
 
 def load_network(path, *, collection=None, resolution: int = CURVE_RESOLUTION):

@@ -120,7 +120,7 @@ pub(crate) fn planes_of(network: &Network) -> Vec<[f64; 4]> {
     network
         .tangent_planes()
         .iter()
-        .map(|p| [p.normal.x, p.normal.y, p.normal.z, p.offset])
+        .map(TangentPlane::to_array)
         .collect()
 }
 

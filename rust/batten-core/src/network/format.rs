@@ -85,10 +85,7 @@ impl Network {
             format: NETWORK_FORMAT.to_owned(),
             version: if planes.is_empty() { 1 } else { PLANES_VERSION },
             name: self.name.clone(),
-            tangent_planes: planes
-                .iter()
-                .map(|p| [p.normal.x, p.normal.y, p.normal.z, p.offset])
-                .collect(),
+            tangent_planes: planes.iter().map(TangentPlane::to_array).collect(),
             curves: self
                 .curves()
                 .iter()

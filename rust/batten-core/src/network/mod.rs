@@ -128,6 +128,11 @@ impl TangentPlane {
         })
     }
 
+    /// The plane as `[nx, ny, nz, offset]` (how files and Python give it).
+    pub fn to_array(&self) -> [f64; 4] {
+        [self.normal.x, self.normal.y, self.normal.z, self.offset]
+    }
+
     /// Signed distance of `p` from the plane, along its normal.
     pub fn distance(&self, p: DVec3) -> f64 {
         self.normal.dot(p) - self.offset

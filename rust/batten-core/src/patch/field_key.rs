@@ -140,13 +140,16 @@ impl FieldKey {
 
     /// Whether `other` is this map bit for bit.
     pub(crate) fn same_bits(&self, other: &FieldKey) -> bool {
-        let bits = |a: &[f64], b: &[f64]| {
-            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
-        };
-        bits(&self.ts, &other.ts)
-            && bits(&self.keys, &other.keys)
-            && bits(&self.slopes, &other.slopes)
+        same_bits(&self.ts, &other.ts)
+            && same_bits(&self.keys, &other.keys)
+            && same_bits(&self.slopes, &other.slopes)
     }
+}
+
+/// Whether `a` and `b` hold the same floats bit for bit (`==` would take −0 for 0 and refuse
+/// NaN).
+pub(super) fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 #[cfg(test)]

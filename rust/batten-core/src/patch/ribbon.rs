@@ -31,7 +31,7 @@ use glam::{DVec2, DVec3};
 
 use super::boundary::{PreparedSide, SideSegment};
 use super::error::{PatchError, PatchWarning};
-use super::field_key::FieldKey;
+use super::field_key::{same_bits, FieldKey};
 use super::hermite::hermite_basis;
 
 /// The paper's minimum angle between a side and a crossing curve (§3.2.2): crossing tangents
@@ -144,19 +144,10 @@ impl EdgeNormal {
             _ => false,
         };
         keyed
-            && self.ts.len() == other.ts.len()
-            && self
-                .keys
-                .iter()
-                .zip(&other.keys)
-                .all(|(a, b)| a.to_bits() == b.to_bits())
+            && same_bits(&self.ts, &other.ts)
+            && same_bits(&self.keys, &other.keys)
             && self.normals.len() == other.normals.len()
             && self.slopes.len() == other.slopes.len()
-            && self
-                .ts
-                .iter()
-                .zip(&other.ts)
-                .all(|(a, b)| a.to_bits() == b.to_bits())
             && self
                 .normals
                 .iter()
