@@ -496,34 +496,37 @@ fn face_surfaces(
         ..PatchOptions::default()
     };
     let boundary = |face: &super::identify::FormFace, after: bool| {
+        let sides = face
+            .sides
+            .iter()
+            .map(|side| {
+                side.iter()
+                    .map(|&(ei, fwd)| {
+                        let e = &form.edges[ei];
+                        let c = if after {
+                            moved[e.curve]
+                                .clone()
+                                .unwrap_or_else(|| curves[e.curve].curve.clone())
+                        } else {
+                            curves[e.curve].curve.clone()
+                        };
+                        // The stretch cut out, so that derivatives at a knot where the
+                        // moved curve kinks belong to this edge's side.
+                        let s = SideSegment::new(edge_curve(&c, e.t0, e.t1), e.t0, e.t1)
+                            .named(curves[e.curve].name.clone());
+                        if fwd {
+                            s
+                        } else {
+                            s.reversed()
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
         FaceBoundary::new(
-            face.sides
-                .iter()
-                .map(|side| {
-                    Side::new(
-                        side.iter()
-                            .map(|&(ei, fwd)| {
-                                let e = &form.edges[ei];
-                                let c = if after {
-                                    moved[e.curve]
-                                        .clone()
-                                        .unwrap_or_else(|| curves[e.curve].curve.clone())
-                                } else {
-                                    curves[e.curve].curve.clone()
-                                };
-                                // The stretch cut out, so that derivatives at a knot where the
-                                // moved curve kinks belong to this edge's side.
-                                let s = SideSegment::new(edge_curve(&c, e.t0, e.t1), e.t0, e.t1)
-                                    .named(curves[e.curve].name.clone());
-                                if fwd {
-                                    s
-                                } else {
-                                    s.reversed()
-                                }
-                            })
-                            .collect(),
-                    )
-                })
+            at_least_three_sides(sides)
+                .into_iter()
+                .map(Side::new)
                 .collect(),
         )
     };
@@ -562,6 +565,60 @@ fn face_surfaces(
         });
     }
     Ok(out)
+}
+
+/// The sides of a form face split until there are at least three, as a Gregory surface needs
+/// (a face bounded by two curves between the same two vertices, such as the flat end of a
+/// shaft boss between its knuckle and the profile, or by one closed curve): a side of several
+/// edges is split at the vertex in its middle, else the longest single-edge side at the middle
+/// of its parameter. The new corner is flat (180°), which the patch construction repairs with
+/// its documented fallback ([`crate::PatchWarning::CornerAngle`]); the surface serves only as
+/// the face's field of displacement, and the boundary it spans is unchanged.
+fn at_least_three_sides(mut sides: Vec<Vec<SideSegment>>) -> Vec<Vec<SideSegment>> {
+    while (1..3).contains(&sides.len()) {
+        let length = |side: &[SideSegment]| -> f64 {
+            side.iter()
+                .map(|s| {
+                    (0..8)
+                        .map(|k| {
+                            let at =
+                                |j: usize| s.curve.point(s.t0 + (s.t1 - s.t0) * j as f64 / 8.0);
+                            at(k).distance(at(k + 1))
+                        })
+                        .sum::<f64>()
+                })
+                .sum()
+        };
+        let i = (0..sides.len())
+            .max_by(|&a, &b| {
+                (sides[a].len(), length(&sides[a]))
+                    .partial_cmp(&(sides[b].len(), length(&sides[b])))
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .unwrap_or(0);
+        let tail = if sides[i].len() >= 2 {
+            let half = sides[i].len() / 2;
+            sides[i].split_off(half)
+        } else {
+            let Some(seg) = sides[i].pop() else {
+                break;
+            };
+            let mid = 0.5 * (seg.t0 + seg.t1);
+            let first = SideSegment {
+                t1: mid,
+                end: None,
+                ..seg.clone()
+            };
+            sides[i].push(first);
+            vec![SideSegment {
+                t0: mid,
+                start: None,
+                ..seg
+            }]
+        };
+        sides.insert(i + 1, tail);
+    }
+    sides
 }
 
 /// Points of a `FOOT_GRID`² grid over the domain's box that lie inside the domain.
@@ -958,4 +1015,101 @@ fn check_connections(
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A quadratic Bézier curve through `a`, pulled toward `b`, to `c`.
+    fn quadratic(a: DVec3, b: DVec3, c: DVec3) -> NurbsCurve {
+        NurbsCurve::try_new(2, vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0], vec![a, b, c], None).unwrap()
+    }
+
+    /// The flat end of a shaft boss: a knuckle arc and the straight profile between the same
+    /// two vertices, in the plane y = 0.
+    fn lens() -> Vec<Vec<SideSegment>> {
+        let (a, c) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
+        let chord = quadratic(a, DVec3::new(1.0, 0.0, 0.0), c);
+        let arc = quadratic(a, DVec3::new(1.0, 0.0, 1.5), c);
+        vec![
+            vec![SideSegment::new(chord, 0.0, 1.0)],
+            vec![SideSegment::new(arc, 1.0, 0.0)],
+        ]
+    }
+
+    #[test]
+    fn a_two_sided_form_face_gets_a_surface_on_its_own_boundary() {
+        let sides = lens();
+        let split = at_least_three_sides(sides.clone());
+        assert_eq!(split.len(), 3);
+        let patch = Patch::try_new(
+            &FaceBoundary::new(split.into_iter().map(Side::new).collect()),
+            &[],
+            &PatchOptions::default(),
+        )
+        .expect("three sides make a patch");
+        // The boundary is the lens's: points of the sides lie on the arc or on the chord.
+        let on_boundary = |p: DVec3| {
+            let chord = p.z.abs();
+            let arc = (0..=2000)
+                .map(|k| sides[1][0].curve.point(k as f64 / 2000.0).distance(p))
+                .fold(f64::INFINITY, f64::min);
+            chord.min(arc)
+        };
+        for i in 0..3 {
+            for k in 0..=10 {
+                let p = patch.side_point(i, k as f64 / 10.0);
+                assert!(
+                    on_boundary(p) < 2e-3,
+                    "side {i} at {k}/10: {p} is off the lens"
+                );
+            }
+        }
+        // A flat face gets a flat surface: the whole domain stays in y = 0.
+        let d = patch.domain();
+        for x in domain_grid(d) {
+            let p = patch.eval(x.to_array());
+            assert!(
+                p.y.abs() < 1e-9 && p.is_finite(),
+                "{p} leaves the face's plane"
+            );
+        }
+        // Without the split, the same face is refused.
+        let whole = FaceBoundary::new(sides.into_iter().map(Side::new).collect());
+        assert!(Patch::try_new(&whole, &[], &PatchOptions::default()).is_err());
+    }
+
+    #[test]
+    fn one_closed_side_splits_into_three_and_three_sides_stay_as_they_are() {
+        let (a, b) = (DVec3::ZERO, DVec3::new(2.0, 0.0, 0.0));
+        let loop_ = NurbsCurve::try_new(
+            2,
+            vec![0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0],
+            vec![a, DVec3::new(0.0, 0.0, 2.0), DVec3::new(2.0, 0.0, 2.0), a],
+            None,
+        )
+        .unwrap();
+        let split = at_least_three_sides(vec![vec![SideSegment::new(loop_, 0.0, 2.0)]]);
+        assert_eq!(split.len(), 3);
+        // Each piece starts where the one before it ends.
+        for i in 0..3 {
+            let (s, n) = (&split[i][0], &split[(i + 1) % 3][0]);
+            assert_eq!(s.t1, n.t0 + if i == 2 { 2.0 } else { 0.0 });
+        }
+        let three = vec![
+            vec![SideSegment::new(quadratic(a, DVec3::X, b), 0.0, 1.0)],
+            vec![SideSegment::new(
+                quadratic(b, DVec3::Z, DVec3::Z * 2.0),
+                0.0,
+                1.0,
+            )],
+            vec![SideSegment::new(
+                quadratic(DVec3::Z * 2.0, DVec3::Z, a),
+                0.0,
+                1.0,
+            )],
+        ];
+        assert_eq!(at_least_three_sides(three.clone()), three);
+    }
 }
