@@ -10,6 +10,7 @@ import batten.api as api
 import bpy
 import numpy as np
 import pytest
+from batten import form_stack
 
 HB, D, T = 10.0, 12.0, 8.0  # as examples/pmb_barge.py
 
@@ -106,7 +107,8 @@ def test_barge_breadth_and_back_returns_the_network(barge):
     back = api.transform(wider.collection, breadth=b)
     worst = 0.0
     for c in api.read_curves(back.collection):
-        name = c.name.rsplit(".", 1)[0]
+        name = bpy.data.objects[c.name][form_stack.TRANSFORM_SOURCE]
+        assert c.name == f"{name} T2", "a copy's curves are named for their originals and the copy"
         worst = max(worst, float(np.abs(c.control_points - original[name].control_points).max()))
     assert worst <= 1e-6, worst  # Blender stores float32: 1e-9 is checked in the core tests
 

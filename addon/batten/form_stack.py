@@ -52,6 +52,11 @@ def source_objects(coll, object_of: dict[str, str]) -> dict[str, str]:
     return out
 
 
+def copy_name(source: str, index: int) -> str:
+    """The name of the copy of curve object ``source`` on copy ``index`` of a stack."""
+    return f"{source} T{index}"
+
+
 def push_copy(original, curves: list[Curve], sources: dict[str, str], description: str, *, resolution: int):
     """Draw ``curves`` as a new copy on ``original``'s stack (all objects or none). Returns the
     collection."""
@@ -60,8 +65,14 @@ def push_copy(original, curves: list[Curve], sources: dict[str, str], descriptio
     created = []
     try:
         for curve in curves:
-            obj = curves_out.new_curve_object(curve, coll, resolution=resolution)
-            obj[TRANSFORM_SOURCE] = sources.get(curve.name, curve.name)
+            source = sources.get(curve.name, curve.name)
+            # Named for its original and the copy ("wl_z10.80 T1"): Blender would make a
+            # second "wl_z10.80" into "wl_z10.001", taking ".80" for a counter, so a copy's
+            # report would name curves the designer cannot find.
+            obj = curves_out.new_curve_object(
+                curve.renamed(copy_name(source, index)), coll, resolution=resolution
+            )
+            obj[TRANSFORM_SOURCE] = source
             created.append(obj)
         coll[TRANSFORM_OF] = original.name
         coll[TRANSFORM_INDEX] = index
