@@ -112,15 +112,17 @@ def test_kcs_faces_that_cannot_be_fitted_are_refused_by_name(tmp_path):
     assert "fair or move the curves around it" in message, "what the user can do"
     assert err.value.faces, "the faces it could not fit"
     # Which faces are named depends on which fits finish first: the faces are fitted in
-    # parallel and the export stops at the first failures. (One thread fits the faces in
-    # order: then the first named is the transom's three-sided face below wl_z12.50, whose
-    # fit reaches 0.31 mm turning over in its plane — side-blended, its parameters kink at
-    # its corners; with more threads a face found sooner may stop the export before it.)
+    # parallel and the export stops at the first failures. Five faces of KCS cannot be fitted
+    # (measured with the export going on past its failures): faces 75 and 76 at the counter,
+    # beside wl_z9.00's 27 mm step in the offsets at x = 10.04 m (a seam of the source
+    # surface), and faces 88, 89 and 90 where the bulb's underside meets the profile and
+    # wl_z0.30; for face 75 not even the curves bounding its quads can be fitted.
     faces = api.topology(coll)["faces"]
     around = dict(part.split(": ", 1) for part in message.split("the curves around them: ")[1].split("; "))
     assert sorted(around) == sorted(f"face {f}" for f in err.value.faces), "every face's curves"
     for f in err.value.faces:
-        assert f"face {f} (reached " in message, f"face {f} with what its fit reached"
+        said = (f"face {f} (reached ", f"face {f} (its boundary curves could not be fitted)")
+        assert any(s in message for s in said), f"face {f} with what its fit reached, or why none"
         assert around[f"face {f}"] == ", ".join(f"'{c}'" for c in faces[f]["curves"]), f"face {f}'s curves"
     assert not any(tmp_path.iterdir()), "nothing written"
     print(f"KCS: {message}")
