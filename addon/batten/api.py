@@ -2584,8 +2584,9 @@ def transform_hydrostatic(
     station gaining an inflection) gives the closest hull, no exception.
 
     ``draft``: the collection's design draft when not given. Perpendiculars as in
-    :func:`hydrostatics`, held for every hull. ``report``: ``before`` and ``after`` (the
-    hydrostatics dicts), ``target_volume``, ``target_lcb``, ``entrance_length``,
+    :func:`hydrostatics`, held for every hull; every hull is built with the collection's
+    tangent planes (:func:`tangent_planes`), as :func:`build` builds it. ``report``:
+    ``before`` and ``after`` (the hydrostatics dicts), ``target_volume``, ``target_lcb``, ``entrance_length``,
     ``run_length``, ``pmb_length`` (each ``[before, after]``; None without a PMB), ``evaluations`` (hulls
     transformed, rebuilt and floated, the original's included), ``stop`` (``"converged"``,
     ``"out_of_range"`` or ``"evaluations_spent"``), ``limit`` (what stopped it), ``explored``
@@ -2626,6 +2627,7 @@ def transform_hydrostatic(
             fp=fp,
             density=density,
             tolerance=tolerance,
+            tangent_planes=tangent_planes(source),
         )
     asked = [
         f"{name} {value:g}"

@@ -8,7 +8,7 @@ use batten_core::{
     build_hull, fairness_metrics, form_topology, hydrostatics, transform, transform_hydrostatic,
     transform_to, CellDensity, EdgeKind, Flotation, FormError, FormOptions, FormTopology,
     HullOptions, HydroTargets, HydroTransformOptions, HydroTransformed, Network, NurbsCurve,
-    PmbHold, Role, Stop, Target, Tolerance, VertexMove, VolumeTarget, LCB_TOLERANCE,
+    PmbHold, Role, Stop, TangentPlane, Target, Tolerance, VertexMove, VolumeTarget, LCB_TOLERANCE,
     SEA_WATER_DENSITY, VOLUME_TOLERANCE,
 };
 use common::nc;
@@ -660,6 +660,36 @@ fn barge_cb_plus_one_hundredth_with_lcb_held() {
         out.pmb_length.unwrap()[1] > out.pmb_length.unwrap()[0] + 10.0,
         "a fuller hull has a longer PMB: {:?}",
         out.pmb_length.unwrap()
+    );
+}
+
+#[test]
+fn a_hydrostatic_transformation_measures_its_hulls_with_their_tangent_planes() {
+    // The flat of side and bottom as the import holds them (KCS, KVLCC2): every hull the
+    // solver evaluates, and the one it returns, is built with them, as the designer's build is.
+    let planes = vec![
+        TangentPlane::try_new(DVec3::Y, HB).unwrap(),
+        TangentPlane::try_new(DVec3::Z, 0.0).unwrap(),
+    ];
+    let n = barge(2.0, 0.2).with_tangent_planes(planes.clone());
+    let o = hydro_options();
+    let base = transform_hydrostatic(&n, HydroTargets::default(), &o).unwrap();
+    let targets = HydroTargets {
+        volume: Some(VolumeTarget::Cb(base.before.cb + 0.01)),
+        lcb: None,
+        hold: PmbHold::Free,
+    };
+    let out = transform_hydrostatic(&n, targets, &o).unwrap();
+    assert_hit(&n, &out, "Cb + 0.01 with tangent planes");
+    assert_eq!(
+        out.network.tangent_planes(),
+        &planes[..],
+        "the planes go with the hull"
+    );
+    let again = recheck(&out);
+    assert_eq!(
+        again.volume, out.after.volume,
+        "the hull returned is the hull measured"
     );
 }
 

@@ -8,7 +8,7 @@ use batten_core::{
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::curve::{curves_of, network_of, Curve};
+use crate::curve::{curves_of, network_of, tangent_planes_of, Curve};
 use crate::errors::{arg_err, core_err, form_err, guard};
 use crate::hydro::hydrostatics_dict;
 
@@ -27,9 +27,10 @@ use crate::hydro::hydrostatics_dict;
 /// in m and the form faces `entrance_faces`, `run_faces`),
 /// `evaluations`, `stop` (`"converged"`, `"out_of_range"`, `"evaluations_spent"`), `limit`
 /// (what stopped it, or None), `explored` (`volume`, `lcb`: `[min, max]` over the hulls evaluated), `x_ap`,
-/// `x_fp`.
+/// `x_fp`. `tangent_planes` (`[nx, ny, nz, offset]` each, as `build_surface` takes them) go
+/// with every hull built.
 #[pyfunction]
-#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, keep_pmb=None, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION))]
+#[pyo3(signature = (curves, draft, *, volume=None, displacement=None, cb=None, cp=None, lcb=None, keep_pmb=None, lpp=None, fp=None, density=SEA_WATER_DENSITY, tolerance=DEFAULT_TOLERANCE, resolution=DEFAULT_RESOLUTION, tangent_planes=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn transform_hydrostatic<'py>(
     py: Python<'py>,
@@ -46,6 +47,7 @@ pub(crate) fn transform_hydrostatic<'py>(
     density: f64,
     tolerance: f64,
     resolution: usize,
+    tangent_planes: Option<Vec<[f64; 4]>>,
 ) -> PyResult<(Vec<Curve>, Bound<'py, PyDict>)> {
     let given: Vec<VolumeTarget> = [
         volume.map(VolumeTarget::Volume),
@@ -99,7 +101,7 @@ pub(crate) fn transform_hydrostatic<'py>(
         },
     };
     let hull = HullOptions::try_new(tolerance, resolution).map_err(core_err)?;
-    let network = network_of("", &curves)?;
+    let network = network_of("", &curves)?.with_tangent_planes(tangent_planes_of(tangent_planes)?);
     let options = HydroTransformOptions {
         draft,
         datums,

@@ -275,6 +275,10 @@ impl Mode {
                 ..c.clone()
             })
             .collect();
-        Network::try_new(deformed.name.clone(), held).map_err(|e| e.to_string())
+        // The flats' tangent planes stay where they were: the PMB's ends move along them, and
+        // a bulge leaves the form curves (the flats among them) where they are.
+        Network::try_new(deformed.name.clone(), held)
+            .map(|n| n.with_tangent_planes(network.tangent_planes().to_vec()))
+            .map_err(|e| e.to_string())
     }
 }

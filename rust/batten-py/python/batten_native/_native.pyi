@@ -230,6 +230,7 @@ def transform_hydrostatic(
     density: float = ...,  # SEA_WATER_DENSITY
     tolerance: float = ...,  # DEFAULT_TOLERANCE
     resolution: int = ...,  # DEFAULT_RESOLUTION
+    tangent_planes: Sequence[Sequence[float]] | None = None,  # each [nx, ny, nz, offset]
 ) -> tuple[list[Curve], dict]: ...
 
 SEA_WATER_DENSITY: float
