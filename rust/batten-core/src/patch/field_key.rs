@@ -93,8 +93,9 @@ impl FieldKey {
             return None;
         }
         let limit = MAX_CROWDING * (hi - lo) / length;
-        let rate = |t: f64| {
-            let v = limit * speed(t);
+        // `dk/dt` where the curve runs at speed `v`.
+        let rate_at = |v: f64| {
+            let v = limit * v;
             if !v.is_finite() {
                 return 1.0;
             }
@@ -102,6 +103,7 @@ impl FieldKey {
             let p = SOFTNESS;
             (1.0 + v.powi(-p)).powf(-1.0 / f64::from(p))
         };
+        let rate = |t: f64| rate_at(speed(t));
         let mut keys = Vec::with_capacity(ts.len());
         keys.push(0.0);
         for w in ts.windows(2) {
@@ -129,7 +131,13 @@ impl FieldKey {
                 _ => (3.0 * chord(i - 1), 3.0 * chord(i)),
             };
             let joint = i > 0 && i + 1 < n && degree > 0 && curve.multiplicity(t) >= degree;
-            match joint.then(|| joint_slopes(&rate, &speed, t)).flatten() {
+            let sides = joint.then(|| {
+                // The speed on the piece before the knot (the curve takes the one after it).
+                let span = curve.knots().partition_point(|&k| k < t) - 1;
+                let before = curve.derivs_in_span(span, t).d1.length();
+                joint_slopes(&rate_at, before, speed(t))
+            });
+            match sides.flatten() {
                 Some((left, right)) => {
                     slopes_before.push(capped(left, before));
                     slopes.push(capped(right, after));
@@ -177,35 +185,21 @@ impl FieldKey {
     }
 }
 
-/// `dk/dt` on either side of a joint at `t` where the curve's derivative jumps (the speed
-/// `v` before it differs from the speed after it), so that the key runs at one rate per unit
-/// of arc length through the joint: `dk/dt = g·v` on each side, `g` the mean of the two
-/// sides' own rates per unit length `rate/v`. Without this the field, blended in the key,
-/// turned at one rate per unit length on one side of the joint and at another after it, and
-/// every patch along the edge creased from there across its width: KVLCC2's station 7 (a
-/// Bézier spline whose handle lengths double at a joint near the flat of bottom) made the face
-/// beside it fold its normal by 4° within 0.2 mm, which no B-spline of the CAD export could
-/// follow within 0.1 mm. `None` where either side's speed is not a positive finite number
-/// (the one slope of a smooth point is kept then).
-fn joint_slopes(
-    rate: &dyn Fn(f64) -> f64,
-    speed: &dyn Fn(f64) -> f64,
-    t: f64,
-) -> Option<(f64, f64)> {
-    // The piece before the knot, evaluated a float below it (the curve takes the piece after
-    // it at the knot itself).
-    let before = if t > 0.0 {
-        f64::from_bits(t.to_bits() - 1)
-    } else if t < 0.0 {
-        f64::from_bits(t.to_bits() + 1)
-    } else {
-        -f64::from_bits(1)
-    };
-    let (v0, v1) = (speed(before), speed(t));
+/// `dk/dt` on either side of a joint where the curve's derivative jumps (its speed is `v0`
+/// before it and `v1` after it), so that the key runs at one rate per unit of arc length
+/// through the joint: `dk/dt = g·v` on each side, `g` the mean of the two sides' own rates per
+/// unit length `rate_at(v)/v`. Without this the field, blended in the key, turned at one rate
+/// per unit length on one side of the joint and at another after it, and every patch along the
+/// edge creased from there across its width: KVLCC2's station 7 (a Bézier spline whose handle
+/// lengths double at a joint near the flat of bottom) made the face beside it fold its normal
+/// by 4° within 0.2 mm, which no B-spline of the CAD export could follow within 0.1 mm. `None`
+/// where either speed is not a positive finite number (the one slope of a smooth point is kept
+/// then).
+fn joint_slopes(rate_at: &dyn Fn(f64) -> f64, v0: f64, v1: f64) -> Option<(f64, f64)> {
     if !(v0.is_finite() && v1.is_finite() && v0 > 0.0 && v1 > 0.0) {
         return None;
     }
-    let g = 0.5 * (rate(before) / v0 + rate(t) / v1);
+    let g = 0.5 * (rate_at(v0) / v0 + rate_at(v1) / v1);
     Some((g * v0, g * v1))
 }
 
