@@ -112,11 +112,13 @@ def test_kcs_faces_that_cannot_be_fitted_are_refused_by_name(tmp_path):
     assert "fair or move the curves around it" in message, "what the user can do"
     assert err.value.faces, "the faces it could not fit"
     # Which faces are named depends on which fits finish first: the faces are fitted in
-    # parallel and the export stops at the first failures. Five faces of KCS cannot be fitted
+    # parallel and the export stops at the first failures. Three faces of KCS cannot be fitted
     # (measured with the export going on past its failures): faces 75 and 76 at the counter,
-    # beside wl_z9.00's 27 mm step in the offsets at x = 10.04 m (a seam of the source
-    # surface), and faces 88, 89 and 90 where the bulb's underside meets the profile and
-    # wl_z0.30; for face 75 not even the curves bounding its quads can be fitted.
+    # whose patches bend sharply along the line from wl_z9.00's 27 mm step in the offsets at
+    # x = 10.04 m (a seam of the source surface), and face 90, where wl_z0.30 turns into the
+    # stem with a corner inside the face's side (a knuckle the network has no curve for: the
+    # patch cracks along the line from it, and not even the curves bounding its quads can be
+    # fitted).
     faces = api.topology(coll)["faces"]
     around = dict(part.split(": ", 1) for part in message.split("the curves around them: ")[1].split("; "))
     assert sorted(around) == sorted(f"face {f}" for f in err.value.faces), "every face's curves"

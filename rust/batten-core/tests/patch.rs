@@ -1415,3 +1415,100 @@ fn a_ribbon_turned_along_a_twisting_side_has_no_jump_between_its_samples() {
         );
     }
 }
+
+/// A quad whose lower side has a corner inside it at (2, 0, 0) where it leaves the plane
+/// z = 0, climbing by `rise` to (4, 1, rise) (two cubic pieces, no node at the corner): a
+/// section's corner where the hull has a knuckle the network has no curve for.
+fn knuckled_quad(rise: f64) -> Vec<NurbsCurve> {
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let third = 1.0 / 3.0;
+    let lower = NurbsCurve::try_new(
+        3,
+        vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0],
+        vec![
+            p(0.0, 0.0, 0.0),
+            p(2.0 * third, 0.0, 0.0),
+            p(4.0 * third, 0.0, 0.0),
+            p(2.0, 0.0, 0.0),
+            p(2.0 + 2.0 * third, third, rise * third),
+            p(2.0 + 4.0 * third, 2.0 * third, 2.0 * rise * third),
+            p(4.0, 1.0, rise),
+        ],
+        None,
+    )
+    .expect("valid curve");
+    vec![
+        lower,
+        bezier(&[p(4.0, 1.0, rise), p(4.0, 3.0, 0.0)]),
+        bezier(&[p(4.0, 3.0, 0.0), p(0.0, 3.0, 0.0)]),
+        bezier(&[p(0.0, 3.0, 0.0), p(0.0, 0.0, 0.0)]),
+    ]
+}
+
+/// The side parameter of the corner of [`knuckled_quad`]'s lower side, where it passes x = 2.
+fn knuckle_at(patch: &Patch) -> f64 {
+    let (mut a, mut b) = (0.0, 1.0);
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        if patch.side_point(0, m).x < 2.0 {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+#[test]
+fn a_ribbon_runs_on_continuously_past_a_slight_corner_out_of_its_tangent_plane() {
+    for kind in [PatchKind::Gregory, PatchKind::SideBlend] {
+        let opts = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        let step = |rise: f64| {
+            let patch =
+                Patch::try_new(&single_sides(&knuckled_quad(rise)), &[], &opts).expect("patch");
+            let at = knuckle_at(&patch);
+            let (r0, r1) = (patch.ribbon(0, at - 1e-9), patch.ribbon(0, at + 1e-9));
+            ((r1 - r0).length() / r0.length(), patch, at)
+        };
+        // A knuckle the network has no curve for (the corner climbs 0.8 m): the frames either
+        // side lie in planes far apart, and the ribbon keeps its step (4.9 % of its length
+        // with the Gregory patch's ribbon) rather than leave its tangent plane by degrees.
+        let (big, _, _) = step(0.8);
+        assert!(big > 0.01, "{kind:?}: a knuckle's step {big:e}");
+        // A slight one (a 1 cm climb): the step is spread along the side beside the corner
+        // (before: a step, and a crack in the patch along the line from the corner).
+        let (jump, patch, at) = step(0.01);
+        assert!(
+            jump < 1e-7,
+            "{kind:?}: the ribbon steps by {jump:e} of its length"
+        );
+        // Continuous along the side beside the corner, steps of 1e-4 moving it by little
+        // (the side-blended patch's ribbon shortens steeply towards the face's corners).
+        let n = 10_000;
+        let mut last = patch.ribbon(0, 0.25);
+        let mut largest: f64 = 0.0;
+        for j in 1..=n {
+            let r = patch.ribbon(0, 0.25 + 0.5 * j as f64 / n as f64);
+            largest = largest.max((r - last).length() / r.length());
+            last = r;
+        }
+        assert!(
+            largest < 1e-3,
+            "{kind:?}: a step of {largest:e} of its length"
+        );
+        // The inside of the patch runs on through the line from the corner, too.
+        let (x0, x1) = (
+            patch.domain().side_point(0, at - 1e-9),
+            patch.domain().side_point(0, at + 1e-9),
+        );
+        let inward = |x: [f64; 2]| [x[0] + 0.02 * (0.5 - x[0]), x[1] + 0.3];
+        let crack = (patch.eval(inward(x1)) - patch.eval(inward(x0))).length();
+        assert!(
+            crack < 1e-7,
+            "{kind:?}: a crack of {crack:e} m inside the patch"
+        );
+    }
+}

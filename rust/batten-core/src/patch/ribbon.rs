@@ -591,12 +591,19 @@ pub(crate) struct PreparedRibbon {
     /// ([`width_scale`]); `None` where it is 1 throughout (always, for the corner-based
     /// patches).
     scale: Option<WidthScale>,
+    /// Where the ribbon still steps at a corner inside its side, what spreads the step over
+    /// the side beside it ([`side_mends`]); mostly none.
+    mends: Vec<Mend>,
 }
 
 /// A side's tangent turning by more than this at one point inside the side (a corner of its
 /// curve, or a joint between two of its segments) is a [`Turn`]; the rest of its turning is
-/// measured at [`TRANSPORT_SAMPLES`] + 1 even steps.
-const MIN_TURN_DEGREES: f64 = 0.05;
+/// measured at [`TRANSPORT_SAMPLES`] + 1 even steps. A thousandth of a degree: a corner below
+/// it steps the ribbon by less than 2e-5 of its length (a small step at a [`Turn`] is spread
+/// along the side, [`side_mends`]); at 0.05° the smaller corners of KCS's bulb station at
+/// x = 230 m still stepped its ribbon by up to 0.19 mm, a 0.05 mm crack in the patch beside
+/// it.
+const MIN_TURN_DEGREES: f64 = 0.001;
 
 /// Even steps of `s` at which a side's smooth turn is measured ([`Transport`]).
 const TRANSPORT_SAMPLES: usize = 64;
@@ -618,6 +625,8 @@ struct Turn {
     /// The curve parameter of a corner inside `segment`, and whether the segment runs with
     /// increasing parameter; `None` for the joint after `segment`.
     at: Option<(f64, bool)>,
+    /// Where it is along the side (its side parameter).
+    s: f64,
 }
 
 impl Turn {
@@ -764,6 +773,99 @@ fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport
     })
 }
 
+/// How far a ribbon's step at a corner inside its side is spread along the side, either way
+/// (a share of the side's parameter; less where another corner or the side's end is nearer
+/// than twice that).
+const MEND_SPREAD: f64 = 1.0 / 32.0;
+
+/// The largest step (a share of the ribbon's length) [`side_mends`] spreads along the side:
+/// spread, a step tilts the ribbon out of its tangent plane by up to half its angle there,
+/// and the faces either side of the curve meet with their normals that far apart; 1.5e-3
+/// keeps that within 0.05° (the G1 the real ships are built to). A larger step is a corner
+/// where the hull has a knuckle the network has no curve for, and is left.
+const MEND_MOST: f64 = 1.5e-3;
+
+/// The ribbon's step at one corner inside its side (a [`Turn`]) and how far it is spread
+/// ([`side_mends`]).
+#[derive(Clone, Copy, Debug)]
+struct Mend {
+    /// The corner's side parameter.
+    at: f64,
+    /// The ribbon just before the corner less the ribbon just after it.
+    step: DVec3,
+    /// How far before and after the corner (side parameter) the step is spread.
+    before: f64,
+    after: f64,
+}
+
+/// What the ribbon gains at `s` from `mends`: half of each step added after its corner and
+/// half taken away before it, each half fading to nothing by a smoothstep over its spread,
+/// so that the ribbon runs on continuously through the corner.
+#[inline]
+fn mended(mends: &[Mend], s: f64) -> DVec3 {
+    let fade = |x: f64| 1.0 - x * x * (3.0 - 2.0 * x);
+    let mut out = DVec3::ZERO;
+    for m in mends {
+        if s >= m.at && s < m.at + m.after {
+            out += m.step * (0.5 * fade((s - m.at) / m.after));
+        } else if s < m.at && s > m.at - m.before {
+            out -= m.step * (0.5 * fade((m.at - s) / m.before));
+        }
+    }
+    out
+}
+
+/// The steps a side's ribbon still takes at the corners inside its side, and their spreads.
+///
+/// The carried frame turns the ribbon through a corner by the corner's angle about the
+/// surface normal ([`Transport`]), which leaves it continuous where the side's two tangents
+/// lie in the tangent plane the edge's normal field gives there. Where they do not, the
+/// frames either side of the corner lie in different planes, no turn within one of them joins
+/// them, and the ribbon steps: the patch beside it cracks along the line from the corner. A
+/// small step (up to [`MEND_MOST`] of the ribbon's length: the joints and slight corners of
+/// fitted section curves, KCS's bulb station at x = 230 m, whose steps of up to 0.19 mm
+/// cracked its patch by 0.05 mm) is spread along the side beside the corner ([`mended`]):
+/// the ribbon is continuous, leaves its tangent plane by at most half the step's angle near
+/// the corner, and is unchanged elsewhere and at the face's corners. A larger step is a
+/// corner where the hull has a knuckle the network has no curve for (KCS's bulb: a 67°
+/// corner where wl_z0.30 turns into the stem, 1.1 cm on a 1.7 m ribbon): spreading it would
+/// tilt the ribbon, and the surface normal, by degrees, so it is left.
+fn side_mends(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Mend> {
+    let Some(transport) = &rib.transport else {
+        return Vec::new();
+    };
+    let mut at: Vec<f64> = transport
+        .corners
+        .iter()
+        .map(|c| c.s)
+        .filter(|s| *s > 0.0 && *s < 1.0)
+        .collect();
+    at.sort_by(f64::total_cmp);
+    at.dedup();
+    // Either side of the corner, close enough that the ribbon's own change is rounding.
+    let h = 1e-9;
+    let mut out = Vec::with_capacity(at.len());
+    for (j, &s) in at.iter().enumerate() {
+        let prev = if j == 0 { 0.0 } else { 0.5 * (s + at[j - 1]) };
+        let next = at.get(j + 1).map_or(1.0, |n| 0.5 * (s + n));
+        let (before, after) = ((s - prev).min(MEND_SPREAD), (next - s).min(MEND_SPREAD));
+        if before <= h || after <= h {
+            continue;
+        }
+        let step = rib.eval(side, s - h).1 - rib.eval(side, s + h).1;
+        let r = rib.eval(side, s + h).1.length();
+        if step.is_finite() && step.length() > 0.0 && step.length() <= MEND_MOST * r {
+            out.push(Mend {
+                at: s,
+                step,
+                before,
+                after,
+            });
+        }
+    }
+    out
+}
+
 /// The [`Turn`]s of one side: its curves' corners inside its segments and its joints between
 /// segments where the ribbon's frame turns by more than [`MIN_TURN_DEGREES`].
 fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
@@ -778,10 +880,15 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
         let d1 = seg.fast.derivs_in(seg.fast.piece_at(t, after_in_t), t).d1;
         (d1 * seg.parameter_slope(t, after_in_t) + (seg.d1 - seg.d0)) / du
     };
-    let mut push = |before: SideSample, after: SideSample, segment, at| {
+    let mut push = |before: SideSample, after: SideSample, segment, at, s| {
         let angle = turn_between(before, after);
         if angle.abs() > min && angle.is_finite() {
-            out.push(Turn { angle, segment, at });
+            out.push(Turn {
+                angle,
+                segment,
+                at,
+                s,
+            });
         }
     };
     for (k, seg) in side.segs.iter().enumerate() {
@@ -797,7 +904,7 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
             let p = seg.fast.point(tc) + seg.d0 * (1.0 - lam) + seg.d1 * lam;
             let frame = |after_in_t| rib.frame_of(side, s, p, one_sided(k, tc, after_in_t), k, tc);
             let (before, after) = (frame(!up), frame(up));
-            push(before, after, k, Some((tc, up)));
+            push(before, after, k, Some((tc, up)), s);
         }
         if k + 1 < m {
             let next = &side.segs[k + 1];
@@ -807,7 +914,7 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
             let next_up = next.tb >= next.ta;
             let dp = one_sided(k + 1, next.ta, next_up);
             let after = rib.frame_of(side, s, p, dp, k + 1, next.ta);
-            push(before, after, k, None);
+            push(before, after, k, None, s);
         }
     }
     out
@@ -887,10 +994,11 @@ impl PreparedRibbon {
                 r * cos + axis.cross(r) * sin
             }
         };
-        match &self.scale {
-            None => (f.p, r),
-            Some(w) => (f.p, r * w.at(s)),
-        }
+        let r = match &self.scale {
+            None => r,
+            Some(w) => r * w.at(s),
+        };
+        (f.p, r + mended(&self.mends, s))
     }
 
     /// |R(s)| before any width scale: the corner magnitudes' linear blend.
@@ -1111,6 +1219,7 @@ pub(crate) fn prepare_ribbons(
             beta: [0.0; 2],
             transport: None,
             scale: None,
+            mends: Vec::new(),
         };
         let side = &sides[i];
         let spec = specs.get(i);
@@ -1179,6 +1288,7 @@ pub(crate) fn prepare_ribbons(
         if width_limited {
             rib.scale = side_scales(sides, i, &rib);
         }
+        rib.mends = side_mends(&rib, side);
         out.push(rib);
     }
     out
