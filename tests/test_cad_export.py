@@ -127,6 +127,11 @@ def test_kcs_faces_that_cannot_be_fitted_are_refused_by_name(tmp_path):
         assert any(s in message for s in said), f"face {f} with what its fit reached, or why none"
         assert around[f"face {f}"] == ", ".join(f"'{c}'" for c in faces[f]["curves"]), f"face {f}'s curves"
     assert not any(tmp_path.iterdir()), "nothing written"
+    # The build says where face 90 cracks: wl_z0.30's corner 3.5 cm before the stem.
+    knuckles = [w for w in report["warnings"] if w["kind"] == "knuckle_in_face"]
+    said = [w for w in knuckles if w["message"].startswith("face 90 ")]
+    assert len(said) == 1 and "wl_z0.30" in said[0]["curves"], [w["message"] for w in knuckles]
+    assert "(228.242, 0.035, 0.300)" in said[0]["message"], said[0]["message"]
     print(f"KCS: {message}")
 
 

@@ -1549,7 +1549,9 @@ def build(
     edges off the profile, deck and transom —, ``fold`` — neighbouring mesh faces more than 30°
     apart off the knuckles, or a patch out of its boundary's box —, ``side_blended`` — a face
     whose Gregory or Charrot–Gregory patch folded, given the side-blended patch of the same
-    curves and ribbon planes, which folds clearly less —, …),
+    curves and ribbon planes, which folds clearly less —, ``knuckle_in_face`` — a corner of a
+    bounding curve inside a face's side where the hull has a knuckle no curve follows, and the
+    patch cracks along the line from it —, …),
     ``message``, ``curves`` (curve names),
     ``objects`` (the names of the curve objects they came from, for selecting them),
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the

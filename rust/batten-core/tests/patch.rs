@@ -1476,11 +1476,35 @@ fn a_ribbon_runs_on_continuously_past_a_slight_corner_out_of_its_tangent_plane()
         // A knuckle the network has no curve for (the corner climbs 0.8 m): the frames either
         // side lie in planes far apart, and the ribbon keeps its step (4.9 % of its length
         // with the Gregory patch's ribbon) rather than leave its tangent plane by degrees.
-        let (big, _, _) = step(0.8);
+        let (big, knuckled, _) = step(0.8);
         assert!(big > 0.01, "{kind:?}: a knuckle's step {big:e}");
+        // And the patch says so, with where the corner is and how far the ribbon steps.
+        let said: Vec<_> = knuckled
+            .warnings()
+            .iter()
+            .filter_map(|w| match w {
+                PatchWarning::KnuckleInSide {
+                    side, at, share, ..
+                } => Some((*side, DVec3::from(*at), *share)),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(said.len(), 1, "{kind:?}: {:?}", knuckled.warnings());
+        let (side, at, share) = said[0];
+        assert_eq!(side, 0);
+        assert!((at - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-6, "at {at}");
+        assert!((share - big).abs() < 1e-3 * big, "{share} against {big}");
         // A slight one (a 1 cm climb): the step is spread along the side beside the corner
         // (before: a step, and a crack in the patch along the line from the corner).
         let (jump, patch, at) = step(0.01);
+        assert!(
+            !patch
+                .warnings()
+                .iter()
+                .any(|w| matches!(w, PatchWarning::KnuckleInSide { .. })),
+            "{kind:?}: a slight corner is no knuckle: {:?}",
+            patch.warnings()
+        );
         assert!(
             jump < 1e-7,
             "{kind:?}: the ribbon steps by {jump:e} of its length"

@@ -157,6 +157,7 @@ fn face_warning(
 fn patch_warning(topology: &Topology, fi: usize, label: &str, w: &PatchWarning) -> Warning {
     let kind = match w {
         PatchWarning::CornerAngle { .. } => WarningKind::DegenerateCorner,
+        PatchWarning::KnuckleInSide { .. } => WarningKind::KnuckleInFace,
         PatchWarning::SideBlended { .. }
         | PatchWarning::FlatSideBlended { .. }
         | PatchWarning::CuspSideBlended { .. } => WarningKind::SideBlended,

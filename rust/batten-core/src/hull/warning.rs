@@ -26,6 +26,10 @@ pub enum WarningKind {
     DegenerateCorner,
     /// A face's corner-based patch folded and its side-blended patch is used instead.
     SideBlended,
+    /// A curve bounding a face has a corner inside the face's side where the hull has a
+    /// knuckle no curve follows, and the patch cracks along the line from it
+    /// ([`crate::PatchWarning::KnuckleInSide`]).
+    KnuckleInFace,
     /// A patch produced non-finite points and was left out of the mesh.
     NonFiniteSurface,
     /// Free edges off the hull's boundary (not profile, deck or transom): the surface has a
@@ -45,6 +49,7 @@ impl WarningKind {
             WarningKind::FaceNotPatched => "face_not_patched",
             WarningKind::DegenerateCorner => "degenerate_corner",
             WarningKind::SideBlended => "side_blended",
+            WarningKind::KnuckleInFace => "knuckle_in_face",
             WarningKind::NonFiniteSurface => "non_finite_surface",
             WarningKind::Hole => "hole",
             WarningKind::Fold => "fold",

@@ -212,6 +212,20 @@ pub enum PatchWarning {
         /// The cells of a fine grid over its domain that turned over.
         cells: usize,
     },
+    /// A side has a corner inside it (no node there) whose two tangents leave the tangent
+    /// plane the side's normal field gives there: the hull has a knuckle that no curve of the
+    /// network follows, the side's ribbon steps there (by more than the patch spreads along
+    /// the side), and the patch cracks along the line from the corner into the face.
+    KnuckleInSide {
+        /// Index of the side.
+        side: usize,
+        /// Where the corner is (model coordinates, m).
+        at: [f64; 3],
+        /// The ribbon's step (m).
+        step: f64,
+        /// The step as a share of the ribbon's length.
+        share: f64,
+    },
     /// Two sides of the face meet at a cusp (a corner angle near 0°: one repaired,
     /// [`PatchWarning::CornerAngle`], or one under `CUSP_DEGREES`), where they span no tangent
     /// plane a corner-based patch can interpolate; the side-blended patch, which has no corner
@@ -270,6 +284,23 @@ impl std::fmt::Display for PatchWarning {
                      which does not, is used"
                 )
             }
+            PatchWarning::KnuckleInSide {
+                side,
+                at,
+                step,
+                share,
+            } => write!(
+                f,
+                "side {side} has a corner at ({:.3}, {:.3}, {:.3}) where the hull has a knuckle \
+                 no curve follows: the ribbon steps by {:.1} mm ({:.1} % of its length) and the \
+                 patch cracks along the line from it into the face; add a curve along the \
+                 knuckle, or fair the corner out",
+                at[0],
+                at[1],
+                at[2],
+                step * 1e3,
+                share * 100.0
+            ),
             PatchWarning::CuspSideBlended {
                 replaced,
                 corner,

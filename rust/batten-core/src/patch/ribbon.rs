@@ -830,7 +830,14 @@ fn mended(mends: &[Mend], s: f64) -> DVec3 {
 /// corner where the hull has a knuckle the network has no curve for (KCS's bulb: a 67°
 /// corner where wl_z0.30 turns into the stem, 1.1 cm on a 1.7 m ribbon): spreading it would
 /// tilt the ribbon, and the surface normal, by degrees, so it is left.
-fn side_mends(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Mend> {
+///
+/// Each step left is reported as a [`PatchWarning::KnuckleInSide`] of side `index`.
+fn side_mends(
+    rib: &PreparedRibbon,
+    side: &PreparedSide,
+    index: usize,
+    warnings: &mut Vec<PatchWarning>,
+) -> Vec<Mend> {
     let Some(transport) = &rib.transport else {
         return Vec::new();
     };
@@ -854,7 +861,16 @@ fn side_mends(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Mend> {
         }
         let step = rib.eval(side, s - h).1 - rib.eval(side, s + h).1;
         let r = rib.eval(side, s + h).1.length();
-        if step.is_finite() && step.length() > 0.0 && step.length() <= MEND_MOST * r {
+        if step.length() > MEND_MOST * r {
+            warnings.push(PatchWarning::KnuckleInSide {
+                side: index,
+                at: side.point(s).to_array(),
+                step: step.length(),
+                share: step.length() / r,
+            });
+            continue;
+        }
+        if step.is_finite() && step.length() > 0.0 {
             out.push(Mend {
                 at: s,
                 step,
@@ -1288,7 +1304,7 @@ pub(crate) fn prepare_ribbons(
         if width_limited {
             rib.scale = side_scales(sides, i, &rib);
         }
-        rib.mends = side_mends(&rib, side);
+        rib.mends = side_mends(&rib, side, i, warnings);
         out.push(rib);
     }
     out
