@@ -1460,6 +1460,50 @@ fn knuckle_at(patch: &Patch) -> f64 {
 }
 
 #[test]
+fn a_ribbon_at_a_joint_of_its_side_is_the_middle_of_its_two_sides() {
+    // The lower side in two straight segments of equal length (so the joint is at s = 0.5,
+    // where the side evaluates the first one), turning slightly out of the plane z = 0.
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let bend = p(2.0, 0.3, 0.01).normalize() * 2.0;
+    let corner = p(2.0, 0.0, 0.0) + bend;
+    let boundary = FaceBoundary::new(vec![
+        Side::new(vec![
+            SideSegment::whole(bezier(&[p(0.0, 0.0, 0.0), p(2.0, 0.0, 0.0)])),
+            SideSegment::whole(bezier(&[p(2.0, 0.0, 0.0), corner])),
+        ]),
+        Side::single(SideSegment::whole(bezier(&[corner, p(4.0, 3.0, 0.0)]))),
+        Side::single(SideSegment::whole(bezier(&[
+            p(4.0, 3.0, 0.0),
+            p(0.0, 3.0, 0.0),
+        ]))),
+        Side::single(SideSegment::whole(bezier(&[
+            p(0.0, 3.0, 0.0),
+            p(0.0, 0.0, 0.0),
+        ]))),
+    ]);
+    for kind in [PatchKind::Gregory, PatchKind::SideBlend] {
+        let opts = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        let patch = Patch::try_new(&boundary, &[], &opts).expect("patch");
+        assert!((patch.side_point(0, 0.5) - p(2.0, 0.0, 0.0)).length() < 1e-12);
+        let (r0, r1) = (patch.ribbon(0, 0.5 - 1e-9), patch.ribbon(0, 0.5 + 1e-9));
+        let jump = (r1 - r0).length() / r0.length();
+        assert!(
+            jump < 1e-7,
+            "{kind:?}: the ribbon steps by {jump:e} at the joint"
+        );
+        // Exactly at the joint (where a mesh has its vertices along the line from it).
+        let off = (patch.ribbon(0, 0.5) - 0.5 * (r0 + r1)).length() / r0.length();
+        assert!(
+            off < 1e-7,
+            "{kind:?}: the ribbon at the joint is {off:e} of its length off"
+        );
+    }
+}
+
+#[test]
 fn a_ribbon_runs_on_continuously_past_a_slight_corner_out_of_its_tangent_plane() {
     for kind in [PatchKind::Gregory, PatchKind::SideBlend] {
         let opts = PatchOptions {
@@ -1497,6 +1541,7 @@ fn a_ribbon_runs_on_continuously_past_a_slight_corner_out_of_its_tangent_plane()
         // A slight one (a 1 cm climb): the step is spread along the side beside the corner
         // (before: a step, and a crack in the patch along the line from the corner).
         let (jump, patch, at) = step(0.01);
+        let (r0, r1) = (patch.ribbon(0, at - 1e-9), patch.ribbon(0, at + 1e-9));
         assert!(
             !patch
                 .warnings()
@@ -1508,6 +1553,13 @@ fn a_ribbon_runs_on_continuously_past_a_slight_corner_out_of_its_tangent_plane()
         assert!(
             jump < 1e-7,
             "{kind:?}: the ribbon steps by {jump:e} of its length"
+        );
+        // At the corner itself too (where the side evaluates one of its two pieces).
+        let mid = patch.ribbon(0, at);
+        let off = (mid - 0.5 * (r0 + r1)).length() / r0.length();
+        assert!(
+            off < 1e-7,
+            "{kind:?}: the ribbon at the corner is {off:e} of its length off"
         );
         // Continuous along the side beside the corner, steps of 1e-4 moving it by little
         // (the side-blended patch's ribbon shortens steeply towards the face's corners).

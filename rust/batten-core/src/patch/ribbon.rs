@@ -796,19 +796,23 @@ struct Mend {
     /// How far before and after the corner (side parameter) the step is spread.
     before: f64,
     after: f64,
+    /// Whether the side, evaluated at the corner itself, takes the piece before it (at a joint
+    /// of two segments, the first one's end): the corner then gets the half taken away.
+    at_before: bool,
 }
 
 /// What the ribbon gains at `s` from `mends`: half of each step added after its corner and
-/// half taken away before it, each half fading to nothing by a smoothstep over its spread,
-/// so that the ribbon runs on continuously through the corner.
+/// half taken away before it (at the corner itself, on the side of it the side evaluates
+/// there), each half fading to nothing by a smoothstep over its spread, so that the ribbon
+/// runs on continuously through the corner, and is the middle of its two sides at it.
 #[inline]
 fn mended(mends: &[Mend], s: f64) -> DVec3 {
     let fade = |x: f64| 1.0 - x * x * (3.0 - 2.0 * x);
     let mut out = DVec3::ZERO;
     for m in mends {
-        if s >= m.at && s < m.at + m.after {
+        if (s > m.at || (s == m.at && !m.at_before)) && s < m.at + m.after {
             out += m.step * (0.5 * fade((s - m.at) / m.after));
-        } else if s < m.at && s > m.at - m.before {
+        } else if s <= m.at && s > m.at - m.before {
             out -= m.step * (0.5 * fade((m.at - s) / m.before));
         }
     }
@@ -859,8 +863,9 @@ fn side_mends(
         if before <= h || after <= h {
             continue;
         }
-        let step = rib.eval(side, s - h).1 - rib.eval(side, s + h).1;
-        let r = rib.eval(side, s + h).1.length();
+        let (below, above) = (rib.eval(side, s - h).1, rib.eval(side, s + h).1);
+        let step = below - above;
+        let r = above.length();
         if step.length() > MEND_MOST * r {
             warnings.push(PatchWarning::KnuckleInSide {
                 side: index,
@@ -871,11 +876,13 @@ fn side_mends(
             continue;
         }
         if step.is_finite() && step.length() > 0.0 {
+            let itself = rib.eval(side, s).1;
             out.push(Mend {
                 at: s,
                 step,
                 before,
                 after,
+                at_before: (itself - below).length() < (itself - above).length(),
             });
         }
     }
