@@ -674,10 +674,10 @@ impl Turn {
 #[derive(Clone, Debug)]
 struct Transport {
     corners: Vec<Turn>,
-    /// The side's frame at the samples, with its segment and curve parameter.
-    frames: Vec<(SideSample, usize, f64)>,
-    /// The smooth turn at the samples (corners left out).
-    values: Vec<f64>,
+    /// The side's frame at the samples.
+    frames: Vec<SideSample>,
+    /// The turn `τ` at the samples: the smooth turn and the corners before each.
+    turned: Vec<f64>,
     /// The whole turn `τ(1)`, corners included.
     total: f64,
 }
@@ -694,19 +694,10 @@ impl Transport {
     /// the samples, and a side mirrored (run the other way) still gets the mirrored turn.
     #[inline]
     fn turn(&self, s: f64, f: SideSample) -> f64 {
-        let n = self.values.len() - 1;
+        let n = self.turned.len() - 1;
         let x = s.clamp(0.0, 1.0) * n as f64;
         let j = (x.floor() as usize).min(n - 1);
-        let from = |j: usize| {
-            let (at, kj, tj) = self.frames[j];
-            let corners: f64 = self
-                .corners
-                .iter()
-                .filter(|c| c.past(kj, tj))
-                .map(|c| c.angle)
-                .sum();
-            self.values[j] + corners + turn_between(at, f)
-        };
+        let from = |j: usize| self.turned[j] + turn_between(self.frames[j], f);
         let w = x - j as f64;
         if w <= 0.0 {
             return from(j);
@@ -765,10 +756,22 @@ fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport
     if straight && corners.is_empty() {
         return None;
     }
+    let turned = samples
+        .iter()
+        .zip(&values)
+        .map(|(&(_, k, t), v)| {
+            let before: f64 = corners
+                .iter()
+                .filter(|c| c.past(k, t))
+                .map(|c| c.angle)
+                .sum();
+            v + before
+        })
+        .collect();
     Some(Transport {
         corners,
-        frames: samples,
-        values,
+        frames: samples.into_iter().map(|(f, _, _)| f).collect(),
+        turned,
         total,
     })
 }
