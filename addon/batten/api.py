@@ -1550,8 +1550,8 @@ def build(
     apart off the knuckles, or a patch out of its boundary's box —, ``side_blended`` — a face
     whose Gregory or Charrot–Gregory patch folded, given the side-blended patch of the same
     curves and ribbon planes, which folds clearly less —, ``knuckle_in_face`` — a corner of a
-    bounding curve inside a face's side where the hull has a knuckle no curve follows, and the
-    patch cracks along the line from it —, …),
+    bounding curve inside a face's side where the hull has a knuckle no curve follows, whose
+    ribbon step the patch spreads inside the face —, …),
     ``message``, ``curves`` (curve names),
     ``objects`` (the names of the curve objects they came from, for selecting them),
     ``location`` ([x, y, z] or None) and ``error`` (for a face that could not be patched the

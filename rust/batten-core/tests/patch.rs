@@ -1580,11 +1580,71 @@ fn a_ribbon_runs_on_continuously_past_a_slight_corner_out_of_its_tangent_plane()
             patch.domain().side_point(0, at - 1e-9),
             patch.domain().side_point(0, at + 1e-9),
         );
-        let inward = |x: [f64; 2]| [x[0] + 0.02 * (0.5 - x[0]), x[1] + 0.3];
+        // (Straight in: on the square side 0's parameter is u, and the line is u = at.)
+        let inward = |x: [f64; 2]| [x[0], x[1] + 0.3];
         let crack = (patch.eval(inward(x1)) - patch.eval(inward(x0))).length();
         assert!(
             crack < 1e-7,
             "{kind:?}: a crack of {crack:e} m inside the patch"
         );
+    }
+}
+
+#[test]
+fn a_knuckle_no_curve_follows_fades_into_the_face_without_a_crack() {
+    // The corner climbs 0.8 m: a knuckle whose ribbon step (5 % of the ribbon) is left on the
+    // side. The patch extrapolates the side by its ribbon, so the step was a crack growing
+    // into the face from the corner (0.03 m at a third of the way across); now the step is
+    // spread inside the face, in a window that opens from the corner. (The side's own corner
+    // still creases the patch along that line, as any corner of a side does.)
+    for kind in [
+        PatchKind::Gregory,
+        PatchKind::CharrotGregory,
+        PatchKind::SideBlend,
+    ] {
+        let opts = PatchOptions {
+            kind,
+            ..PatchOptions::default()
+        };
+        let patch = Patch::try_new(&single_sides(&knuckled_quad(0.8)), &[], &opts).expect("patch");
+        assert!(
+            patch
+                .warnings()
+                .iter()
+                .any(|w| matches!(w, PatchWarning::KnuckleInSide { side: 0, .. })),
+            "{kind:?}: {:?}",
+            patch.warnings()
+        );
+        let at = knuckle_at(&patch);
+        // On the side the ribbon is the side's own: it still steps at the corner.
+        let (r0, r1) = (patch.ribbon(0, at - 1e-9), patch.ribbon(0, at + 1e-9));
+        let step = (r1 - r0).length() / r0.length();
+        assert!(step > 0.01, "{kind:?}: the side's ribbon steps by {step:e}");
+        // Inside, across the line from the corner at several depths: no crack.
+        let domain = patch.domain();
+        for depth in [0.001, 0.01, 0.1, 0.3, 0.6] {
+            // Straight in from the side (on the square, side 0's parameter is u).
+            let inward = |x: [f64; 2]| [x[0], x[1] + depth];
+            let (x0, x1) = (
+                domain.side_point(0, at - 1e-9),
+                domain.side_point(0, at + 1e-9),
+            );
+            let crack = (patch.eval(inward(x1)) - patch.eval(inward(x0))).length();
+            assert!(
+                crack < 1e-7,
+                "{kind:?}: a crack of {crack:e} m at depth {depth}"
+            );
+        }
+        // Beside the corner the face still takes the side's ribbon plane (G1 to a neighbour
+        // built on it): the normal on the side is square to the side's ribbon.
+        for s in [at - 0.05, at - 0.01, at + 0.01, at + 0.05] {
+            let n = patch.boundary_normal(0, s);
+            let r = patch.ribbon(0, s).normalize();
+            let off = n.dot(r).asin().to_degrees().abs();
+            assert!(
+                off < 1e-3,
+                "{kind:?}: the face leaves its ribbon plane by {off}° at s = {s}"
+            );
+        }
     }
 }

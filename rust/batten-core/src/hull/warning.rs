@@ -27,7 +27,7 @@ pub enum WarningKind {
     /// A face's corner-based patch folded and its side-blended patch is used instead.
     SideBlended,
     /// A curve bounding a face has a corner inside the face's side where the hull has a
-    /// knuckle no curve follows, and the patch cracks along the line from it
+    /// knuckle no curve follows, whose ribbon step the patch spreads inside the face
     /// ([`crate::PatchWarning::KnuckleInSide`]).
     KnuckleInFace,
     /// A patch produced non-finite points and was left out of the mesh.

@@ -77,8 +77,10 @@ pub(crate) fn eval(
         let u = s[i];
         let v = 1.0 - s[prev];
         let c = &corners[i];
-        let ta = f[i] + r[i] * v;
-        let tb = f[prev] + r[prev] * u;
+        // Each ribbon as the patch extrapolates it this far from its side (a knuckle's step
+        // spread inside the face, `ribbon::Fan`).
+        let ta = f[i] + ribbons[i].inside(r[i], s[i], v) * v;
+        let tb = f[prev] + ribbons[prev].inside(r[prev], s[prev], u) * u;
         let tab = c.p + c.a * u + c.b * v + c.twist(u, v) * (u * v);
         acc += (ta + tb - tab) * w[i];
     }

@@ -214,8 +214,9 @@ pub enum PatchWarning {
     },
     /// A side has a corner inside it (no node there) whose two tangents leave the tangent
     /// plane the side's normal field gives there: the hull has a knuckle that no curve of the
-    /// network follows, the side's ribbon steps there (by more than the patch spreads along
-    /// the side), and the patch cracks along the line from the corner into the face.
+    /// network follows, and the side's ribbon steps there (by more than the patch spreads along
+    /// the side); the patch spreads the step inside the face instead, fading from the corner
+    /// (`ribbon::Fan`).
     KnuckleInSide {
         /// Index of the side.
         side: usize,
@@ -292,9 +293,9 @@ impl std::fmt::Display for PatchWarning {
             } => write!(
                 f,
                 "side {side} has a corner at ({:.3}, {:.3}, {:.3}) where the hull has a knuckle \
-                 no curve follows: the ribbon steps by {:.1} mm ({:.1} % of its length) and the \
-                 patch cracks along the line from it into the face; add a curve along the \
-                 knuckle, or fair the corner out",
+                 no curve follows: the ribbon steps by {:.1} mm ({:.1} % of its length), and \
+                 the patch spreads the step inside the face, fading from the corner; add a \
+                 curve along the knuckle, or fair the corner out",
                 at[0],
                 at[1],
                 at[2],

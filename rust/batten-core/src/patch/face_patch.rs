@@ -197,13 +197,17 @@ impl Patch {
             })
             .collect();
         out.reserve(us.len() * vs.len());
+        let fanned = gregory4::fanned(ribbons);
         for &v in vs {
             let v = gregory4::square_parameter(v);
             let along_v = gregory4::RibbonPair::at(sides, ribbons, 1, v);
-            out.extend(
-                us.iter()
-                    .map(|(u, along_u)| gregory4::blend(&self.corners, *u, v, along_u, &along_v)),
-            );
+            out.extend(us.iter().map(|(u, along_u)| {
+                if fanned {
+                    gregory4::blend_inside(ribbons, &self.corners, *u, v, along_u, &along_v)
+                } else {
+                    gregory4::blend(&self.corners, *u, v, along_u, &along_v)
+                }
+            }));
         }
         true
     }

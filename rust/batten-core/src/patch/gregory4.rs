@@ -47,6 +47,42 @@ impl RibbonPair {
             far: ribbons[i + 2].eval(&sides[i + 2], 1.0 - w),
         }
     }
+
+    /// The pair sampled by [`RibbonPair::at`] for sides `i` and `i + 2` at `w`, its ribbons as
+    /// the patch extrapolates them at `h`, the square's other parameter (side `i` at distance
+    /// `h` from it for the bottom side, `1 − h` for the right side; side `i + 2` at the
+    /// rest): a knuckle's step spread inside the face (`ribbon::Fan`).
+    #[inline]
+    fn inside(self, ribbons: &[PreparedRibbon], i: usize, w: f64, h: f64) -> Self {
+        let (near, far) = if i == 0 { (h, 1.0 - h) } else { (1.0 - h, h) };
+        RibbonPair {
+            near: (self.near.0, ribbons[i].inside(self.near.1, w, near)),
+            far: (self.far.0, ribbons[i + 2].inside(self.far.1, 1.0 - w, far)),
+        }
+    }
+}
+
+/// Whether any ribbon of the patch spreads a knuckle inside the face (`ribbon::Fan`): its
+/// ribbons then depend on both parameters of the square.
+#[inline]
+pub(crate) fn fanned(ribbons: &[PreparedRibbon]) -> bool {
+    ribbons.iter().any(PreparedRibbon::has_fans)
+}
+
+/// [`blend`] with the ribbon pairs sampled at `u` and `v` taken as the patch extrapolates them
+/// there ([`RibbonPair::inside`]) where the patch has a knuckle inside ([`fanned`]).
+#[inline]
+pub(crate) fn blend_inside(
+    ribbons: &[PreparedRibbon],
+    corners: &[CornerData],
+    u: f64,
+    v: f64,
+    along_u: &RibbonPair,
+    along_v: &RibbonPair,
+) -> DVec3 {
+    let along_u = along_u.inside(ribbons, 0, u, v);
+    let along_v = along_v.inside(ribbons, 1, v, u);
+    blend(corners, u, v, &along_u, &along_v)
 }
 
 /// A parameter of the square as the patch takes it: clamped into [0, 1], NaN as ½.
@@ -70,6 +106,9 @@ pub(crate) fn eval(
     let (u, v) = (square_parameter(x.x), square_parameter(x.y));
     let along_u = RibbonPair::at(sides, ribbons, 0, u);
     let along_v = RibbonPair::at(sides, ribbons, 1, v);
+    if fanned(ribbons) {
+        return blend_inside(ribbons, corners, u, v, &along_u, &along_v);
+    }
     blend(corners, u, v, &along_u, &along_v)
 }
 

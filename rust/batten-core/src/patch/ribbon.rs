@@ -594,6 +594,9 @@ pub(crate) struct PreparedRibbon {
     /// Where the ribbon still steps at a corner inside its side, what spreads the step over
     /// the side beside it ([`side_mends`]); mostly none.
     mends: Vec<Mend>,
+    /// Where it steps at a knuckle no curve follows, what spreads the step inside the face
+    /// ([`Fan`]); mostly none.
+    fans: Vec<Fan>,
 }
 
 /// A side's tangent turning by more than this at one point inside the side (a corner of its
@@ -835,18 +838,20 @@ fn mended(mends: &[Mend], s: f64) -> DVec3 {
 /// the ribbon is continuous, leaves its tangent plane by at most half the step's angle near
 /// the corner, and is unchanged elsewhere and at the face's corners. A larger step is a
 /// corner where the hull has a knuckle the network has no curve for (KCS's bulb: a 67°
-/// corner where wl_z0.30 turns into the stem, 1.1 cm on a 1.7 m ribbon): spreading it would
-/// tilt the ribbon, and the surface normal, by degrees, so it is left.
+/// corner where wl_z0.30 turns into the stem, 1.1 cm on a 1.7 m ribbon): spreading it along
+/// the side would tilt the ribbon, and the surface normal beside the neighbouring face, by
+/// degrees, so it is left on the side and spread inside the face instead ([`Fan`]).
 ///
-/// Each step left is reported as a [`PatchWarning::KnuckleInSide`] of side `index`.
+/// Each knuckle is reported as a [`PatchWarning::KnuckleInSide`] of side `index`. Returns the
+/// mends and the fans.
 fn side_mends(
     rib: &PreparedRibbon,
     side: &PreparedSide,
     index: usize,
     warnings: &mut Vec<PatchWarning>,
-) -> Vec<Mend> {
+) -> (Vec<Mend>, Vec<Fan>) {
     let Some(transport) = &rib.transport else {
-        return Vec::new();
+        return (Vec::new(), Vec::new());
     };
     let mut at: Vec<f64> = transport
         .corners
@@ -859,6 +864,7 @@ fn side_mends(
     // Either side of the corner, close enough that the ribbon's own change is rounding.
     let h = 1e-9;
     let mut out = Vec::with_capacity(at.len());
+    let mut fans = Vec::new();
     for (j, &s) in at.iter().enumerate() {
         let prev = if j == 0 { 0.0 } else { 0.5 * (s + at[j - 1]) };
         let next = at.get(j + 1).map_or(1.0, |n| 0.5 * (s + n));
@@ -868,25 +874,90 @@ fn side_mends(
         }
         let (below, above) = (rib.eval(side, s - h).1, rib.eval(side, s + h).1);
         let step = below - above;
+        if !step.is_finite() || step.length() == 0.0 {
+            continue;
+        }
+        let itself = rib.eval(side, s).1;
+        let at_before = (itself - below).length() < (itself - above).length();
         let r = above.length();
         if step.length() > MEND_MOST * r {
             warnings.push(PatchWarning::KnuckleInSide {
                 side: index,
                 at: side.point(s).to_array(),
                 step: step.length(),
-                share: step.length() / r,
+                share: step.length() / r.max(below.length()),
+            });
+            fans.push(Fan {
+                at: s,
+                step,
+                before: s - prev,
+                after: next - s,
+                at_before,
             });
             continue;
         }
-        if step.is_finite() && step.length() > 0.0 {
-            let itself = rib.eval(side, s).1;
-            out.push(Mend {
-                at: s,
-                step,
-                before,
-                after,
-                at_before: (itself - below).length() < (itself - above).length(),
-            });
+        out.push(Mend {
+            at: s,
+            step,
+            before,
+            after,
+            at_before,
+        });
+    }
+    (out, fans)
+}
+
+/// How fast a [`Fan`] opens with the distance from its side: its half-widths along the side
+/// are `tanh(FAN_OPENING · √h)` of their room, `h` the domain distance from the side (0 on it,
+/// 1 across the face). Opening as `√h`, the fan is already wide close to the side, so the
+/// step it spreads, `h` times the ribbon's, slopes along the side by a share growing as `√h`
+/// only: nothing at the side, where the face meets its neighbour. At 2 the fan has nearly
+/// all its room (96 %) across the face.
+const FAN_OPENING: f64 = 2.0;
+
+/// A ribbon step at a knuckle inside a side (a corner where the hull has a knuckle no curve of
+/// the network follows, larger than [`MEND_MOST`]) spread inside the face, where the patch
+/// would otherwise crack along the line from the corner (it extrapolates the side by `h·R`,
+/// `h` the distance from the side, so a step of `R` is a step of the surface growing with
+/// `h`: KCS's bulb, 3 mm where wl_z0.30 turns into the stem).
+///
+/// At distance `h` from the side the step is spread over a window of the side around the
+/// corner whose half-widths grow from 0 on the side ([`FAN_OPENING`]) to nearly the room
+/// there is (half way to the next corner of the side, or the side's end): the ribbon is taken
+/// the step back before the corner and forward after it, each share fading by a smootherstep
+/// (no jump in the surface's curvature at the window's edges, along which a B-spline export
+/// would otherwise have to refine) across its half of the window, the shares in proportion to
+/// the half-widths so that both halves slope alike. On the side itself the ribbon is the side's own, so the
+/// face meets its neighbour as before (G1 everywhere on the side except the corner point);
+/// inside the face the surface is continuous, a knuckle fading out from the corner into the
+/// face as a cone does from its apex, and the window never reaches the side's ends, where
+/// the other sides' interpolants hold.
+///
+/// A fan is held as a [`Mend`] whose `before` and `after` are the whole room either side.
+type Fan = Mend;
+
+/// What the ribbon gains at `s`, at domain distance `h` from its side, from `fans` ([`Fan`]):
+/// nothing on the side (`h ≤ 0`) and outside each window.
+#[inline]
+fn fanned(fans: &[Fan], s: f64, h: f64) -> DVec3 {
+    if h <= 0.0 {
+        return DVec3::ZERO;
+    }
+    let open = (FAN_OPENING * h.sqrt()).tanh();
+    // Perlin's smootherstep, whose first and second derivatives vanish at both ends.
+    let fade = |x: f64| 1.0 - x * x * x * (10.0 + x * (6.0 * x - 15.0));
+    let mut out = DVec3::ZERO;
+    for f in fans {
+        let (before, after) = (f.before * open, f.after * open);
+        if before <= 0.0 || after <= 0.0 {
+            continue;
+        }
+        // Shares in proportion to the half-widths: the step taken after is after's share.
+        let share_after = after / (before + after);
+        if (s > f.at || (s == f.at && !f.at_before)) && s < f.at + after {
+            out += f.step * (share_after * fade((s - f.at) / after));
+        } else if s <= f.at && s > f.at - before {
+            out -= f.step * ((1.0 - share_after) * fade((f.at - s) / before));
         }
     }
     out
@@ -1025,6 +1096,24 @@ impl PreparedRibbon {
             Some(w) => r * w.at(s),
         };
         (f.p, r + mended(&self.mends, s))
+    }
+
+    /// The ribbon at `s` as the patch extrapolates it at domain distance `h` from the side:
+    /// [`PreparedRibbon::eval`]'s ribbon with its knuckles' steps spread inside the face
+    /// ([`Fan`]); the same on the side (`h = 0`) and wherever the side has no knuckle.
+    #[inline]
+    pub(crate) fn inside(&self, r: DVec3, s: f64, h: f64) -> DVec3 {
+        if self.fans.is_empty() {
+            r
+        } else {
+            r + fanned(&self.fans, s.clamp(0.0, 1.0), h)
+        }
+    }
+
+    /// Whether the ribbon has knuckles spread inside the face ([`Fan`]).
+    #[inline]
+    pub(crate) fn has_fans(&self) -> bool {
+        !self.fans.is_empty()
     }
 
     /// |R(s)| before any width scale: the corner magnitudes' linear blend.
@@ -1246,6 +1335,7 @@ pub(crate) fn prepare_ribbons(
             transport: None,
             scale: None,
             mends: Vec::new(),
+            fans: Vec::new(),
         };
         let side = &sides[i];
         let spec = specs.get(i);
@@ -1314,7 +1404,7 @@ pub(crate) fn prepare_ribbons(
         if width_limited {
             rib.scale = side_scales(sides, i, &rib);
         }
-        rib.mends = side_mends(&rib, side, i, warnings);
+        (rib.mends, rib.fans) = side_mends(&rib, side, i, warnings);
         out.push(rib);
     }
     out

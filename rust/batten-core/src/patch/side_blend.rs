@@ -64,8 +64,10 @@ pub(crate) fn eval(
         if w == 0.0 {
             continue;
         }
-        let (f, r) = ribbons[i].eval(&sides[i], domain.side_parameter(&d, i));
-        acc += (f + r * (d[i] / depth[i])) * w;
+        let si = domain.side_parameter(&d, i);
+        let (f, r) = ribbons[i].eval(&sides[i], si);
+        let h = d[i] / depth[i];
+        acc += (f + ribbons[i].inside(r, si, h) * h) * w;
         wsum += w;
     }
     if wsum > 0.0 {
