@@ -22,7 +22,7 @@ from OCP.BRepBuilderAPI import (
 )
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
-from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Trsf
+from OCP.gp import gp_Ax2, gp_Dir, gp_Pln, gp_Pnt, gp_Trsf
 from OCP.GProp import GProp_GProps
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.IGESControl import IGESControl_Reader
@@ -172,7 +172,7 @@ def planar_lids(shell, planes: list[tuple[int, float]], tolerance: float) -> lis
     for axis, value in planes:
         corner[axis] = value
     lids = []
-    for chain in chains.values():
+    for k, chain in chains.items():
         ends = np.array([p for e in chain for p in edge_points(e, 2)])
         lone = [p for p in ends if np.sum(np.linalg.norm(ends - p, axis=1) <= tolerance) == 1]
         assert len(lone) in (0, 2), f"a lid's chain with {len(lone)} loose ends"
@@ -180,7 +180,12 @@ def planar_lids(shell, planes: list[tuple[int, float]], tolerance: float) -> lis
             a, b = lone
             path = [b, corner, a] if len(chains) == 3 else [b, a]
             chain += [BRepBuilderAPI_MakeEdge(gp_Pnt(*p), gp_Pnt(*q)).Edge() for p, q in pairwise(path)]
-        lid = BRepBuilderAPI_MakeFace(_wire(chain, tolerance), True)
+        # On the plane itself: a boundary off it by less than the tolerance (KCS's imported
+        # profile curve lies up to 0.63 mm off the centreplane at the stem) still bounds a lid.
+        axis, value = planes[k]
+        origin, normal = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+        origin[axis], normal[axis] = value, 1.0
+        lid = BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(*origin), gp_Dir(*normal)), _wire(chain, tolerance), True)
         assert lid.IsDone(), "a planar lid"
         lids.append(lid.Face())
     return lids

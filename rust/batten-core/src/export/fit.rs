@@ -34,11 +34,24 @@ pub const MAX_CURVE_SPANS: usize = 1024;
 /// many along its length).
 pub const MAX_SURFACE_SPANS: usize = 512;
 
-/// The most knot spans of a fitted face in all (spans along u × spans along v): each halving
-/// doubles the work in both directions, and a patch not within the tolerance at this many is
-/// singular or folded somewhere (a repaired degenerate corner, a fold the build reports),
-/// which more spans would only chase into a point.
-pub const MAX_SURFACE_CELLS: usize = 8192;
+/// The most knot spans of a fitted face in all (spans along u × spans along v). A smooth
+/// patch needs few; one that bends sharply along a line across it needs many, because a
+/// tensor-product face refines whole rows and columns: the real ships' faces beside the seams
+/// of the surfaces their offsets were cut from (KCS's wl_z9.00 steps 27 mm in 3.5 cm, its
+/// face 75 fits in 204 × 152 cells; KVLCC2's wl_z17.00 jogs 11 mm in 3 cm, its face 81 in
+/// 245 × 306). A patch that is singular or folded somewhere (a repaired degenerate corner, a
+/// fold the build reports) is given up earlier, once refining stops paying
+/// ([`STALL_ROUNDS`]).
+pub const MAX_SURFACE_CELLS: usize = 131_072;
+
+/// Refinements within which a face's fit must halve its largest deviation while that is over
+/// the tolerance, or the fit is given up: where the patch is smooth, each refinement of the
+/// cells over the tolerance divides it by 1.5–4 (the real ships' largest faces); where it
+/// cracks, folds or has a singular corner, the deviation stays, and refining on to
+/// [`MAX_SURFACE_CELLS`] would take minutes to no end. (A fit within the tolerance whose
+/// cells still fail only because it turns over between samples refines on: those few cells
+/// cost little, and the real ships' faces come out of it.)
+const STALL_ROUNDS: usize = 3;
 
 /// Why a fit failed: it did not reach the tolerance within its most spans, or its least-squares
 /// system was singular (the deviation reached so far is given).
@@ -404,8 +417,8 @@ fn bases(knots: &[f64], count: usize, ts: &[(usize, f64)]) -> Vec<(usize, [f64; 
 /// check sample ([`deviation_at`]: the distance from the target's point to the surface; and
 /// the surface not turned over where it slid along the target, [`turned_over`]), or — where
 /// refining cannot get there: a singular system near a degenerate corner, [`MAX_SURFACE_SPANS`]
-/// or [`MAX_SURFACE_CELLS`] reached — the best fit that did not turn over, if it is within
-/// `limit`.
+/// or [`MAX_SURFACE_CELLS`] reached, a deviation that refining no longer halves
+/// ([`STALL_ROUNDS`]) — the best fit that did not turn over, if it is within `limit`.
 ///
 /// Boundary rows and columns come from the curves (knot vectors the union of the opposite
 /// curves', refined by exact knot insertion), interior control points from least squares on a
@@ -437,6 +450,8 @@ pub(crate) fn fit_surface(
         interior(boundary.right.knots()),
     );
     let mut last = FitFailed::short(f64::INFINITY);
+    // The largest deviation of each fit so far.
+    let mut reached: Vec<f64> = Vec::new();
     loop {
         if !go_on() {
             return Ok(None);
@@ -539,6 +554,12 @@ pub(crate) fn fit_surface(
             best = Some((surface, deviation));
         }
         last = FitFailed { deviation, turned };
+        reached.push(deviation);
+        if let Some(&before) = reached.iter().rev().nth(STALL_ROUNDS) {
+            if deviation > tol && deviation > 0.5 * before {
+                return give_up(best, last);
+            }
+        }
         let (su, sv) = (bu.len() - 1, bv.len() - 1);
         let (nu_next, nv_next) = (
             su + over_u.iter().filter(|&&o| o).count(),
@@ -743,5 +764,38 @@ mod tests {
                 + (surf.eval(1.0, t) - boundary.right.point(t)).length();
             assert!(d < 1e-12, "boundary curve kept exactly: off by {d}");
         }
+    }
+
+    #[test]
+    fn a_cracked_face_is_given_up_once_refining_stops_paying() {
+        // A sheet with a 2 mm crack along a circle inside it (as a patch cracked where a ribbon
+        // steps): no bicubic follows the jump, and the fit's deviation stays about half of it
+        // however far it refines.
+        let crack = 2e-3;
+        let s = |u: f64, v: f64| {
+            let inside = (u - 0.5).powi(2) + (v - 0.5).powi(2) < 0.09;
+            DVec3::new(u, v, 0.1 * u * v + if inside { crack } else { 0.0 })
+        };
+        let evaluations = std::cell::Cell::new(0usize);
+        let target = |u: f64, v: f64| {
+            evaluations.set(evaluations.get() + 1);
+            s(u, v)
+        };
+        let tol = 1e-4;
+        let boundary = boundary_of(&s, tol);
+        let Err(failed) = fit_surface(target, &boundary, 0.5 * tol, tol, &|| true) else {
+            panic!("a cracked face cannot be fitted");
+        };
+        assert!(
+            failed.deviation > 0.2 * crack,
+            "it reached {} of the crack",
+            failed.deviation / crack
+        );
+        // Refined on to the most cells it took 1.7e7 evaluations (9.3e3 given up).
+        assert!(
+            evaluations.get() < 2_000_000,
+            "{} evaluations before giving up",
+            evaluations.get()
+        );
     }
 }

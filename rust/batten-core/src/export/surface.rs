@@ -224,7 +224,8 @@ type QuadBoundaries = Vec<(Quad, QuadBoundary)>;
 /// Edges, patches and quads are fitted in parallel. Errors: holes in the build (unless
 /// `allow_holes`), a tolerance that is not a positive finite number, patches that could not
 /// be fitted within [`MAX_SURFACE_SPANS`](super::fit::MAX_SURFACE_SPANS) spans a side or
-/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells, with what each fit reached:
+/// [`MAX_SURFACE_CELLS`](super::fit::MAX_SURFACE_CELLS) cells or whose fits refining no
+/// longer brought closer, with what each fit reached:
 /// every patch whose boundary curves could not be fitted (a patch whose shared edge could not
 /// be fitted fails with it; no face is fitted then), else the faces that failed before the
 /// first failing face stopped the rest.
