@@ -181,7 +181,7 @@ def planar_lids(shell, planes: list[tuple[int, float]], tolerance: float) -> lis
             path = [b, corner, a] if len(chains) == 3 else [b, a]
             chain += [BRepBuilderAPI_MakeEdge(gp_Pnt(*p), gp_Pnt(*q)).Edge() for p, q in pairwise(path)]
         # On the plane itself: a boundary off it by less than the tolerance (KCS's imported
-        # profile curve lies up to 0.63 mm off the centreplane at the stem) still bounds a lid.
+        # profile curve lies up to 0.11 mm off the centreplane) still bounds a lid.
         axis, value = planes[k]
         origin, normal = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
         origin[axis], normal[axis] = value, 1.0

@@ -273,6 +273,31 @@ fn a_duplicate_follows_the_curve_it_duplicates() {
 /// st20 and the design waterline meet the profile). Returns them with the station's slope off
 /// the plane of the other two, in degrees.
 fn stem(slope: f64, role: Role) -> (Vec<NetworkCurve>, f64) {
+    stem_at(slope, role, 0.0)
+}
+
+/// [`stem`] moved by `dy` across the centreplane (off it, its profile is a free curve like
+/// the others).
+fn stem_at(slope: f64, role: Role, dy: f64) -> (Vec<NetworkCurve>, f64) {
+    let (curves, off) = stem_in_centreplane(slope, role);
+    let moved = curves
+        .into_iter()
+        .map(|c| {
+            let pts: Vec<[f64; 3]> = c
+                .curve
+                .control_points()
+                .iter()
+                .map(|p| [p.x, p.y + dy, p.z])
+                .collect();
+            let mut m = cubic(&c.name, [pts[0], pts[1], pts[2], pts[3]]);
+            m.role = c.role;
+            m
+        })
+        .collect();
+    (moved, off)
+}
+
+fn stem_in_centreplane(slope: f64, role: Role) -> (Vec<NetworkCurve>, f64) {
     let (rake, entrance) = (30f64.to_radians(), 4f64.to_radians());
     let p = DVec3::new(rake.sin(), 0.0, rake.cos());
     let mut profile = cubic(
@@ -413,8 +438,9 @@ fn a_knuckle_node_or_one_far_off_a_plane_is_left_as_it_is() {
 #[test]
 fn a_curve_held_by_its_data_keeps_its_tangent_and_the_others_turn_into_a_plane_through_it() {
     // The station's data allow it no move; the profile's and the waterline's are only their
-    // far ends, which a turn at the node leaves where they are.
-    let (curves, off) = stem(0.05, Role::Free);
+    // far ends, which a turn at the node leaves where they are. (Off the centreplane: a
+    // profile in it turns only within it, and the plane is then fixed by both.)
+    let (curves, off) = stem_at(0.05, Role::Free, 1.0);
     let points: Vec<Vec<DVec3>> = curves
         .iter()
         .enumerate()
@@ -431,7 +457,7 @@ fn a_curve_held_by_its_data_keeps_its_tangent_and_the_others_turn_into_a_plane_t
     };
     let capture = Tolerance::try_new(0.01).expect("capture");
     let s = snap_to_nodes(&net, capture, Some(data)).expect("snap");
-    let node = DVec3::ZERO;
+    let node = DVec3::Y;
     assert_eq!(s.snaps[1].tangent_nodes, 0, "the station is held");
     assert_eq!((s.snaps[0].tangent_nodes, s.snaps[2].tangent_nodes), (1, 1));
     let given = unit_tangent(&net.curves()[1], node);
@@ -450,5 +476,37 @@ fn a_curve_held_by_its_data_keeps_its_tangent_and_the_others_turn_into_a_plane_t
     assert!(
         report.turn_degrees > 0.3 * off && report.turn_degrees <= off + 1e-9,
         "{off} {report:?}"
+    );
+}
+
+#[test]
+fn a_profile_in_the_centreplane_turns_only_within_it() {
+    // The stem's three curves, the profile in the centreplane: the least-squares plane of the
+    // three tangents would turn the profile's out of the centreplane, and the profile would
+    // leave it between its ends (KCS's stem, 0.63 mm). It turns within the plane, and the
+    // others into a plane through it.
+    let (curves, off) = stem(0.05, Role::Free);
+    let net = Network::try_new("stem", curves).expect("network");
+    let s = snap_to_nodes(&net, Tolerance::try_new(0.01).expect("capture"), None).expect("snap");
+    let node = DVec3::ZERO;
+    assert_coplanar(&s.network, node);
+    let profile = &s.network.curves()[0].curve;
+    let off_plane = profile
+        .control_points()
+        .iter()
+        .map(|p| p.y.abs())
+        .fold(0.0, f64::max);
+    assert!(
+        off_plane < 1e-12,
+        "the profile leaves the centreplane by {off_plane:e}"
+    );
+    let report = &s.smooth_nodes[0];
+    assert!(
+        report.turn_degrees > 0.0 && report.turn_degrees <= off + 1e-9,
+        "{off} {report:?}"
+    );
+    assert_eq!(
+        s.snaps[0].tangent_nodes, 1,
+        "the profile is turned, within its plane"
     );
 }

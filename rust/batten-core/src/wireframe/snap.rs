@@ -98,6 +98,12 @@ pub fn snap_to_nodes(
     }
     let topology = Topology::build(network, capture)?;
     let brep = &topology.brep;
+    // The curves in the centreplane (profiles), whose tangents turn only within it (below).
+    let centre: Vec<bool> = network
+        .curves()
+        .iter()
+        .map(|c| in_centreplane(&c.curve, CENTREPLANE_SHARE * capture.get()))
+        .collect();
     let mut targets: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); network.curves().len()];
     for e in &brep.edges {
         for (t, v) in [(e.t0, e.start), (e.t1, e.end)] {
@@ -144,8 +150,31 @@ pub fn snap_to_nodes(
         Some((turned, worst))
     };
     let n = moved.len();
+    // A curve in the centreplane (a profile) keeps its tangents in it: turned out of it like
+    // the others, it left the plane between its nodes (by 0.63 mm at KCS's stem, where
+    // st20 and wl_z10.80 meet it), and the hull's two halves no longer met on it. At a node
+    // its tangent goes to its turn into the node's plane taken back into the centreplane,
+    // and the other curves turn into a plane through that.
     let mut held = vec![false; n];
-    let mut nodes = found.clone();
+    let planes_through_held = |held: &[bool]| -> Vec<_> {
+        let fixed: Vec<bool> = held.iter().zip(&centre).map(|(h, c)| *h || *c).collect();
+        found
+            .iter()
+            .filter_map(|node| {
+                if !node.tangents.iter().any(|&(c, _, _)| fixed[c]) {
+                    return Some(node.clone());
+                }
+                let mut pinned = node.clone();
+                for (k, &(c, _, target)) in node.tangents.iter().enumerate() {
+                    if centre[c] && !held[c] {
+                        pinned.given[k] = DVec3::new(target.x, 0.0, target.z);
+                    }
+                }
+                held_plane(&pinned, &fixed)
+            })
+            .collect()
+    };
+    let mut nodes = planes_through_held(&held);
     let mut targets: Vec<Vec<(f64, DVec3)>> = vec![Vec::new(); n];
     let mut results: Vec<Option<Turned>> = vec![None; n];
     for round in 0..HELD_ROUNDS {
@@ -181,16 +210,7 @@ pub fn snap_to_nodes(
         for &i in &refused {
             held[i] = true;
         }
-        nodes = found
-            .iter()
-            .filter_map(|node| {
-                if node.tangents.iter().any(|&(c, _, _)| held[c]) {
-                    held_plane(node, &held)
-                } else {
-                    Some(node.clone())
-                }
-            })
-            .collect();
+        nodes = planes_through_held(&held);
     }
     // A node is made coplanar where every curve through it was turned into its plane or is
     // held in it.
@@ -322,6 +342,17 @@ type Snapped = (NurbsCurve, CurveSnap, Vec<(f64, DVec3)>);
 /// A curve turned into its nodes' planes, and its worst data point (distance, index) if it
 /// has data.
 type Turned = (NurbsCurve, Option<(f64, usize)>);
+
+/// A curve whose control points all lie within this share of the capture distance of the
+/// centreplane y = 0 lies in it ([`in_centreplane`]).
+const CENTREPLANE_SHARE: f64 = 0.05;
+
+/// Whether every control point of `curve` lies within `within` of the centreplane y = 0 (and
+/// the curve is not a point).
+fn in_centreplane(curve: &NurbsCurve, within: f64) -> bool {
+    let pts = curve.control_points();
+    pts.iter().all(|p| p.y.abs() <= within) && pts.iter().any(|p| p.distance(pts[0]) > within)
+}
 
 /// Rounds of turning at most: the first turns every curve into its nodes' planes; each
 /// further one holds the curves whose turn was refused and turns the others at their nodes
