@@ -82,7 +82,8 @@ pub struct SnapData<'a> {
 /// tolerance (module doc). Then, at every smooth node (the `tangents` module), the curves'
 /// tangents are turned into one plane, in the same least move from the curve as given (a
 /// curve whose data that would take past the tolerance keeps its move through the nodes
-/// alone).
+/// alone; a curve in the centreplane y = 0, a profile, turns only within it, and the others
+/// into a plane through its tangent).
 ///
 /// Errors: the topology's own errors, data for a different number of curves or with a
 /// non-finite point ([`Error::InvalidInput`]), a data tolerance that is not positive and finite
@@ -166,8 +167,10 @@ pub fn snap_to_nodes(
                 }
                 let mut pinned = node.clone();
                 for (k, &(c, _, target)) in node.tangents.iter().enumerate() {
-                    if centre[c] && !held[c] {
-                        pinned.given[k] = DVec3::new(target.x, 0.0, target.z);
+                    let within = DVec3::new(target.x, 0.0, target.z);
+                    // (A target across the plane has no direction in it: the tangent is kept.)
+                    if centre[c] && !held[c] && within.length() > 0.5 * target.length() {
+                        pinned.given[k] = within;
                     }
                 }
                 held_plane(&pinned, &fixed)
