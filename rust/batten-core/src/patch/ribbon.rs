@@ -807,22 +807,40 @@ struct Mend {
     at_before: bool,
 }
 
+impl Mend {
+    /// What the ribbon gains at `s` from this step spread over `before` and `after` of the side
+    /// either side of its corner: `share_after` of the step added after the corner and the rest
+    /// taken away before it (at the corner itself, on the side of it the side evaluates there),
+    /// each share fading to nothing by `fade` across its half of the window.
+    #[inline]
+    fn spread(
+        &self,
+        s: f64,
+        (before, after): (f64, f64),
+        share_after: f64,
+        fade: impl Fn(f64) -> f64,
+    ) -> DVec3 {
+        if (s > self.at || (s == self.at && !self.at_before)) && s < self.at + after {
+            self.step * (share_after * fade((s - self.at) / after))
+        } else if s <= self.at && s > self.at - before {
+            -self.step * ((1.0 - share_after) * fade((self.at - s) / before))
+        } else {
+            DVec3::ZERO
+        }
+    }
+}
+
 /// What the ribbon gains at `s` from `mends`: half of each step added after its corner and
-/// half taken away before it (at the corner itself, on the side of it the side evaluates
-/// there), each half fading to nothing by a smoothstep over its spread, so that the ribbon
-/// runs on continuously through the corner, and is the middle of its two sides at it.
+/// half taken away before it ([`Mend::spread`]), each half fading to nothing by a smoothstep
+/// over its spread, so that the ribbon runs on continuously through the corner, and is the
+/// middle of its two sides at it.
 #[inline]
 fn mended(mends: &[Mend], s: f64) -> DVec3 {
     let fade = |x: f64| 1.0 - x * x * (3.0 - 2.0 * x);
-    let mut out = DVec3::ZERO;
-    for m in mends {
-        if (s > m.at || (s == m.at && !m.at_before)) && s < m.at + m.after {
-            out += m.step * (0.5 * fade((s - m.at) / m.after));
-        } else if s <= m.at && s > m.at - m.before {
-            out -= m.step * (0.5 * fade((m.at - s) / m.before));
-        }
-    }
-    out
+    mends
+        .iter()
+        .map(|m| m.spread(s, (m.before, m.after), 0.5, fade))
+        .sum()
 }
 
 /// The steps a side's ribbon still takes at the corners inside its side, and their spreads.
@@ -946,21 +964,14 @@ fn fanned(fans: &[Fan], s: f64, h: f64) -> DVec3 {
     let open = (FAN_OPENING * h.sqrt()).tanh();
     // Perlin's smootherstep, whose first and second derivatives vanish at both ends.
     let fade = |x: f64| 1.0 - x * x * x * (10.0 + x * (6.0 * x - 15.0));
-    let mut out = DVec3::ZERO;
-    for f in fans {
-        let (before, after) = (f.before * open, f.after * open);
-        if before <= 0.0 || after <= 0.0 {
-            continue;
-        }
-        // Shares in proportion to the half-widths: the step taken after is after's share.
-        let share_after = after / (before + after);
-        if (s > f.at || (s == f.at && !f.at_before)) && s < f.at + after {
-            out += f.step * (share_after * fade((s - f.at) / after));
-        } else if s <= f.at && s > f.at - before {
-            out -= f.step * ((1.0 - share_after) * fade((f.at - s) / before));
-        }
-    }
-    out
+    fans.iter()
+        .filter_map(|f| {
+            let (before, after) = (f.before * open, f.after * open);
+            // Shares in proportion to the half-widths: the step taken after is after's share.
+            (before > 0.0 && after > 0.0)
+                .then(|| f.spread(s, (before, after), after / (before + after), fade))
+        })
+        .sum()
 }
 
 /// The [`Turn`]s of one side: its curves' corners inside its segments and its joints between
