@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::fold_probe::surface_turn;
 use super::knuckles::Knuckle;
 use super::patched::PatchedFace;
 use super::warning::{Warning, WarningKind};
@@ -230,27 +231,89 @@ struct Worst {
     angle: f64,
     at: DVec3,
     count: usize,
+    /// How far the surface itself turns around `at` ([`surface_turn`]), where it was looked at.
+    surface: Option<f64>,
 }
 
-impl Worst {
-    fn add(entry: &mut Option<Worst>, angle: f64, at: DVec3) {
-        match entry {
+/// A pair of neighbouring mesh polygons more than [`FOLD_ANGLE_DEGREES`] apart: their angle,
+/// the middle of their common side, and the radius around it that [`surface_turn`] samples
+/// (their reach from there, times [`PROBE_REACH`]).
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    angle: f64,
+    at: DVec3,
+    radius: f64,
+}
+
+/// The ball [`surface_turn`] samples around a pair of polygons: this many times the farthest
+/// of their vertices from the middle of their common side.
+const PROBE_REACH: f64 = 1.5;
+
+/// The places of one patch (or one pair of patches) that [`surface_turn`] looks at, the
+/// largest angles first: a pair within half a ball of a place looked at takes its verdict;
+/// pairs beyond these are taken as folds unlooked.
+const PROBES_PER_FOLD: usize = 8;
+
+/// How many folded patches and pairs of patches are looked at ([`PROBES_PER_FOLD`] places
+/// each); the others' pairs are taken as folds unlooked, so that a network that folds
+/// everywhere builds in its usual time.
+const PROBED_FOLDS: usize = 32;
+
+/// The worst of `candidates` (pairs of polygons of `patches`) where the surface turns by more
+/// than [`FOLD_ANGLE_DEGREES`] too ([`surface_turn`], when `probe`; all of them otherwise):
+/// None when the surface turns by less at every one, which is then a turn the mesh was too
+/// coarse to follow, not a fold.
+fn confirmed(patches: &[&Patch], candidates: &[Candidate], probe: bool) -> Option<Worst> {
+    let mut order: Vec<&Candidate> = candidates.iter().collect();
+    order.sort_by(|a, b| b.angle.total_cmp(&a.angle));
+    let mut looked: Vec<(Candidate, f64)> = Vec::new();
+    let mut worst: Option<Worst> = None;
+    for c in order {
+        let verdict = looked
+            .iter()
+            .find(|(l, _)| l.at.distance(c.at) <= 0.5 * l.radius)
+            .map(|(_, turn)| Some(*turn))
+            .or_else(|| {
+                (probe && looked.len() < PROBES_PER_FOLD).then(|| {
+                    let turn = surface_turn(patches, c.at, c.radius, FOLD_ANGLE_DEGREES);
+                    looked.push((*c, turn));
+                    Some(turn)
+                })
+            })
+            .unwrap_or(None);
+        if verdict.is_some_and(|turn| turn <= FOLD_ANGLE_DEGREES) {
+            continue;
+        }
+        match &mut worst {
             Some(w) => {
                 w.count += 1;
-                if angle > w.angle {
-                    w.angle = angle;
-                    w.at = at;
+                if c.angle > w.angle {
+                    (w.angle, w.at, w.surface) = (c.angle, c.at, verdict);
                 }
             }
             None => {
-                *entry = Some(Worst {
-                    angle,
-                    at,
+                worst = Some(Worst {
+                    angle: c.angle,
+                    at: c.at,
                     count: 1,
+                    surface: verdict,
                 })
             }
         }
     }
+    worst
+}
+
+/// The position of mesh vertex `v`.
+fn at(mesh: &SurfaceMesh, v: u32) -> DVec3 {
+    DVec3::from(mesh.positions[v as usize])
+}
+
+/// What a fold warning adds about the surface itself ([`Worst::surface`]).
+fn surface_note(w: &Worst) -> String {
+    w.surface
+        .map(|turn| format!("; the surface itself turns by {turn:.1}° there"))
+        .unwrap_or_default()
 }
 
 /// What the fold search found: the warnings, and the largest angle between neighbouring mesh
@@ -275,7 +338,7 @@ pub(crate) fn fold_findings(
     tolerance: Tolerance,
 ) -> FoldFindings {
     let faces: Vec<&[u32]> = mesh.faces().collect();
-    let at = |v: u32| DVec3::from(mesh.positions[v as usize]);
+    let at = |v: u32| self::at(mesh, v);
     let normals: Vec<DVec3> = faces.par_iter().map(|f| polygon_normal(at, f)).collect();
     let mut sides = sorted_sides(&faces);
     sides.par_sort_unstable();
@@ -289,8 +352,8 @@ pub(crate) fn fold_findings(
             .iter()
             .any(|e| knuckle[*e].is_some() && edge_sets[b].contains(e))
     };
-    let mut inside: BTreeMap<usize, Option<Worst>> = BTreeMap::new();
-    let mut across: BTreeMap<(usize, usize), Option<Worst>> = BTreeMap::new();
+    let mut inside: BTreeMap<usize, Vec<Candidate>> = BTreeMap::new();
+    let mut across: BTreeMap<(usize, usize), Vec<Candidate>> = BTreeMap::new();
     let (mut max_angle_deg, mut max_angle_at) = (0.0f64, None);
     for run in pairs {
         let [(a, b, f), (_, _, g)] = run[..] else {
@@ -305,24 +368,46 @@ pub(crate) fn fold_findings(
             continue;
         }
         let angle = nf.angle_between(ng).to_degrees();
-        let at = 0.5
-            * (DVec3::from(mesh.positions[a as usize]) + DVec3::from(mesh.positions[b as usize]));
+        let at = 0.5 * (at(a) + at(b));
         if angle > max_angle_deg {
             max_angle_deg = angle;
             max_angle_at = Some(at);
         }
         if angle > FOLD_ANGLE_DEGREES {
+            let reach = faces[f]
+                .iter()
+                .chain(faces[g])
+                .map(|&v| at.distance(self::at(mesh, v)))
+                .fold(0.0, f64::max);
+            let candidate = Candidate {
+                angle,
+                at,
+                radius: PROBE_REACH * reach,
+            };
             if pf == pg {
-                Worst::add(inside.entry(pf).or_default(), angle, at);
+                inside.entry(pf).or_default().push(candidate);
             } else {
-                Worst::add(
-                    across.entry((pf.min(pg), pf.max(pg))).or_default(),
-                    angle,
-                    at,
-                );
+                across
+                    .entry((pf.min(pg), pf.max(pg)))
+                    .or_default()
+                    .push(candidate);
             }
         }
     }
+    let probed = |patches: &[usize], candidates: &[Candidate], rank: usize| {
+        let patches: Vec<&Patch> = patches.iter().map(|&p| &patched[p].patch).collect();
+        confirmed(&patches, candidates, rank < PROBED_FOLDS)
+    };
+    let inside: Vec<(usize, Option<Worst>)> = Vec::from_iter(inside)
+        .into_par_iter()
+        .enumerate()
+        .map(|(rank, (p, c))| (p, probed(&[p], &c, rank)))
+        .collect();
+    let across: Vec<((usize, usize), Option<Worst>)> = Vec::from_iter(across)
+        .into_par_iter()
+        .enumerate()
+        .map(|(rank, ((p, q), c))| ((p, q), probed(&[p, q], &c, rank)))
+        .collect();
     let label = |p: usize| {
         let fi = patched[p].face;
         (fi, topology.names(&topology.faces[fi].curves).join("', '"))
@@ -336,8 +421,8 @@ pub(crate) fn fold_findings(
             &[p],
             patched,
             format!(
-                "face {fi} (curves '{names}') folds: {} pair(s) of neighbouring mesh faces inside its patch meet at up to {:.1}° (more than {FOLD_ANGLE_DEGREES}°) near ({:.3}, {:.3}, {:.3})",
-                w.count, w.angle, w.at.x, w.at.y, w.at.z
+                "face {fi} (curves '{names}') folds: {} pair(s) of neighbouring mesh faces inside its patch meet at up to {:.1}° (more than {FOLD_ANGLE_DEGREES}°) near ({:.3}, {:.3}, {:.3}){}",
+                w.count, w.angle, w.at.x, w.at.y, w.at.z, surface_note(&w)
             ),
             w.at,
         ));
@@ -350,8 +435,8 @@ pub(crate) fn fold_findings(
             &[p, q],
             patched,
             format!(
-                "faces {fa} and {fb} fold where they meet: their mesh faces meet at up to {:.1}° (more than {FOLD_ANGLE_DEGREES}°, and the edge is no knuckle) near ({:.3}, {:.3}, {:.3})",
-                w.angle, w.at.x, w.at.y, w.at.z
+                "faces {fa} and {fb} fold where they meet: their mesh faces meet at up to {:.1}° (more than {FOLD_ANGLE_DEGREES}°, and the edge is no knuckle) near ({:.3}, {:.3}, {:.3}){}",
+                w.angle, w.at.x, w.at.y, w.at.z, surface_note(&w)
             ),
             w.at,
         ));
@@ -525,6 +610,139 @@ mod tests {
         assert_eq!(
             in_plane_folds(&triangle(0.2, bent, PatchKind::Auto), tol),
             0
+        );
+    }
+
+    /// A cubic B-spline with its pieces joined C¹ at `knots` (each thrice).
+    fn pieces(points: &[[f64; 3]], joints: &[f64]) -> NurbsCurve {
+        let mut knots = vec![0.0; 4];
+        for &k in joints {
+            knots.extend([k; 3]);
+        }
+        knots.extend([1.0; 4]);
+        NurbsCurve::try_new(
+            3,
+            knots,
+            points.iter().map(|&p| DVec3::from(p)).collect(),
+            None,
+        )
+        .expect("a cubic")
+    }
+
+    /// The line from `a` to `b` as a cubic.
+    fn line(a: [f64; 3], b: [f64; 3]) -> NurbsCurve {
+        let (a, b) = (DVec3::from(a), DVec3::from(b));
+        let points = [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0].map(|t| (a + (b - a) * t).to_array());
+        pieces(&points, &[])
+    }
+
+    /// The quad over `[0, 1]²` in x and y that steps up by `rise` in z across the band
+    /// `0.5 ± half` of x (a smooth S, flat either side): a ridge far narrower than the
+    /// polygons of its mesh at resolution 8.
+    fn step(rise: f64, half: f64) -> Patch {
+        let (a, b) = (0.5 - half, 0.5 + half);
+        let at = |x: f64, y: f64, z: f64| [x, y, z];
+        let s = |y: f64| {
+            pieces(
+                &[
+                    at(0.0, y, 0.0),
+                    at(a / 3.0, y, 0.0),
+                    at(2.0 * a / 3.0, y, 0.0),
+                    at(a, y, 0.0),
+                    at(a + half / 1.5, y, 0.0),
+                    at(b - half / 1.5, y, rise),
+                    at(b, y, rise),
+                    at(b + (1.0 - b) / 3.0, y, rise),
+                    at(b + 2.0 * (1.0 - b) / 3.0, y, rise),
+                    at(1.0, y, rise),
+                ],
+                &[a, b],
+            )
+        };
+        let reversed = |c: NurbsCurve| c.reversed();
+        let sides = [
+            s(0.0),
+            line(at(1.0, 0.0, rise), at(1.0, 1.0, rise)),
+            reversed(s(1.0)),
+            line(at(0.0, 1.0, 0.0), at(0.0, 0.0, 0.0)),
+        ]
+        .into_iter()
+        .map(|curve| Side::single(SideSegment::whole(curve)))
+        .collect();
+        Patch::try_new(&FaceBoundary::new(sides), &[], &PatchOptions::default()).expect("a patch")
+    }
+
+    #[test]
+    fn a_ridge_narrower_than_the_mesh_is_a_smooth_turn_not_a_fold() {
+        let patch = step(0.1, 0.01);
+        let folds = face_mesh_folds(&patch.face_mesh(8));
+        assert!(
+            folds.worst > FOLD_ANGLE_DEGREES,
+            "the mesh's polygons meet at {}°",
+            folds.worst
+        );
+        let at = patch.eval([0.5, 0.5]);
+        let turn = surface_turn(&[&patch], at, 0.3, FOLD_ANGLE_DEGREES);
+        // 40.5° between polygons; 14.1° between the cells the probe stops at.
+        assert!(
+            turn < FOLD_ANGLE_DEGREES,
+            "the surface turns by {turn}° between fine cells"
+        );
+        // The same ridge made a cliff (no band to turn in) stays a fold however fine: 75.9°.
+        let crease = step(0.1, 1e-9);
+        let turn = surface_turn(&[&crease], at, 0.3, FOLD_ANGLE_DEGREES);
+        assert!(turn > FOLD_ANGLE_DEGREES, "the crease turns by {turn}°");
+    }
+
+    /// The flat quad through `corners` (in order, its sides straight).
+    fn quad(corners: [[f64; 3]; 4]) -> Patch {
+        let sides = (0..4)
+            .map(|i| Side::single(SideSegment::whole(line(corners[i], corners[(i + 1) % 4]))))
+            .collect();
+        Patch::try_new(&FaceBoundary::new(sides), &[], &PatchOptions::default()).expect("a patch")
+    }
+
+    #[test]
+    fn the_two_faces_of_an_edge_are_looked_at_across_it() {
+        // Two squares side by side in z = 0, both facing up: one flat surface across x = 1.
+        let left = quad([
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ]);
+        let right = quad([
+            [1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ]);
+        let at = DVec3::new(1.0, 0.5, 0.0);
+        let turn = surface_turn(&[&left, &right], at, 0.3, FOLD_ANGLE_DEGREES);
+        assert!(turn < 1e-6, "{turn}°");
+        // The right one facing down: neither folds alone, but they meet turned over.
+        let over = quad([
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+        ]);
+        assert!(surface_turn(&[&over], at, 0.3, FOLD_ANGLE_DEGREES) < 1e-6);
+        let turn = surface_turn(&[&left, &over], at, 0.3, FOLD_ANGLE_DEGREES);
+        assert!(turn > 179.0, "{turn}°");
+    }
+
+    #[test]
+    fn a_place_the_patch_comes_nowhere_near_is_not_looked_at() {
+        let patch = step(0.1, 0.01);
+        assert_eq!(
+            surface_turn(
+                &[&patch],
+                DVec3::new(5.0, 5.0, 5.0),
+                0.1,
+                FOLD_ANGLE_DEGREES
+            ),
+            0.0
         );
     }
 }

@@ -25,6 +25,7 @@ mod build;
 mod curvature;
 mod edges;
 mod flats;
+mod fold_probe;
 mod folds;
 mod holes;
 mod knuckles;
