@@ -786,10 +786,15 @@ const MEND_SPREAD: f64 = 1.0 / 32.0;
 
 /// The largest step (a share of the ribbon's length) [`side_mends`] spreads along the side:
 /// spread, a step tilts the ribbon out of its tangent plane by up to half its angle there,
-/// and the faces either side of the curve meet with their normals that far apart; 1.5e-3
-/// keeps that within 0.05° (the G1 the real ships are built to). A larger step is a corner
-/// where the hull has a knuckle the network has no curve for, and is left.
-const MEND_MOST: f64 = 1.5e-3;
+/// and the faces either side of the curve meet with their normals that far apart; a step of
+/// twice [`MEND_G1_DEGREES`] (in radians, 1.745e-3) keeps that within it. A larger step
+/// cannot be spread so and stay G1: it is a corner where the hull has a knuckle the network
+/// has no curve for, and is left.
+const MEND_MOST: f64 = 2.0 * MEND_G1_DEGREES * std::f64::consts::PI / 180.0;
+
+/// The normal jump (degrees) that spreading a step along the side ([`MEND_MOST`]) may leave
+/// between the faces either side of the curve: the G1 the real ships are built to.
+const MEND_G1_DEGREES: f64 = 0.05;
 
 /// The ribbon's step at one corner inside its side (a [`Turn`]) and how far it is spread
 /// ([`side_mends`]).
