@@ -1,8 +1,9 @@
 //! Folds in the surface, found on the mesh (the real-ships issue: "the report tells the truth
 //! about the surface"): two neighbouring mesh polygons whose normals differ by more than
 //! [`FOLD_ANGLE_DEGREES`] — inside one patch, or across two patches that do not meet along a
-//! knuckle — and patches that leave the box of their own boundary by more than their size
-//! allows (a fin, a ridge, a lid bulging past the transom).
+//! knuckle — where the surface meshed afresh around them turns by that much too
+//! ([`super::fold_probe`]), and patches that leave the box of their own boundary by more than
+//! their size allows (a fin, a ridge, a lid bulging past the transom).
 
 use std::collections::BTreeMap;
 
@@ -251,12 +252,12 @@ const PROBE_REACH: f64 = 1.5;
 
 /// The places of one patch (or one pair of patches) that [`surface_turn`] looks at, the
 /// largest angles first: a pair within half a ball of a place looked at takes its verdict;
-/// pairs beyond these are taken as folds unlooked.
+/// pairs beyond these are taken as folds without a look.
 const PROBES_PER_FOLD: usize = 8;
 
-/// How many folded patches and pairs of patches are looked at ([`PROBES_PER_FOLD`] places
-/// each); the others' pairs are taken as folds unlooked, so that a network that folds
-/// everywhere builds in its usual time.
+/// How many folded patches, and how many folded pairs of patches, are looked at
+/// ([`PROBES_PER_FOLD`] places each); the others' pairs are taken as folds without a look, so
+/// that a network that folds everywhere builds in about its usual time.
 const PROBED_FOLDS: usize = 32;
 
 /// The worst of `candidates` (pairs of polygons of `patches`) where the surface turns by more
@@ -269,18 +270,17 @@ fn confirmed(patches: &[&Patch], candidates: &[Candidate], probe: bool) -> Optio
     let mut looked: Vec<(Candidate, f64)> = Vec::new();
     let mut worst: Option<Worst> = None;
     for c in order {
-        let verdict = looked
+        let seen = looked
             .iter()
             .find(|(l, _)| l.at.distance(c.at) <= 0.5 * l.radius)
-            .map(|(_, turn)| Some(*turn))
-            .or_else(|| {
-                (probe && looked.len() < PROBES_PER_FOLD).then(|| {
-                    let turn = surface_turn(patches, c.at, c.radius, FOLD_ANGLE_DEGREES);
-                    looked.push((*c, turn));
-                    Some(turn)
-                })
+            .map(|(_, turn)| *turn);
+        let verdict = seen.or_else(|| {
+            (probe && looked.len() < PROBES_PER_FOLD).then(|| {
+                let turn = surface_turn(patches, c.at, c.radius, FOLD_ANGLE_DEGREES);
+                looked.push((*c, turn));
+                turn
             })
-            .unwrap_or(None);
+        });
         if verdict.is_some_and(|turn| turn <= FOLD_ANGLE_DEGREES) {
             continue;
         }
@@ -327,8 +327,10 @@ pub(crate) struct FoldFindings {
     pub(crate) max_angle_at: Option<DVec3>,
 }
 
-/// Search the mesh for folds. `mesh.face_patch` indexes `patched` (before the build renumbers
-/// it to topology faces); `knuckle` says which topology edges are knuckles.
+/// Search the mesh for folds: neighbouring polygons more than [`FOLD_ANGLE_DEGREES`] apart
+/// where the surface itself turns by more too ([`confirmed`]), and patches out of their box.
+/// `mesh.face_patch` indexes `patched` (before the build renumbers it to topology faces);
+/// `knuckle` says which topology edges are knuckles.
 pub(crate) fn fold_findings(
     topology: &Topology,
     patched: &[PatchedFace],
