@@ -80,15 +80,25 @@ impl FieldKey {
         if ts.len() < 2 {
             return None;
         }
-        let speed = |t: f64| curve.derivs(t).d1.length();
-        let integral = |f: &dyn Fn(f64) -> f64, a: f64, b: f64| {
-            let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+        // `derivs(t).d1` bit for bit, without the higher derivatives.
+        let speed = |t: f64| curve.point_d1(t).1.length();
+        // The curve's speed at the Gauss points of each interval between samples, taken once
+        // for both integrals below (the length, then the key).
+        let at_gauss: Vec<(f64, [f64; GAUSS.len()])> = ts
+            .windows(2)
+            .map(|w| {
+                let (mid, half) = (0.5 * (w[0] + w[1]), 0.5 * (w[1] - w[0]));
+                (half, GAUSS.map(|(x, _)| speed(mid + half * x)))
+            })
+            .collect();
+        let integral = |f: &dyn Fn(f64) -> f64, (half, speeds): &(f64, [f64; GAUSS.len()])| {
             GAUSS
                 .iter()
-                .map(|&(x, g)| g * half * f(mid + half * x))
+                .zip(speeds)
+                .map(|(&(_, g), &v)| g * half * f(v))
                 .sum::<f64>()
         };
-        let length: f64 = ts.windows(2).map(|w| integral(&speed, w[0], w[1])).sum();
+        let length: f64 = at_gauss.iter().map(|i| integral(&|v| v, i)).sum();
         if !(length.is_finite() && length > 0.0) {
             return None;
         }
@@ -106,8 +116,8 @@ impl FieldKey {
         let rate = |t: f64| rate_at(speed(t));
         let mut keys = Vec::with_capacity(ts.len());
         keys.push(0.0);
-        for w in ts.windows(2) {
-            keys.push(keys.last().copied().unwrap_or(0.0) + integral(&rate, w[0], w[1]));
+        for i in &at_gauss {
+            keys.push(keys.last().copied().unwrap_or(0.0) + integral(&rate_at, i));
         }
         if !keys.iter().all(|k| k.is_finite()) {
             return None;
