@@ -166,7 +166,10 @@ fn turn_across(a: &Samples, b: &Samples, near: f64) -> f64 {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    for (q, k) in cubes.get(&[x + dx, y + dy, z + dz]).into_iter().flatten() {
+                    // Wrapping: far out (a hull of 1e300 m) the cubes' keys saturate, and a
+                    // key wrapped round finds no cube or one whose cells the distance refuses.
+                    let near_key = [x.wrapping_add(dx), y.wrapping_add(dy), z.wrapping_add(dz)];
+                    for (q, k) in cubes.get(&near_key).into_iter().flatten() {
                         if p.distance(*q) <= near {
                             worst = worst.max(n.angle_between(*k).to_degrees());
                         }
