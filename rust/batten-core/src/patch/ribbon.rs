@@ -950,11 +950,11 @@ const FAN_OPENING: f64 = 2.0;
 /// the step back before the corner and forward after it, each share fading by a smootherstep
 /// (no jump in the surface's curvature at the window's edges, along which a B-spline export
 /// would otherwise have to refine) across its half of the window, the shares in proportion to
-/// the half-widths so that both halves slope alike. On the side itself the ribbon is the side's own, so the
-/// face meets its neighbour as before (G1 everywhere on the side except the corner point);
-/// inside the face the surface is continuous, a knuckle fading out from the corner into the
-/// face as a cone does from its apex, and the window never reaches the side's ends, where
-/// the other sides' interpolants hold.
+/// the half-widths so that both halves slope alike. On the side itself the ribbon is the
+/// side's own, so the face meets its neighbour as before (G1 everywhere on the side except the
+/// corner point); inside the face the surface is continuous, a knuckle fading out from the
+/// corner into the face as a cone does from its apex, and the window never reaches the side's
+/// ends, where the other sides' interpolants hold.
 ///
 /// A fan is held as a [`Mend`] whose `before` and `after` are the whole room either side.
 type Fan = Mend;
