@@ -322,32 +322,37 @@ const FALLBACK_GAIN: f64 = 0.5;
 /// are judged on meshes fine enough for the tighter of their turns, so a patch whose coarse
 /// mesh only cuts a tight turn short is kept, and a fallback whose coarse mesh steps over a
 /// fold of its own is not taken for that. A flat face whose mesh shows no fold is also looked
-/// at within its plane ([`flat_unfolded`]).
+/// at within its plane ([`flat_unfolded`]). Also the chosen patch's finer mesh, where its
+/// need is finer than `resolution` and [`refinement`] made it.
 fn unfolded(
     plan: &FacePlan,
     patch: Patch,
     opts: &PatchOptions,
     resolution: usize,
-) -> (Patch, Option<FaceMesh>, Need) {
+) -> (Patch, Option<FaceMesh>, Need, Option<Made>) {
     if patch.mesh_vertex_count(resolution) > FOLD_CHECK_VERTICES {
-        return (patch, None, Need::NONE);
+        return (patch, None, Need::NONE, None);
     }
     let mesh = patch.face_mesh(resolution);
     if !mesh.is_finite() {
-        return (patch, Some(mesh), Need::NONE);
+        return (patch, Some(mesh), Need::NONE, None);
     }
-    let need = refinement(&patch, &mesh, resolution, &plan.smooth);
-    if let Some((blended, mesh, need)) = cusp_unfolded(plan, &patch, opts, resolution, &need) {
-        return (blended, Some(mesh), need);
+    let (need, finer) = refinement(&patch, &mesh, resolution, &plan.smooth);
+    if let Some((blended, mesh, (need, finer))) =
+        cusp_unfolded(plan, &patch, opts, resolution, &need)
+    {
+        return (blended, Some(mesh), need, finer);
     }
     if need.folds.pairs == 0 {
         return match flat_unfolded(plan, &patch, opts, resolution) {
-            Some((blended, mesh, need)) => (blended, Some(mesh), need),
-            None => (patch, Some(mesh), need),
+            Some((blended, mesh, (need, finer))) => (blended, Some(mesh), need, finer),
+            None => (patch, Some(mesh), need, finer),
         };
     }
-    let Some((blended, other, other_need)) = side_blended_mesh(plan, opts, resolution) else {
-        return (patch, Some(mesh), need);
+    let Some((blended, other, (other_need, other_finer))) =
+        side_blended_mesh(plan, opts, resolution)
+    else {
+        return (patch, Some(mesh), need, finer);
     };
     // Both judged at the finer of their levels: a patch's own level's folds are at hand.
     let level = need.times.max(other_need.times);
@@ -360,8 +365,8 @@ fn unfolded(
     };
     let (folds, other_folds) = (folds_at(&patch, &need), folds_at(&blended, &other_need));
     match fallback(&patch, &folds, blended, &other_folds) {
-        Some(blended) => (blended, Some(other), other_need),
-        None => (patch, Some(mesh), need),
+        Some(blended) => (blended, Some(other), other_need, other_finer),
+        None => (patch, Some(mesh), need, finer),
     }
 }
 
@@ -378,7 +383,7 @@ fn cusp_unfolded(
     opts: &PatchOptions,
     resolution: usize,
     need: &Need,
-) -> Option<(Patch, FaceMesh, Need)> {
+) -> Option<(Patch, FaceMesh, (Need, Option<Made>))> {
     let (corner, degrees) = patch
         .warnings()
         .iter()
@@ -390,7 +395,7 @@ fn cusp_unfolded(
         })
         .or_else(|| sharpest_cusp(patch))?;
     let (blended, mesh, other) = side_blended_mesh(plan, opts, resolution)?;
-    (other.folds.pairs <= need.folds.pairs).then(|| {
+    (other.0.folds.pairs <= need.folds.pairs).then(|| {
         let blended = blended.with_warning(PatchWarning::CuspSideBlended {
             replaced: patch.kind(),
             corner,
@@ -428,13 +433,13 @@ fn flat_unfolded(
     patch: &Patch,
     opts: &PatchOptions,
     resolution: usize,
-) -> Option<(Patch, FaceMesh, Need)> {
+) -> Option<(Patch, FaceMesh, (Need, Option<Made>))> {
     let cells = in_plane_folds(patch, opts.tolerance);
     if cells == 0 {
         return None;
     }
     let (blended, mesh, need) = side_blended_mesh(plan, opts, resolution)?;
-    (need.folds.pairs == 0 && in_plane_folds(&blended, opts.tolerance) == 0).then(|| {
+    (need.0.folds.pairs == 0 && in_plane_folds(&blended, opts.tolerance) == 0).then(|| {
         let blended = blended.with_warning(PatchWarning::FlatSideBlended {
             replaced: patch.kind(),
             cells,
@@ -444,12 +449,13 @@ fn flat_unfolded(
 }
 
 /// The side-blended patch of `plan` ([`side_blend`]) with its mesh at `resolution` and the
-/// refinement that mesh needs; None where the patch cannot be made or its mesh is not finite.
+/// refinement that mesh needs (with the finer mesh [`refinement`] made); None where the
+/// patch cannot be made or its mesh is not finite.
 fn side_blended_mesh(
     plan: &FacePlan,
     opts: &PatchOptions,
     resolution: usize,
-) -> Option<(Patch, FaceMesh, Need)> {
+) -> Option<(Patch, FaceMesh, (Need, Option<Made>))> {
     let blended = side_blend(plan, opts)?;
     let mesh = blended.face_mesh(resolution);
     if !mesh.is_finite() {
@@ -495,7 +501,7 @@ fn face_outcomes(
     options: &HullOptions,
 ) -> Result<Vec<Arc<FaceOutcome>>, Error> {
     let opts = patch_options(options);
-    type Built = (Patch, PatchLayout, Option<FaceMesh>, Need);
+    type Built = (Patch, PatchLayout, Option<FaceMesh>, Need, Option<Made>);
     let built: Vec<Option<Result<Built, FaceError>>> = stages
         .topology
         .faces
@@ -512,15 +518,15 @@ fn face_outcomes(
                     &stages.inner,
                 )?;
                 let patch = Patch::try_new(&plan.boundary, &plan.ribbons, &opts)?;
-                let (patch, mesh, need) = unfolded(&plan, patch, &opts, options.resolution);
-                Ok((patch, plan.layout, mesh, need))
+                let (patch, mesh, need, finer) = unfolded(&plan, patch, &opts, options.resolution);
+                Ok((patch, plan.layout, mesh, need, finer))
             })
         })
         .collect();
     // Counted before anything is meshed: a mesh too large to index is refused up front.
     let total = built.iter().enumerate().fold(0usize, |acc, (fi, b)| {
         let n = match (b, kept) {
-            (Some(Ok((patch, _, _, _))), _) => patch.mesh_vertex_count(options.resolution),
+            (Some(Ok((patch, ..))), _) => patch.mesh_vertex_count(options.resolution),
             (None, Some(kept)) => match kept[fi].as_ref() {
                 FaceOutcome::Built { mesh, .. } => mesh.vertex_count(),
                 _ => 0,
@@ -532,15 +538,18 @@ fn face_outcomes(
     if total >= u32::MAX as usize {
         return Err(PatchError::MeshTooLarge(total).into());
     }
-    Ok(built
+    let (outcomes, made): (Vec<_>, Vec<_>) = built
         .into_par_iter()
         .enumerate()
         .map(|(fi, b)| match b {
-            None => Arc::clone(&kept.expect("kept outcomes for the clean faces")[fi]),
-            Some(Err(error)) => Arc::new(FaceOutcome::Failed(error)),
-            Some(Ok((patch, layout, mesh, need))) => {
+            None => (
+                Arc::clone(&kept.expect("kept outcomes for the clean faces")[fi]),
+                None,
+            ),
+            Some(Err(error)) => (Arc::new(FaceOutcome::Failed(error)), None),
+            Some(Ok((patch, layout, mesh, need, finer))) => {
                 let mesh = mesh.unwrap_or_else(|| patch.face_mesh(options.resolution));
-                Arc::new(if mesh.is_finite() {
+                let outcome = Arc::new(if mesh.is_finite() {
                     FaceOutcome::Built {
                         unfolded: None,
                         worst: if need.times == 1 {
@@ -557,11 +566,12 @@ fn face_outcomes(
                     }
                 } else {
                     FaceOutcome::NonFinite
-                })
+                });
+                (outcome, finer)
             }
         })
-        .collect::<Vec<_>>())
-    .and_then(|outcomes| refined(outcomes, stages, options))
+        .unzip();
+    refined(outcomes, made, stages, options)
 }
 
 /// Neighbouring polygons of a face's own mesh more than this apart (degrees) ask for a finer
@@ -583,35 +593,58 @@ const REFINE_MAX_INTERVALS: usize = 32;
 /// intervals per segment) after which they are, or failing that the doubling with the
 /// smallest largest angle if it is at most half the first (a tight turn the finer mesh
 /// follows). A fold keeps its angle however fine the mesh: its face is not refined, and the
-/// fold check reports it.
-fn refinement(patch: &Patch, mesh: &FaceMesh, resolution: usize, smooth: &[bool]) -> Need {
+/// fold check reports it. Also the face's finer mesh at that need, where it is finer than
+/// `resolution`: [`refined`] takes it where the face's sides get those intervals.
+fn refinement(
+    patch: &Patch,
+    mesh: &FaceMesh,
+    resolution: usize,
+    smooth: &[bool],
+) -> (Need, Option<Made>) {
     let first = Need {
         times: 1,
         folds: face_folds(patch, mesh, smooth),
     };
     if first.folds.worst <= REFINE_DEGREES {
-        return first;
+        return (first, None);
     }
-    let mut best = first;
+    let mut best = (first, None);
     let mut m = 2;
     while m <= REFINE_MAX_TIMES
         && m * resolution <= REFINE_MAX_INTERVALS
         && patch.mesh_vertex_count(m * resolution) <= FOLD_CHECK_VERTICES
     {
-        let folds = face_folds(patch, &patch.face_mesh(m * resolution), smooth);
+        let counts = vec![m * resolution; patch.segment_count()];
+        let finer = patch.face_mesh_with(&counts);
+        let folds = face_folds(patch, &finer, smooth);
+        let made = Made {
+            counts,
+            mesh: finer,
+            worst: None,
+        };
         if folds.worst <= REFINE_DEGREES {
-            return Need { times: m, folds };
+            return (Need { times: m, folds }, Some(made));
         }
-        if folds.worst < best.folds.worst {
-            best = Need { times: m, folds };
+        if folds.worst < best.0.folds.worst {
+            best = (Need { times: m, folds }, Some(made));
         }
         m *= 2;
     }
-    if best.folds.worst <= 0.5 * first.folds.worst {
+    if best.0.folds.worst <= 0.5 * first.folds.worst {
         best
     } else {
-        first
+        (first, None)
     }
+}
+
+/// A face's mesh made on the way to its final one ([`refinement`], or [`refined`] looking at
+/// mixed intervals), with the intervals it has on its side segments and, once measured, the
+/// largest angle between its neighbouring polygons ([`face_mesh_folds`]): where the face's
+/// final intervals are these, it is its mesh, not made again.
+pub(crate) struct Made {
+    counts: Vec<usize>,
+    mesh: FaceMesh,
+    worst: Option<f64>,
 }
 
 /// How finely a face's own mesh needs to be made ([`refinement`]).
@@ -640,10 +673,13 @@ impl Need {
 /// it alike and weld), a face's segment `resolution` times that. A face's need is its
 /// [`refinement`], raised to its finest edge's where its mesh with those mixed intervals has
 /// neighbouring polygons more than [`REFINE_DEGREES`] apart, until no need rises. A face
-/// whose counts are already those keeps its outcome (the same `Arc`). Errors:
-/// [`PatchError::MeshTooLarge`] when the refined meshes could not be indexed.
+/// whose counts are already those keeps its outcome (the same `Arc`); a face whose mesh with
+/// those counts was made on the way (`made`, per face: [`refinement`]'s finer mesh, or one
+/// looked at here) takes it. Errors: [`PatchError::MeshTooLarge`] when the refined meshes
+/// could not be indexed.
 fn refined(
     outcomes: Vec<Arc<FaceOutcome>>,
+    mut made: Vec<Option<Made>>,
     stages: &Stages,
     options: &HullOptions,
 ) -> Result<Vec<Arc<FaceOutcome>>, Error> {
@@ -684,11 +720,14 @@ fn refined(
     let mixed = |counts: &[usize]| counts.iter().any(|&c| c != counts[0]);
     let mut want = wanted(&needs);
     loop {
-        let raised: Vec<(usize, usize)> = outcomes
+        // Per face looked at: whether its need rises to its finest edge's, and the mesh it
+        // was looked at with where that was made now (kept for the next round and the end).
+        let looked: Vec<(usize, Option<usize>, Option<Made>)> = outcomes
             .par_iter()
             .zip(&want)
+            .zip(&made)
             .enumerate()
-            .filter_map(|(fi, (outcome, want))| {
+            .filter_map(|(fi, ((outcome, want), made))| {
                 let (
                     FaceOutcome::Built {
                         patch,
@@ -708,20 +747,41 @@ fn refined(
                 if !mixed(want) || finest <= needs[fi] || need.folds.worst > FOLD_ANGLE_DEGREES {
                     return None;
                 }
-                // A kept face's mesh may already have these intervals.
-                let mixed_worst = if want == counts {
-                    *worst
-                } else {
-                    face_mesh_folds(&patch.face_mesh_with(want)).worst
+                // A kept face's mesh may already have these intervals, or one made before.
+                let (mixed_worst, new) = match made {
+                    _ if want == counts => (*worst, None),
+                    Some(Made {
+                        counts,
+                        worst: Some(worst),
+                        ..
+                    }) if counts == want => (*worst, None),
+                    _ => {
+                        let mesh = patch.face_mesh_with(want);
+                        let worst = face_mesh_folds(&mesh).worst;
+                        let made = Made {
+                            counts: want.clone(),
+                            mesh,
+                            worst: Some(worst),
+                        };
+                        (worst, Some(made))
+                    }
                 };
-                (mixed_worst > REFINE_DEGREES).then_some((fi, finest))
+                let raise = (mixed_worst > REFINE_DEGREES).then_some(finest);
+                (raise.is_some() || new.is_some()).then_some((fi, raise, new))
             })
             .collect();
-        if raised.is_empty() {
-            break;
+        let mut raised = false;
+        for (fi, raise, new) in looked {
+            if let Some(finest) = raise {
+                needs[fi] = finest;
+                raised = true;
+            }
+            if new.is_some() {
+                made[fi] = new;
+            }
         }
-        for (fi, finest) in raised {
-            needs[fi] = finest;
+        if !raised {
+            break;
         }
         want = wanted(&needs);
     }
@@ -741,50 +801,56 @@ fn refined(
     Ok(outcomes
         .into_par_iter()
         .zip(want)
+        .zip(made)
         .enumerate()
-        .map(|(fi, (outcome, want))| match (outcome.as_ref(), want) {
-            (
-                FaceOutcome::Built {
-                    patch,
-                    layout,
-                    need,
-                    counts,
-                    unfolded,
-                    ..
-                },
-                Some(want),
-            ) => {
-                if want == *counts {
-                    return outcome;
-                }
-                let base = unfolded.as_ref().unwrap_or(patch);
-                let mesh = base.face_mesh_with(&want);
-                // At the resolution itself, `unfolded` has chosen; only a finer mesh may
-                // show what it could not.
-                let (patch, mesh, worst) = if want.iter().all(|&c| c == resolution) {
-                    let worst = face_mesh_folds(&mesh).worst;
-                    (base.clone(), mesh, worst)
-                } else {
-                    refolded(stages, fi, options, base, mesh, &want)
-                };
-                let unfolded = (patch.kind() != base.kind()).then(|| base.clone());
-                Arc::new(if mesh.is_finite() {
+        .map(
+            |(fi, ((outcome, want), made))| match (outcome.as_ref(), want) {
+                (
                     FaceOutcome::Built {
                         patch,
-                        layout: layout.clone(),
-                        shares: MeshShares::of(&mesh),
-                        mesh,
-                        need: *need,
-                        counts: want,
-                        worst,
+                        layout,
+                        need,
+                        counts,
                         unfolded,
+                        ..
+                    },
+                    Some(want),
+                ) => {
+                    if want == *counts {
+                        return outcome;
                     }
-                } else {
-                    FaceOutcome::NonFinite
-                })
-            }
-            _ => outcome,
-        })
+                    let base = unfolded.as_ref().unwrap_or(patch);
+                    let (mesh, measured) = match made {
+                        Some(made) if made.counts == want => (made.mesh, made.worst),
+                        _ => (base.face_mesh_with(&want), None),
+                    };
+                    // At the resolution itself, `unfolded` has chosen; only a finer mesh may
+                    // show what it could not.
+                    let (patch, mesh, worst) = if want.iter().all(|&c| c == resolution) {
+                        let worst = measured.unwrap_or_else(|| face_mesh_folds(&mesh).worst);
+                        (base.clone(), mesh, worst)
+                    } else {
+                        refolded(stages, fi, options, base, mesh, &want)
+                    };
+                    let unfolded = (patch.kind() != base.kind()).then(|| base.clone());
+                    Arc::new(if mesh.is_finite() {
+                        FaceOutcome::Built {
+                            patch,
+                            layout: layout.clone(),
+                            shares: MeshShares::of(&mesh),
+                            mesh,
+                            need: *need,
+                            counts: want,
+                            worst,
+                            unfolded,
+                        }
+                    } else {
+                        FaceOutcome::NonFinite
+                    })
+                }
+                _ => outcome,
+            },
+        )
         .collect())
 }
 
