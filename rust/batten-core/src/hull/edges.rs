@@ -47,16 +47,39 @@ impl EdgeInfo {
 /// coincide within the tolerance are the same point, so the knot is the node. The node
 /// position itself is kept ([`SideSegment::with_nodes`]).
 pub(crate) fn snap_to_knot(curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
-    let (a, b) = curve.domain();
-    let at = curve.point(t);
-    curve
-        .knots()
-        .iter()
-        .copied()
-        .filter(|&k| k >= a && k <= b && k != t)
-        .filter(|&k| (curve.point(k) - at).length() <= tolerance.get())
-        .min_by(|x, y| (x - t).abs().total_cmp(&(y - t).abs()))
-        .unwrap_or(t)
+    KnotPoints::of(curve).snap(curve, t, tolerance)
+}
+
+/// A curve's knots inside its domain with the curve's points there, evaluated once for all
+/// the edges along the curve ([`snap_to_knot`] looks at every knot of the curve for each end
+/// of each edge: a KCS waterline of 60 knots and 20 edges took 2,400 evaluations).
+pub(crate) struct KnotPoints(Vec<(f64, DVec3)>);
+
+impl KnotPoints {
+    /// The knots of `curve` in its domain, in order (repeated knots once), with their points.
+    pub(crate) fn of(curve: &NurbsCurve) -> KnotPoints {
+        let (a, b) = curve.domain();
+        let mut out: Vec<(f64, DVec3)> = Vec::new();
+        for &k in curve.knots() {
+            if k >= a && k <= b && out.last().is_none_or(|&(last, _)| last != k) {
+                out.push((k, curve.point(k)));
+            }
+        }
+        KnotPoints(out)
+    }
+
+    /// [`snap_to_knot`] of `t` on `curve`, whose knot points these are: the nearest knot
+    /// other than `t` whose point lies within `tolerance` of C(t) (the lower of two as near),
+    /// else `t`.
+    pub(crate) fn snap(&self, curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
+        let at = curve.point(t);
+        self.0
+            .iter()
+            .filter(|&&(k, p)| k != t && (p - at).length() <= tolerance.get())
+            .map(|&(k, _)| k)
+            .min_by(|x, y| (x - t).abs().total_cmp(&(y - t).abs()))
+            .unwrap_or(t)
+    }
 }
 
 /// The designer curve restricted to `[t0, t1]` (split at interior ends; the parameterisation
@@ -89,12 +112,19 @@ fn tangent(curve: &NurbsCurve, t: f64, chord: DVec3) -> DVec3 {
 
 /// Edge `k` of the topology as the hull uses it: snapped onto its curve's knots, cut from the
 /// designer curve, named, with its node positions and one-sided end tangents.
-fn edge_info(network: &Network, topology: &Topology, k: usize, tolerance: Tolerance) -> EdgeInfo {
+/// `knots` are the [`KnotPoints`] of the edge's curve.
+fn edge_info(
+    network: &Network,
+    topology: &Topology,
+    k: usize,
+    tolerance: Tolerance,
+    knots: &KnotPoints,
+) -> EdgeInfo {
     let e = &topology.brep.edges[k];
     let nc = &network.curves()[e.curve];
     let (t0, t1) = (
-        snap_to_knot(&nc.curve, e.t0, tolerance),
-        snap_to_knot(&nc.curve, e.t1, tolerance),
+        knots.snap(&nc.curve, e.t0, tolerance),
+        knots.snap(&nc.curve, e.t1, tolerance),
     );
     let (t0, t1) = if t0 < t1 { (t0, t1) } else { (e.t0, e.t1) };
     let curve = edge_curve(&nc.curve, t0, t1);
@@ -112,6 +142,21 @@ fn edge_info(network: &Network, topology: &Topology, k: usize, tolerance: Tolera
         start_tangent,
         end_tangent,
     }
+}
+
+/// The [`KnotPoints`] of every curve of `network` with an edge flagged in `wanted` (in
+/// parallel), `None` for the others.
+fn knot_points(network: &Network, topology: &Topology, wanted: &[bool]) -> Vec<Option<KnotPoints>> {
+    let mut used = vec![false; network.curves().len()];
+    for (e, _) in topology.brep.edges.iter().zip(wanted).filter(|(_, &w)| w) {
+        used[e.curve] = true;
+    }
+    network
+        .curves()
+        .par_iter()
+        .zip(used)
+        .map(|(c, used)| used.then(|| KnotPoints::of(&c.curve)))
+        .collect()
 }
 
 /// One end of an edge at a node: the edge (index into the topology's edges) and whether the
@@ -137,13 +182,13 @@ impl FaceEdges {
     /// The region-bounding edges of `topology` (in parallel) and their ends at the nodes.
     pub(crate) fn new(network: &Network, topology: &Topology, tolerance: Tolerance) -> FaceEdges {
         let brep = &topology.brep;
+        let wanted: Vec<bool> = brep.edges.iter().map(|e| e.half_edges.is_some()).collect();
+        let knots = knot_points(network, topology, &wanted);
         let info: Vec<Option<EdgeInfo>> = (0..brep.edges.len())
             .into_par_iter()
             .map(|k| {
-                brep.edges[k]
-                    .half_edges
-                    .is_some()
-                    .then(|| edge_info(network, topology, k, tolerance))
+                let knots = knots[brep.edges[k].curve].as_ref()?;
+                wanted[k].then(|| edge_info(network, topology, k, tolerance, knots))
             })
             .collect();
         let mut at_vertex: Vec<Vec<EdgeEnd>> = vec![Vec::new(); brep.vertices.len()];
@@ -172,16 +217,20 @@ impl FaceEdges {
         tolerance: Tolerance,
         dirty: &[bool],
     ) -> FaceEdges {
+        let wanted: Vec<bool> = self
+            .info
+            .iter()
+            .zip(dirty)
+            .map(|(old, &dirty)| dirty && old.is_some())
+            .collect();
+        let knots = knot_points(network, topology, &wanted);
         let info = self
             .info
             .par_iter()
             .enumerate()
-            .map(|(k, old)| {
-                if dirty[k] && old.is_some() {
-                    Some(edge_info(network, topology, k, tolerance))
-                } else {
-                    old.clone()
-                }
+            .map(|(k, old)| match &knots[topology.brep.edges[k].curve] {
+                Some(knots) if wanted[k] => Some(edge_info(network, topology, k, tolerance, knots)),
+                _ => old.clone(),
             })
             .collect();
         FaceEdges {
