@@ -138,7 +138,8 @@ fn edge_info(
     EdgeInfo {
         segment: SideSegment::new(curve, t0, t1)
             .named(nc.name.clone())
-            .with_nodes(p0, p1),
+            .with_nodes(p0, p1)
+            .measured(tolerance),
         start_tangent,
         end_tangent,
     }

@@ -79,6 +79,7 @@ mod tests {
             name: "wl".to_string(),
             start: None,
             end: None,
+            measure: Default::default(),
         }
     }
 

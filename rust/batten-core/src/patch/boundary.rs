@@ -9,6 +9,8 @@
 //! through the segment's [`SpeedMap`] onto the curve's own parameter (at nearly uniform speed
 //! along the curve, whatever its knots), so the side is exactly the designer curve.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use super::error::PatchError;
@@ -43,6 +45,45 @@ pub struct SideSegment {
     pub start: Option<DVec3>,
     /// Node position at `t1`, if the topology knows it.
     pub end: Option<DVec3>,
+    /// The segment's measure, where it was taken beforehand ([`SideSegment::measured`]).
+    pub(crate) measure: Measure,
+}
+
+/// What preparing a segment measures of its curve between its ends, in increasing curve
+/// parameter (so the same whichever way a face runs along it): the arc length, the curve's
+/// Bézier pieces and the segment's [`SpeedMap`]. The hull measures each edge once, and the
+/// two faces along it take the measure instead of each measuring it again.
+#[derive(Debug)]
+pub(crate) struct SegmentMeasure {
+    /// The interval measured, `lo < hi`.
+    lo: f64,
+    hi: f64,
+    /// The arc length's relative accuracy ([`Tolerance::side_length_accuracy`]).
+    accuracy: f64,
+    length: f64,
+    fast: BezierDecomposition,
+    speed: SpeedMap,
+}
+
+impl SegmentMeasure {
+    /// Whether this measures `[lo, hi]` at `accuracy`, bit for bit.
+    fn is_of(&self, lo: f64, hi: f64, accuracy: f64) -> bool {
+        self.lo.to_bits() == lo.to_bits()
+            && self.hi.to_bits() == hi.to_bits()
+            && self.accuracy.to_bits() == accuracy.to_bits()
+    }
+}
+
+/// A segment's measure taken beforehand, if it was ([`SideSegment::measured`]). Equal to any
+/// other: it is what the segment's own fields give, so it leaves the segment's meaning as it
+/// is.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Measure(Option<Arc<SegmentMeasure>>);
+
+impl PartialEq for Measure {
+    fn eq(&self, _: &Measure) -> bool {
+        true
+    }
 }
 
 impl SideSegment {
@@ -55,7 +96,46 @@ impl SideSegment {
             name: String::new(),
             start: None,
             end: None,
+            measure: Measure::default(),
         }
+    }
+
+    /// The same segment with its curve measured between its ends at `tol`'s side-length
+    /// accuracy (the arc length, the Bézier pieces and the speed map [`prepare_boundary`]
+    /// needs), so that every patch with this segment on a side takes the measure instead of
+    /// taking it again; a segment whose parameters are changed afterwards is measured
+    /// afresh. Where the arc length cannot be measured, nothing is kept (the patch reports
+    /// why).
+    pub(crate) fn measured(mut self, tol: Tolerance) -> SideSegment {
+        let (lo, hi) = (self.t0.min(self.t1), self.t0.max(self.t1));
+        let accuracy = tol.side_length_accuracy();
+        self.measure = Measure(
+            (hi > lo)
+                .then(|| self.curve.arc_length_between(lo, hi, accuracy).ok())
+                .flatten()
+                .map(|length| {
+                    let fast = self.curve.bezier_decomposition();
+                    let speed = SpeedMap::of_curve(&fast, lo, hi);
+                    Arc::new(SegmentMeasure {
+                        lo,
+                        hi,
+                        accuracy,
+                        length,
+                        fast,
+                        speed,
+                    })
+                }),
+        );
+        self
+    }
+
+    /// The measure of this segment at `accuracy`, where it was taken beforehand.
+    fn measure_at(&self, accuracy: f64) -> Option<&SegmentMeasure> {
+        let (lo, hi) = (self.t0.min(self.t1), self.t0.max(self.t1));
+        self.measure
+            .0
+            .as_deref()
+            .filter(|m| m.is_of(lo, hi, accuracy))
     }
 
     /// The whole curve, in its own parameter direction.
@@ -86,6 +166,7 @@ impl SideSegment {
             name: self.name.clone(),
             start: self.end,
             end: self.start,
+            measure: self.measure.clone(),
         }
     }
 
@@ -392,15 +473,18 @@ pub(crate) fn prepare_boundary(
                 }
             }
             let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
-            let length = if hi > lo {
-                seg.curve
-                    .arc_length_between(lo, hi, tol.side_length_accuracy())
-                    .map_err(|source| PatchError::Curve {
-                        curve: seg.label(),
-                        source,
-                    })?
-            } else {
-                0.0
+            let accuracy = tol.side_length_accuracy();
+            let length = match seg.measure_at(accuracy) {
+                Some(measure) => measure.length,
+                None if hi > lo => {
+                    seg.curve
+                        .arc_length_between(lo, hi, accuracy)
+                        .map_err(|source| PatchError::Curve {
+                            curve: seg.label(),
+                            source,
+                        })?
+                }
+                None => 0.0,
             };
             if length.is_nan() || length < tol.get() {
                 return Err(PatchError::ZeroLengthSide {
@@ -523,10 +607,17 @@ pub(crate) fn prepare_boundary(
             .iter()
             .enumerate()
             .map(|(k, seg)| {
-                let fast = seg.curve.bezier_decomposition();
-                let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
+                let (fast, speed) = match seg.measure_at(tol.side_length_accuracy()) {
+                    Some(m) => (m.fast.clone(), m.speed.clone()),
+                    None => {
+                        let fast = seg.curve.bezier_decomposition();
+                        let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
+                        let speed = SpeedMap::of_curve(&fast, lo, hi);
+                        (fast, speed)
+                    }
+                };
                 PreparedSegment {
-                    speed: SpeedMap::of_curve(&fast, lo, hi),
+                    speed,
                     curve: seg.curve.clone(),
                     fast,
                     ta: seg.t0,
