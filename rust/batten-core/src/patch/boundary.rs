@@ -662,6 +662,43 @@ mod tests {
     }
 
     #[test]
+    fn a_measured_segment_prepares_as_one_measured_afresh_and_a_changed_one_is_measured_again() {
+        let c = uneven_line();
+        let tol = Tolerance::DEFAULT;
+        let prepared = |seg: SideSegment| {
+            let sides = prepare_boundary(&triangle(seg), SideParam::ArcLength, tol, 8)
+                .expect("a valid face");
+            (0..=16)
+                .map(|j| sides[0].eval(j as f64 / 16.0))
+                .map(|(p, d)| [p.to_array(), d.to_array()].map(|v| v.map(f64::to_bits)))
+                .collect::<Vec<_>>()
+        };
+        let plain = SideSegment::new(c.clone(), 0.25, 1.75);
+        let measured = plain.clone().measured(tol);
+        assert!(measured.measure.0.is_some(), "measured");
+        assert_eq!(
+            prepared(measured.clone()),
+            prepared(plain.clone()),
+            "bit for bit"
+        );
+        assert_eq!(
+            prepared(measured.reversed()),
+            prepared(plain.reversed()),
+            "reversed, bit for bit"
+        );
+        // Cut short after measuring: the measure is of another interval and is not taken.
+        let cut = SideSegment {
+            t1: 1.5,
+            ..measured.clone()
+        };
+        assert_eq!(prepared(cut), prepared(SideSegment::new(c, 0.25, 1.5)));
+        assert_ne!(
+            prepared(measured),
+            prepared(SideSegment::new(uneven_line(), 0.25, 1.5))
+        );
+    }
+
+    #[test]
     fn a_side_ending_on_a_knot_takes_its_end_tangent_from_its_own_piece() {
         let c = uneven_line();
         // The first piece, 1 m long: d/ds is 1 m along the whole side, both ways round.
