@@ -15,7 +15,7 @@ use glam::DVec3;
 
 use super::error::PatchError;
 use super::speed::SpeedMap;
-use crate::curve::{BezierDecomposition, NurbsCurve};
+use crate::curve::{BezierDecomposition, CurveError, NurbsCurve};
 use crate::tolerance::Tolerance;
 
 /// How far a segment's parameter may lie outside its curve's domain, relative to the domain's
@@ -51,11 +51,14 @@ pub struct SideSegment {
 
 /// What preparing a segment measures of its curve between its ends, in increasing curve
 /// parameter (so the same whichever way a face runs along it): the arc length, the curve's
-/// Bézier pieces and the segment's [`SpeedMap`]. The hull measures each edge once, and the
-/// two faces along it take the measure instead of each measuring it again.
+/// Bézier pieces and the segment's [`SpeedMap`], with the curve itself. The hull measures
+/// each edge once, and the two faces along it take the measure instead of each measuring it
+/// again; the prepared segments of both share it.
 #[derive(Debug)]
 pub(crate) struct SegmentMeasure {
-    /// The interval measured, `lo < hi`.
+    /// The curve measured.
+    curve: NurbsCurve,
+    /// The interval measured, `lo ≤ hi`.
     lo: f64,
     hi: f64,
     /// The arc length's relative accuracy ([`Tolerance::side_length_accuracy`]).
@@ -66,11 +69,38 @@ pub(crate) struct SegmentMeasure {
 }
 
 impl SegmentMeasure {
-    /// Whether this measures `[lo, hi]` at `accuracy`, bit for bit.
-    fn is_of(&self, lo: f64, hi: f64, accuracy: f64) -> bool {
+    /// The measure of `curve` on `[lo, hi]` (`lo ≤ hi`) at `accuracy`: the arc length 0 where
+    /// the interval is empty; the curve's error where its length cannot be measured.
+    fn take(
+        curve: &NurbsCurve,
+        lo: f64,
+        hi: f64,
+        accuracy: f64,
+    ) -> Result<SegmentMeasure, CurveError> {
+        let length = if hi > lo {
+            curve.arc_length_between(lo, hi, accuracy)?
+        } else {
+            0.0
+        };
+        let fast = curve.bezier_decomposition();
+        let speed = SpeedMap::of_curve(&fast, lo, hi);
+        Ok(SegmentMeasure {
+            curve: curve.clone(),
+            lo,
+            hi,
+            accuracy,
+            length,
+            fast,
+            speed,
+        })
+    }
+
+    /// Whether this measures `curve` on `[lo, hi]` at `accuracy`, bit for bit.
+    fn is_of(&self, curve: &NurbsCurve, lo: f64, hi: f64, accuracy: f64) -> bool {
         self.lo.to_bits() == lo.to_bits()
             && self.hi.to_bits() == hi.to_bits()
             && self.accuracy.to_bits() == accuracy.to_bits()
+            && self.curve == *curve
     }
 }
 
@@ -103,39 +133,34 @@ impl SideSegment {
     /// The same segment with its curve measured between its ends at `tol`'s side-length
     /// accuracy (the arc length, the Bézier pieces and the speed map [`prepare_boundary`]
     /// needs), so that every patch with this segment on a side takes the measure instead of
-    /// taking it again; a segment whose parameters are changed afterwards is measured
-    /// afresh. Where the arc length cannot be measured, nothing is kept (the patch reports
-    /// why).
+    /// taking it again; a segment whose curve or parameters are changed afterwards is
+    /// measured afresh. Where the arc length cannot be measured, nothing is kept (the patch
+    /// reports why).
     pub(crate) fn measured(mut self, tol: Tolerance) -> SideSegment {
         let (lo, hi) = (self.t0.min(self.t1), self.t0.max(self.t1));
         let accuracy = tol.side_length_accuracy();
         self.measure = Measure(
             (hi > lo)
-                .then(|| self.curve.arc_length_between(lo, hi, accuracy).ok())
+                .then(|| SegmentMeasure::take(&self.curve, lo, hi, accuracy).ok())
                 .flatten()
-                .map(|length| {
-                    let fast = self.curve.bezier_decomposition();
-                    let speed = SpeedMap::of_curve(&fast, lo, hi);
-                    Arc::new(SegmentMeasure {
-                        lo,
-                        hi,
-                        accuracy,
-                        length,
-                        fast,
-                        speed,
-                    })
-                }),
+                .map(Arc::new),
         );
         self
     }
 
-    /// The measure of this segment at `accuracy`, where it was taken beforehand.
-    fn measure_at(&self, accuracy: f64) -> Option<&SegmentMeasure> {
+    /// The measure of this segment at `accuracy`: the one taken beforehand where it is of
+    /// this segment, else taken now.
+    fn measure_at(&self, accuracy: f64) -> Result<Arc<SegmentMeasure>, PatchError> {
         let (lo, hi) = (self.t0.min(self.t1), self.t0.max(self.t1));
-        self.measure
-            .0
-            .as_deref()
-            .filter(|m| m.is_of(lo, hi, accuracy))
+        match &self.measure.0 {
+            Some(m) if m.is_of(&self.curve, lo, hi, accuracy) => Ok(Arc::clone(m)),
+            _ => SegmentMeasure::take(&self.curve, lo, hi, accuracy)
+                .map(Arc::new)
+                .map_err(|source| PatchError::Curve {
+                    curve: self.label(),
+                    source,
+                }),
+        }
     }
 
     /// The whole curve, in its own parameter direction.
@@ -242,15 +267,14 @@ pub enum SideParam {
 /// make consecutive segments and sides meet exactly at the resolved node positions.
 #[derive(Clone, Debug)]
 pub(crate) struct PreparedSegment {
-    pub(crate) curve: NurbsCurve,
-    /// The same curve's Bézier pieces, for fast point-and-derivative evaluation.
-    pub(crate) fast: BezierDecomposition,
+    /// The curve, its Bézier pieces (for fast point-and-derivative evaluation) and the
+    /// segment's fraction λ onto its parameter (in increasing curve parameter): shared with
+    /// the other faces along the segment.
+    measure: Arc<SegmentMeasure>,
     /// Curve parameter at the segment start (traversal order).
     pub(crate) ta: f64,
     /// Curve parameter at the segment end.
     pub(crate) tb: f64,
-    /// The segment's fraction λ onto its curve's parameter, in increasing curve parameter.
-    pub(crate) speed: SpeedMap,
     /// Resolved start point minus the curve's start point.
     pub(crate) d0: DVec3,
     /// Resolved end point minus the curve's end point.
@@ -260,6 +284,24 @@ pub(crate) struct PreparedSegment {
 }
 
 impl PreparedSegment {
+    /// The designer curve.
+    #[inline]
+    pub(crate) fn curve(&self) -> &NurbsCurve {
+        &self.measure.curve
+    }
+
+    /// The curve's Bézier pieces.
+    #[inline]
+    pub(crate) fn fast(&self) -> &BezierDecomposition {
+        &self.measure.fast
+    }
+
+    /// The segment's fraction λ onto its curve's parameter.
+    #[inline]
+    fn speed(&self) -> &SpeedMap {
+        &self.measure.speed
+    }
+
     /// The segment's curve parameter interval `(lo, hi)`, `lo ≤ hi`.
     #[inline]
     fn interval(&self) -> (f64, f64) {
@@ -277,7 +319,7 @@ impl PreparedSegment {
     #[inline]
     pub(crate) fn parameter(&self, lam: f64) -> (f64, f64) {
         let up = self.ta <= self.tb;
-        let (tau, d) = self.speed.tau(if up { lam } else { 1.0 - lam });
+        let (tau, d) = self.speed().tau(if up { lam } else { 1.0 - lam });
         (self.at_tau(tau), d * (self.tb - self.ta))
     }
 
@@ -302,8 +344,8 @@ impl PreparedSegment {
     #[inline]
     pub(crate) fn point_d1(&self, lam: f64) -> (DVec3, DVec3, f64) {
         let (t, dt) = self.parameter(lam);
-        let piece = self.fast.piece_at(t, t < self.interval().1);
-        let (c, d1) = self.fast.point_d1_in(piece, t);
+        let piece = self.fast().piece_at(t, t < self.interval().1);
+        let (c, d1) = self.fast().point_d1_in(piece, t);
         (c, d1 * dt, t)
     }
 
@@ -311,8 +353,8 @@ impl PreparedSegment {
     /// parameter (`after_in_t`) or before it.
     pub(crate) fn parameter_slope(&self, t: f64, after_in_t: bool) -> f64 {
         let (lo, hi) = self.interval();
-        let lam = self.speed.lambda((t - lo) / (hi - lo));
-        self.speed.slope(lam, after_in_t) * (self.tb - self.ta)
+        let lam = self.speed().lambda((t - lo) / (hi - lo));
+        self.speed().slope(lam, after_in_t) * (self.tb - self.ta)
     }
 
     /// The segment's fraction λ at curve parameter `t` (the inverse of
@@ -322,7 +364,7 @@ impl PreparedSegment {
         if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
             return 0.0;
         }
-        let lam = self.speed.lambda((t - lo) / (hi - lo));
+        let lam = self.speed().lambda((t - lo) / (hi - lo));
         if self.ta <= self.tb {
             lam
         } else {
@@ -337,7 +379,7 @@ impl PreparedSegment {
         match j {
             0 => self.at_tau(0.0),
             j if j >= r => self.at_tau(1.0),
-            j => self.at_tau(self.speed.tau(j as f64 / r as f64).0),
+            j => self.at_tau(self.speed().tau(j as f64 / r as f64).0),
         }
     }
 }
@@ -397,7 +439,7 @@ impl PreparedSide {
         let (k, lam) = self.locate(s);
         let seg = &self.segs[k];
         let t = seg.parameter(lam).0;
-        seg.curve.point(t) + seg.d0 * (1.0 - lam) + seg.d1 * lam
+        seg.curve().point(t) + seg.d0 * (1.0 - lam) + seg.d1 * lam
     }
 
     /// Resolved start point (corner).
@@ -438,13 +480,15 @@ pub(crate) fn prepare_boundary(
         });
     }
     let limit = tol.near_miss();
-    // Raw end points and lengths, after parameter validation.
+    // Raw end points and lengths, after parameter validation, and each segment's measure.
     let mut raw: Vec<Vec<MeasuredSegment>> = Vec::with_capacity(n);
+    let mut measures: Vec<Vec<Arc<SegmentMeasure>>> = Vec::with_capacity(n);
     for (si, side) in boundary.sides.iter().enumerate() {
         if side.segments.is_empty() {
             return Err(PatchError::EmptySide { side: si });
         }
         let mut segs = Vec::with_capacity(side.segments.len());
+        let mut side_measures = Vec::with_capacity(side.segments.len());
         let mut total = 0.0;
         for (ki, seg) in side.segments.iter().enumerate() {
             let (a, b) = seg.curve.domain();
@@ -472,20 +516,8 @@ pub(crate) fn prepare_boundary(
                     }
                 }
             }
-            let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
-            let accuracy = tol.side_length_accuracy();
-            let length = match seg.measure_at(accuracy) {
-                Some(measure) => measure.length,
-                None if hi > lo => {
-                    seg.curve
-                        .arc_length_between(lo, hi, accuracy)
-                        .map_err(|source| PatchError::Curve {
-                            curve: seg.label(),
-                            source,
-                        })?
-                }
-                None => 0.0,
-            };
+            let measure = seg.measure_at(tol.side_length_accuracy())?;
+            let length = measure.length;
             if length.is_nan() || length < tol.get() {
                 return Err(PatchError::ZeroLengthSide {
                     side: si,
@@ -503,6 +535,7 @@ pub(crate) fn prepare_boundary(
                 length,
                 chord: (p1 - p0).length(),
             });
+            side_measures.push(measure);
         }
         if total.is_nan() || total < tol.get() {
             return Err(PatchError::ZeroLengthSide {
@@ -513,6 +546,7 @@ pub(crate) fn prepare_boundary(
             });
         }
         raw.push(segs);
+        measures.push(side_measures);
     }
 
     // Resolve the junction point between (side, segment) and the next segment (or next side).
@@ -606,26 +640,13 @@ pub(crate) fn prepare_boundary(
             .segments
             .iter()
             .enumerate()
-            .map(|(k, seg)| {
-                let (fast, speed) = match seg.measure_at(tol.side_length_accuracy()) {
-                    Some(m) => (m.fast.clone(), m.speed.clone()),
-                    None => {
-                        let fast = seg.curve.bezier_decomposition();
-                        let (lo, hi) = (seg.t0.min(seg.t1), seg.t0.max(seg.t1));
-                        let speed = SpeedMap::of_curve(&fast, lo, hi);
-                        (fast, speed)
-                    }
-                };
-                PreparedSegment {
-                    speed,
-                    curve: seg.curve.clone(),
-                    fast,
-                    ta: seg.t0,
-                    tb: seg.t1,
-                    d0: starts[k] - raw[si][k].start,
-                    d1: starts[k + 1] - raw[si][k].end,
-                    p0: starts[k],
-                }
+            .map(|(k, seg)| PreparedSegment {
+                measure: Arc::clone(&measures[si][k]),
+                ta: seg.t0,
+                tb: seg.t1,
+                d0: starts[k] - raw[si][k].start,
+                d1: starts[k + 1] - raw[si][k].end,
+                p0: starts[k],
             })
             .collect();
         out.push(PreparedSide { segs, breaks, end });

@@ -990,7 +990,10 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
     let one_sided = |k: usize, t: f64, after_in_t: bool| -> DVec3 {
         let seg = &side.segs[k];
         let du = side.breaks[k + 1] - side.breaks[k];
-        let d1 = seg.fast.derivs_in(seg.fast.piece_at(t, after_in_t), t).d1;
+        let d1 = seg
+            .fast()
+            .derivs_in(seg.fast().piece_at(t, after_in_t), t)
+            .d1;
         (d1 * seg.parameter_slope(t, after_in_t) + (seg.d1 - seg.d0)) / du
     };
     let mut push = |before: SideSample, after: SideSample, segment, at, s| {
@@ -1008,13 +1011,13 @@ fn side_corners(rib: &PreparedRibbon, side: &PreparedSide) -> Vec<Turn> {
         let up = seg.tb >= seg.ta;
         let (lo, hi) = (seg.ta.min(seg.tb), seg.ta.max(seg.tb));
         let du = side.breaks[k + 1] - side.breaks[k];
-        for tc in seg.curve.corner_parameters(min) {
+        for tc in seg.curve().corner_parameters(min) {
             if tc <= lo || tc >= hi {
                 continue;
             }
             let lam = seg.fraction(tc);
             let s = side.breaks[k] + du * lam;
-            let p = seg.fast.point(tc) + seg.d0 * (1.0 - lam) + seg.d1 * lam;
+            let p = seg.fast().point(tc) + seg.d0 * (1.0 - lam) + seg.d1 * lam;
             let frame = |after_in_t| rib.frame_of(side, s, p, one_sided(k, tc, after_in_t), k, tc);
             let (before, after) = (frame(!up), frame(up));
             push(before, after, k, Some((tc, up)), s);

@@ -183,7 +183,7 @@ impl Patch {
                     let j = if seg.ta <= seg.tb { q } else { r - q };
                     let t = seg.canonical_sample(r, j);
                     let s = u0 + (u1 - u0) * (q as f64 / r as f64);
-                    pts.push(seg.curve.point(t));
+                    pts.push(seg.curve().point(t));
                     dom.push(self.domain().side_point_v(i, s));
                     lambdas.push(s);
                 }
