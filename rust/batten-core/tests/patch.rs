@@ -1074,6 +1074,62 @@ fn a_gregory_patch_meshes_its_inside_as_the_points_of_its_grid() {
     );
 }
 
+#[test]
+fn a_gregory_patch_meshed_on_rings_takes_its_points_on_the_square_lattice() {
+    // A composite side gives the face more samples on it than on the side opposite, so its
+    // inside is meshed on rings; on the unit square their points lie on the lattice of step
+    // 1/(2k), where each side's ribbon is sampled once per column or row: every inside vertex
+    // must be the patch's own point there, bit for bit, and lie on its ring.
+    let curves = saddle_face(4);
+    let mut sides: Vec<Side> = curves
+        .iter()
+        .map(|c| Side::single(SideSegment::whole(c.clone())))
+        .collect();
+    sides[0] = Side::new(vec![
+        SideSegment::new(curves[0].clone(), 0.0, 0.4),
+        SideSegment::new(curves[0].clone(), 0.4, 1.0),
+    ]);
+    let p =
+        Patch::try_new(&FaceBoundary::new(sides), &[], &PatchOptions::default()).expect("patch");
+    assert_eq!(p.kind(), PatchKind::Gregory);
+    let r = 8;
+    let mesh = p.tessellate(r).expect("mesh");
+    let bits = |q: [f64; 3]| q.map(f64::to_bits);
+    let vertices: std::collections::HashSet<[u64; 3]> =
+        mesh.positions.iter().map(|&q| bits(q)).collect();
+    // Five sides' worth of samples round to k = 10 rings.
+    let k = 10;
+    let lattice = |i: usize| i as f64 / (2 * k) as f64;
+    let mut inside = 1;
+    assert!(
+        vertices.contains(&bits(p.eval([0.5, 0.5]).to_array())),
+        "the centre"
+    );
+    for ring in 1..k {
+        let (lo, hi) = (ring, 2 * k - ring);
+        for i in (lo..hi).step_by(2) {
+            for x in [
+                [lattice(i), lattice(lo)],
+                [lattice(hi), lattice(i)],
+                [lattice(2 * k - i), lattice(hi)],
+                [lattice(lo), lattice(2 * k - i)],
+            ] {
+                assert!(
+                    vertices.contains(&bits(p.eval(x).to_array())),
+                    "the patch's point at {x:?} is a vertex"
+                );
+                inside += 1;
+            }
+        }
+    }
+    assert_eq!(inside, 2 * k * (k - 1) + 1);
+    assert_eq!(
+        mesh.positions.len(),
+        5 * r + inside,
+        "boundary and rings, nothing else"
+    );
+}
+
 // ---------------------------------------------------------------------------------------
 // A narrow face whose side hooks into a corner
 

@@ -173,6 +173,32 @@ impl Domain {
     }
 }
 
+/// The inside points of `k` rings on the unit square (the tessellation's rings of a 4-sided
+/// face) as lattice indices `(i, j)`, the point `(i, j) / (2k)`, in the mesh's vertex order:
+/// ring `r`'s corners are `(r, r)` to `(2k − r, 2k − r)` and its `k − r` intervals a side
+/// are 2 steps each; then the centre `(k, k)`. Every ring's points share the `2k + 1` columns
+/// and rows of the lattice, so a Gregory patch samples its sides' ribbons once per column and
+/// row (`Patch::eval_square_rings`).
+pub(crate) fn square_rings(k: usize) -> Vec<(usize, usize)> {
+    let mut out = Vec::with_capacity(2 * k * k.saturating_sub(1) + 1);
+    let top = 2 * k;
+    for r in 1..k {
+        let m = k - r;
+        out.extend((0..m).map(|j| (r + 2 * j, r)));
+        out.extend((0..m).map(|j| (top - r, r + 2 * j)));
+        out.extend((0..m).map(|j| (top - r - 2 * j, top - r)));
+        out.extend((0..m).map(|j| (r, top - r - 2 * j)));
+    }
+    out.push((k, k));
+    out
+}
+
+/// The parameter of lattice index `i` of [`square_rings`] for `k` rings: `i / (2k)`.
+pub(crate) fn lattice_parameter(k: usize) -> impl Fn(usize) -> f64 {
+    let steps = (2 * k) as f64;
+    move |i| i as f64 / steps
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

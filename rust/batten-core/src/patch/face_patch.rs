@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 use super::boundary::{prepare_boundary, FaceBoundary, PreparedSide, SideParam};
 use super::charrot_gregory;
 use super::corner::{corner_data, CornerData};
-use super::domain::{Domain, MAX_SIDES};
+use super::domain::{lattice_parameter, square_rings, Domain, MAX_SIDES};
 use super::error::{PatchError, PatchWarning};
 use super::gregory4;
 use super::ribbon::{prepare_ribbons, PreparedRibbon, SideRibbon};
@@ -209,6 +209,38 @@ impl Patch {
                 }
             }));
         }
+        true
+    }
+
+    /// The inside points of a Gregory patch meshed on `k` rings (the tessellation's lattice of
+    /// the unit square, [`square_rings`]),
+    /// appended to `out` in the mesh's vertex order: each point is exactly `eval_v` there,
+    /// with each side's ribbon sampled once per lattice column or row the rings use instead of
+    /// once per point. False (and nothing appended) for a patch of another kind.
+    pub(crate) fn eval_square_rings(&self, k: usize, out: &mut Vec<DVec3>) -> bool {
+        if self.kind != PatchKind::Gregory {
+            return false;
+        }
+        let (sides, ribbons) = (&self.sides, &self.ribbons);
+        let at = lattice_parameter(k);
+        let pairs = |axis: usize| -> Vec<(f64, gregory4::RibbonPair)> {
+            (0..=2 * k)
+                .map(|i| {
+                    let w = gregory4::square_parameter(at(i));
+                    (w, gregory4::RibbonPair::at(sides, ribbons, axis, w))
+                })
+                .collect()
+        };
+        let (along_u, along_v) = (pairs(0), pairs(1));
+        let fanned = gregory4::fanned(ribbons);
+        out.extend(square_rings(k).into_iter().map(|(i, j)| {
+            let ((u, pu), (v, pv)) = (&along_u[i], &along_v[j]);
+            if fanned {
+                gregory4::blend_inside(ribbons, &self.corners, *u, *v, pu, pv)
+            } else {
+                gregory4::blend(&self.corners, *u, *v, pu, pv)
+            }
+        }));
         true
     }
 

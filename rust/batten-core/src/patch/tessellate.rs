@@ -22,6 +22,7 @@ use std::collections::HashMap;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
+use super::domain::{lattice_parameter, square_rings};
 use super::error::PatchError;
 use super::face_patch::Patch;
 
@@ -200,9 +201,18 @@ impl Patch {
 
     /// The domain points of the inside of a face meshed on `k` rings ([`Interior::Rings`]), in
     /// the order of [`Patch::face_mesh`]'s vertices: ring 1 to ring `k − 1` (ring `r` scaled
-    /// by `1 − r/k` about the centre, `k − r` intervals per side), then the centre.
+    /// by `1 − r/k` about the centre, `k − r` intervals per side), then the centre. On the
+    /// unit square those points lie on the lattice of step `1/(2k)` ([`square_rings`]) and
+    /// are taken there exactly.
     fn ring_domain(&self, k: usize) -> Vec<DVec2> {
         let n = self.sides();
+        if n == 4 {
+            let at = lattice_parameter(k);
+            return square_rings(k)
+                .into_iter()
+                .map(|(i, j)| DVec2::new(at(i), at(j)))
+                .collect();
+        }
         let centre = self.domain().centre_v();
         let mut out = Vec::with_capacity(Interior::Rings { k }.vertices(n));
         for rr in 1..k {
@@ -302,8 +312,10 @@ impl Patch {
                     next += n * (k - rr);
                 }
                 let centre_idx = next as u32;
-                let inside = self.ring_domain(k);
-                positions.extend(inside.into_iter().map(|x| self.eval_v(x)));
+                if !self.eval_square_rings(k, &mut positions) {
+                    let inside = self.ring_domain(k);
+                    positions.extend(inside.into_iter().map(|x| self.eval_v(x)));
+                }
                 let ring_side = |rr: usize, i: usize| -> Vec<RingPoint> {
                     let m = k - rr;
                     (0..=m)
