@@ -112,10 +112,7 @@ pub(crate) fn boundary_folds(patch: &Patch, mesh: &FaceMesh, smooth: &[bool]) ->
             .filter(|&(_, side, _)| smooth.get(side).copied().unwrap_or(false))
             .filter_map(|(f, side, s)| {
                 let np = polygon_normal(|v| positions[v as usize], polys[f]);
-                let ne = patch
-                    .side_tangent(side, s)
-                    .cross(patch.ribbon(side, s))
-                    .normalize_or_zero();
+                let ne = patch.side_plane_normal(side, s);
                 // Either orientation: a polygon turned right over is the inside check's to
                 // find.
                 (np != DVec3::ZERO && ne != DVec3::ZERO).then(|| np.dot(ne).abs().min(1.0))

@@ -303,6 +303,16 @@ impl Patch {
         self.side_tangent(i, s).cross(across).normalize_or_zero()
     }
 
+    /// The unit normal of the surface's tangent plane on side `i` at side parameter `s`: the
+    /// side's derivative there crossed with its ribbon (the plane the patch takes along its
+    /// side, and its neighbour across a smooth edge too), or zero where they are parallel.
+    /// One-sided at a corner inside the side, as the ribbon's own frame is.
+    pub(crate) fn side_plane_normal(&self, i: usize, s: f64) -> DVec3 {
+        let i = i % self.sides.len();
+        let (_, along, ribbon) = self.ribbons[i].eval_along(&self.sides[i], s);
+        along.cross(ribbon).normalize_or_zero()
+    }
+
     /// d/ds of side `i` at `s`: central differences of [`Patch::side_point`], one-sided at the
     /// side's ends.
     pub(crate) fn side_tangent(&self, i: usize, s: f64) -> DVec3 {
@@ -345,5 +355,71 @@ impl Patch {
     pub fn ribbon(&self, i: usize, s: f64) -> DVec3 {
         let i = i % self.sides.len();
         self.ribbons[i].eval(&self.sides[i], s).1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::NurbsCurve;
+    use crate::patch::{Side, SideSegment};
+
+    /// A cubic Bézier through `p`, its inner control points lifted by `lift` along z.
+    fn cubic(a: DVec3, b: DVec3, lift: f64) -> NurbsCurve {
+        let (m1, m2) = (a.lerp(b, 1.0 / 3.0), a.lerp(b, 2.0 / 3.0));
+        let up = DVec3::Z * lift;
+        NurbsCurve::try_new(
+            3,
+            vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            vec![a, m1 + up, m2 - up, b],
+            None,
+        )
+        .expect("a cubic")
+    }
+
+    fn patch(lift: f64, n: usize) -> Patch {
+        let corners: Vec<DVec3> = (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64 + 0.2;
+                DVec3::new(2.0 * a.cos(), 1.3 * a.sin(), 0.0)
+            })
+            .collect();
+        let sides = (0..n)
+            .map(|k| {
+                let (a, b) = (corners[k], corners[(k + 1) % n]);
+                Side::single(SideSegment::whole(cubic(a, b, lift * (k % 2) as f64)))
+            })
+            .collect();
+        Patch::try_new(&FaceBoundary::new(sides), &[], &PatchOptions::default()).expect("patch")
+    }
+
+    #[test]
+    fn the_side_plane_normal_is_the_patch_normal_on_its_side() {
+        // Flat: the plane's normal, to rounding.
+        for n in [3, 4, 5] {
+            let p = patch(0.0, n);
+            for i in 0..n {
+                for s in [0.0, 0.1, 0.5, 0.93, 1.0] {
+                    let normal = p.side_plane_normal(i, s);
+                    assert!(
+                        normal.cross(DVec3::Z).length() < 1e-12,
+                        "{n} sides, side {i} at {s}: {normal}"
+                    );
+                }
+            }
+        }
+        // Curved: the patch's own normal there (finite differences, 1e-6 relative).
+        for n in [3, 4, 5] {
+            let p = patch(0.4, n);
+            for i in 0..n {
+                for s in [0.1, 0.5, 0.93] {
+                    let (a, b) = (p.side_plane_normal(i, s), p.boundary_normal(i, s));
+                    assert!(
+                        a.cross(b).length() < 1e-5 && a.dot(b) > 0.0,
+                        "{n} sides, side {i} at {s}: {a} against {b}"
+                    );
+                }
+            }
+        }
     }
 }

@@ -1090,6 +1090,14 @@ impl PreparedRibbon {
     /// plane into the frame carried along the side ([`Transport`]).
     #[inline]
     pub(crate) fn eval(&self, side: &PreparedSide, s: f64) -> (DVec3, DVec3) {
+        let (p, _, r) = self.eval_along(side, s);
+        (p, r)
+    }
+
+    /// [`PreparedRibbon::eval`]'s position and ribbon at `s` with the side's derivative d/ds
+    /// there (the one the ribbon's frame is made from: one-sided at a corner of the side).
+    #[inline]
+    pub(crate) fn eval_along(&self, side: &PreparedSide, s: f64) -> (DVec3, DVec3, DVec3) {
         let (p, dp, k, t) = side.eval_located(s);
         let f = self.frame_of(side, s, p, dp, k, t);
         let s = s.clamp(0.0, 1.0);
@@ -1114,7 +1122,7 @@ impl PreparedRibbon {
             None => r,
             Some(w) => r * w.at(s),
         };
-        (f.p, r + mended(&self.mends, s))
+        (f.p, dp, r + mended(&self.mends, s))
     }
 
     /// The ribbon at `s` as the patch extrapolates it at domain distance `h` from the side:
