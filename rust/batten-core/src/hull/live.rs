@@ -8,6 +8,8 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use super::build::{assemble_welded, built_in_full, into_surface, measure, reassemble, Stages};
 use super::patched::PatchedFace;
 use super::{HullOptions, HullSurface};
@@ -111,7 +113,10 @@ impl LiveHull {
                 .collect()
         });
         self.surface = Arc::new(surface);
-        self.stages = stages;
+        let old = std::mem::replace(&mut self.stages, stages);
+        // The faces' patches and meshes are most of what is freed (30,000 allocations for
+        // KCS): freed on both threads.
+        old.faces.into_par_iter().for_each(drop);
         self.network = network.clone();
         self.measured = false;
         self.last = last;
