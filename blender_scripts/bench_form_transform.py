@@ -23,6 +23,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 
+# The add-on first, as in Blender: it sets batten_native's allocator options before loading it.
+import batten  # noqa: E402
 import batten_native as bn  # noqa: E402
 
 RESOLUTION = 12
@@ -65,7 +67,6 @@ def _kcs() -> None:
     if not path.exists():
         print(f"KCS: {path} not found, skipped")
         return
-    import batten  # noqa: PLC0415
     import batten.api as api  # noqa: PLC0415
 
     batten.register()
