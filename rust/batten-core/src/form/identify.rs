@@ -8,7 +8,7 @@ use glam::DVec3;
 use super::error::FormError;
 use super::parameters::FormParameters;
 use super::planes::{curve_planes, FormPlane};
-use crate::hull::snap_to_knot;
+use crate::hull::KnotPoints;
 use crate::network::{Network, NetworkCurve, Role};
 use crate::tolerance::Tolerance;
 use crate::topo::Topology;
@@ -160,13 +160,19 @@ pub(crate) fn identify(
             }
         })
         .collect();
+    // Each curve's knot points once, for the ends of all its edges.
+    let knots: Vec<KnotPoints> = index
+        .iter()
+        .map(|&i| KnotPoints::of(&curves[i].curve))
+        .collect();
+    let snap = |c: usize, t: f64| knots[c].snap(&curves[index[c]].curve, t, tol);
     let mut edges: Vec<FormEdge> = brep
         .edges
         .iter()
         .map(|e| FormEdge {
             curve: index[e.curve],
-            t0: snap_to_knot(&curves[index[e.curve]].curve, e.t0, tol),
-            t1: snap_to_knot(&curves[index[e.curve]].curve, e.t1, tol),
+            t0: snap(e.curve, e.t0),
+            t1: snap(e.curve, e.t1),
             start: e.start.index(),
             end: e.end.index(),
             kind: EdgeKind::FreeForm,

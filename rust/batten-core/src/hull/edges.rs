@@ -39,20 +39,9 @@ impl EdgeInfo {
     }
 }
 
-/// `t` moved onto the nearest knot of `curve` whose point lies within the model tolerance of
-/// C(t). A node found by the junction solver a hair beside a knot (at `1 + 2e-16` next to a
-/// double knot, or 1e-8 beside a polyline's corner once coordinates went through Blender's
-/// float32) would otherwise leave a sliver span at the end of the edge's curve, where the
-/// derivatives describe the wrong side of the corner and the patch folds. Points that
-/// coincide within the tolerance are the same point, so the knot is the node. The node
-/// position itself is kept ([`SideSegment::with_nodes`]).
-pub(crate) fn snap_to_knot(curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
-    KnotPoints::of(curve).snap(curve, t, tolerance)
-}
-
-/// A curve's knots inside its domain with the curve's points there, evaluated once for all
-/// the edges along the curve ([`snap_to_knot`] looks at every knot of the curve for each end
-/// of each edge: a KCS waterline of 60 knots and 20 edges took 2,400 evaluations).
+/// The knots of a curve inside its domain with the curve's points there, evaluated once for
+/// all the edges along the curve ([`KnotPoints::snap`] looks at every knot of the curve for
+/// each end of each edge: a KCS waterline of 60 knots and 20 edges took 2,400 evaluations).
 pub(crate) struct KnotPoints(Vec<(f64, DVec3)>);
 
 impl KnotPoints {
@@ -68,9 +57,14 @@ impl KnotPoints {
         KnotPoints(out)
     }
 
-    /// [`snap_to_knot`] of `t` on `curve`, whose knot points these are: the nearest knot
-    /// other than `t` whose point lies within `tolerance` of C(t) (the lower of two as near),
-    /// else `t`.
+    /// `t` moved onto the nearest knot of `curve` (whose knot points these are) other than `t`
+    /// whose point lies within the model tolerance of C(t), the lower of two as near; `t`
+    /// where there is none. A node found by the junction solver a hair beside a knot (at
+    /// `1 + 2e-16` next to a double knot, or 1e-8 beside a polyline's corner once coordinates
+    /// went through Blender's float32) would otherwise leave a sliver span at the end of the
+    /// edge's curve, where the derivatives describe the wrong side of the corner and the patch
+    /// folds. Points that coincide within the tolerance are the same point, so the knot is the
+    /// node. The node position itself is kept ([`SideSegment::with_nodes`]).
     pub(crate) fn snap(&self, curve: &NurbsCurve, t: f64, tolerance: Tolerance) -> f64 {
         let at = curve.point(t);
         self.0

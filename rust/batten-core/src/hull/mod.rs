@@ -45,7 +45,7 @@ use crate::tolerance::Tolerance;
 pub use curvature::VertexCurvature;
 pub use folds::{BOX_SLACK, FOLD_ANGLE_DEGREES};
 // The CAD export fits each shared edge once from the patches' layouts.
-pub(crate) use edges::{edge_curve, snap_to_knot};
+pub(crate) use edges::{edge_curve, KnotPoints};
 pub use knuckles::{KnuckleEdge, KnuckleSource, KNUCKLE_EDGE_SAMPLES, KNUCKLE_POINT_ANGLE_DEGREES};
 pub use live::{LiveHull, Rebuild};
 pub(crate) use patched::{LayoutSegment, PatchLayout};
