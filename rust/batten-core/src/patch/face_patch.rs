@@ -188,60 +188,71 @@ impl Patch {
         if self.kind != PatchKind::Gregory {
             return false;
         }
-        let (sides, ribbons) = (&self.sides, &self.ribbons);
-        let us: Vec<(f64, gregory4::RibbonPair)> = us
-            .iter()
-            .map(|&u| {
-                let u = gregory4::square_parameter(u);
-                (u, gregory4::RibbonPair::at(sides, ribbons, 0, u))
-            })
-            .collect();
+        let (along_u, along_v) = (self.ribbon_pairs(0, us), self.ribbon_pairs(1, vs));
+        let fanned = gregory4::fanned(&self.ribbons);
         out.reserve(us.len() * vs.len());
-        let fanned = gregory4::fanned(ribbons);
-        for &v in vs {
-            let v = gregory4::square_parameter(v);
-            let along_v = gregory4::RibbonPair::at(sides, ribbons, 1, v);
-            out.extend(us.iter().map(|(u, along_u)| {
-                if fanned {
-                    gregory4::blend_inside(ribbons, &self.corners, *u, v, along_u, &along_v)
-                } else {
-                    gregory4::blend(&self.corners, *u, v, along_u, &along_v)
-                }
-            }));
+        for pv in &along_v {
+            out.extend(along_u.iter().map(|pu| self.blend_pairs(fanned, pu, pv)));
         }
         true
     }
 
     /// The inside points of a Gregory patch meshed on `k` rings (the tessellation's lattice of
-    /// the unit square, [`square_rings`]),
-    /// appended to `out` in the mesh's vertex order: each point is exactly `eval_v` there,
-    /// with each side's ribbon sampled once per lattice column or row the rings use instead of
-    /// once per point. False (and nothing appended) for a patch of another kind.
+    /// the unit square, [`square_rings`]), appended to `out` in the mesh's vertex order: each
+    /// point is exactly `eval_v` there, with each side's ribbon sampled once per lattice column
+    /// or row instead of once per point. False (and nothing appended) for a patch of another
+    /// kind.
     pub(crate) fn eval_square_rings(&self, k: usize, out: &mut Vec<DVec3>) -> bool {
         if self.kind != PatchKind::Gregory {
             return false;
         }
-        let (sides, ribbons) = (&self.sides, &self.ribbons);
-        let at = lattice_parameter(k);
-        let pairs = |axis: usize| -> Vec<(f64, gregory4::RibbonPair)> {
-            (0..=2 * k)
-                .map(|i| {
-                    let w = gregory4::square_parameter(at(i));
-                    (w, gregory4::RibbonPair::at(sides, ribbons, axis, w))
-                })
-                .collect()
-        };
-        let (along_u, along_v) = (pairs(0), pairs(1));
-        let fanned = gregory4::fanned(ribbons);
-        out.extend(square_rings(k).into_iter().map(|(i, j)| {
-            let ((u, pu), (v, pv)) = (&along_u[i], &along_v[j]);
-            if fanned {
-                gregory4::blend_inside(ribbons, &self.corners, *u, *v, pu, pv)
-            } else {
-                gregory4::blend(&self.corners, *u, *v, pu, pv)
-            }
-        }));
+        let lattice: Vec<f64> = (0..=2 * k).map(lattice_parameter(k)).collect();
+        let (along_u, along_v) = (
+            self.ribbon_pairs(0, &lattice),
+            self.ribbon_pairs(1, &lattice),
+        );
+        let fanned = gregory4::fanned(&self.ribbons);
+        out.extend(
+            square_rings(k)
+                .into_iter()
+                .map(|(i, j)| self.blend_pairs(fanned, &along_u[i], &along_v[j])),
+        );
         true
+    }
+
+    /// A Gregory patch's two opposite sides across `axis` (0: the sides along `u`, 1: along
+    /// `v`) sampled at each of `ws`, with the parameter as the patch takes it.
+    fn ribbon_pairs(&self, axis: usize, ws: &[f64]) -> Vec<(f64, gregory4::RibbonPair)> {
+        ws.iter()
+            .map(|&w| {
+                let w = gregory4::square_parameter(w);
+                (
+                    w,
+                    gregory4::RibbonPair::at(&self.sides, &self.ribbons, axis, w),
+                )
+            })
+            .collect()
+    }
+
+    /// A Gregory patch's point from its ribbon pairs sampled at `u` ([`Patch::ribbon_pairs`]
+    /// across axis 0) and at `v` (across axis 1), `fanned` its ribbons' [`gregory4::fanned`]:
+    /// `eval_v((u, v))` exactly.
+    #[inline]
+    fn blend_pairs(
+        &self,
+        fanned: bool,
+        (u, along_u): &(f64, gregory4::RibbonPair),
+        (v, along_v): &(f64, gregory4::RibbonPair),
+    ) -> DVec3 {
+        gregory4::blend_sampled(
+            &self.ribbons,
+            &self.corners,
+            fanned,
+            *u,
+            *v,
+            along_u,
+            along_v,
+        )
     }
 
     /// Evaluate many domain points into `out` (same length); allocates nothing.

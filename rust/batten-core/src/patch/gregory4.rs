@@ -106,10 +106,26 @@ pub(crate) fn eval(
     let (u, v) = (square_parameter(x.x), square_parameter(x.y));
     let along_u = RibbonPair::at(sides, ribbons, 0, u);
     let along_v = RibbonPair::at(sides, ribbons, 1, v);
-    if fanned(ribbons) {
-        return blend_inside(ribbons, corners, u, v, &along_u, &along_v);
+    blend_sampled(ribbons, corners, fanned(ribbons), u, v, &along_u, &along_v)
+}
+
+/// The patch at `(u, v)` from its ribbon pairs sampled there: [`blend_inside`] where its
+/// ribbons spread a knuckle inside the face (`fanned`, [`fanned`] of them), else [`blend`].
+#[inline]
+pub(crate) fn blend_sampled(
+    ribbons: &[PreparedRibbon],
+    corners: &[CornerData],
+    fanned: bool,
+    u: f64,
+    v: f64,
+    along_u: &RibbonPair,
+    along_v: &RibbonPair,
+) -> DVec3 {
+    if fanned {
+        blend_inside(ribbons, corners, u, v, along_u, along_v)
+    } else {
+        blend(corners, u, v, along_u, along_v)
     }
-    blend(corners, u, v, &along_u, &along_v)
 }
 
 /// The Gregory patch at `(u, v)` (in the square) from its ribbons sampled there: `along_u`
