@@ -1043,6 +1043,16 @@ fn a_node_beyond_that_is_not_finite_is_an_error() {
     );
 }
 
+/// The bits of a point's coordinates, to compare points exactly.
+fn bits(q: [f64; 3]) -> [u64; 3] {
+    q.map(f64::to_bits)
+}
+
+/// The bits of every vertex of `mesh` ([`bits`]).
+fn vertex_bits(mesh: &batten_core::SurfaceMesh) -> std::collections::HashSet<[u64; 3]> {
+    mesh.positions.iter().map(|&q| bits(q)).collect()
+}
+
 #[test]
 fn a_gregory_patch_meshes_its_inside_as_the_points_of_its_grid() {
     // The tessellation samples a 4-sided patch with sides of one segment on the tensor grid
@@ -1053,9 +1063,7 @@ fn a_gregory_patch_meshes_its_inside_as_the_points_of_its_grid() {
     assert_eq!(p.kind(), PatchKind::Gregory);
     let r = 7;
     let mesh = p.tessellate(r).expect("mesh");
-    let bits = |q: [f64; 3]| q.map(f64::to_bits);
-    let vertices: std::collections::HashSet<[u64; 3]> =
-        mesh.positions.iter().map(|&q| bits(q)).collect();
+    let vertices = vertex_bits(&mesh);
     let mut inside = 0;
     for c in 1..r {
         for a in 1..r {
@@ -1094,9 +1102,7 @@ fn a_gregory_patch_meshed_on_rings_takes_its_points_on_the_square_lattice() {
     assert_eq!(p.kind(), PatchKind::Gregory);
     let r = 8;
     let mesh = p.tessellate(r).expect("mesh");
-    let bits = |q: [f64; 3]| q.map(f64::to_bits);
-    let vertices: std::collections::HashSet<[u64; 3]> =
-        mesh.positions.iter().map(|&q| bits(q)).collect();
+    let vertices = vertex_bits(&mesh);
     // Five sides' worth of samples round to k = 10 rings.
     let k = 10;
     let lattice = |i: usize| i as f64 / (2 * k) as f64;
