@@ -141,9 +141,125 @@ pub(crate) fn ders_basis_funs(
     }
 }
 
+/// The `degree + 1` non-zero basis functions at `t` (`n0`, as [`basis_funs`]) and their first
+/// derivatives (`n1`): [`ders_basis_funs`]'s rows 0 and 1 at `nd = 1`, bit for bit (the same
+/// operations in the same order), without its tables. A2.3's triangle of degree `p` is A2.2's
+/// steps; its first derivatives need only the last step's knot differences and the degree
+/// `p − 1` functions before it, so neither a `(p + 1)²` table nor its zeroing is needed: what
+/// a point and tangent cost, which the arc length and the normal fields' keys ask for at every
+/// Gauss point.
+#[inline]
+pub(crate) fn basis_funs_d1(
+    knots: &[f64],
+    span: usize,
+    t: f64,
+    degree: usize,
+    n0: &mut [f64; MAX_ORDER],
+    n1: &mut [f64; MAX_ORDER],
+) {
+    let p = degree;
+    let mut left = [0.0; MAX_ORDER];
+    let mut right = [0.0; MAX_ORDER];
+    n0[0] = 1.0;
+    // The degree p − 1 functions (A2.3's `ndu[r][p − 1]`), then the step to degree p with its
+    // knot differences (`ndu[p][r]`) kept.
+    let mut below = [0.0; MAX_ORDER];
+    let mut diff = [0.0; MAX_ORDER];
+    for j in 1..=p {
+        left[j] = t - knots[span + 1 - j];
+        right[j] = knots[span + j] - t;
+        if j == p {
+            below[..p].copy_from_slice(&n0[..p]);
+        }
+        let mut saved = 0.0;
+        for r in 0..j {
+            let d = right[r + 1] + left[j - r];
+            if j == p {
+                diff[r] = d;
+            }
+            let temp = n0[r] / d;
+            n0[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        n0[j] = saved;
+    }
+    *n1 = [0.0; MAX_ORDER];
+    if p == 0 {
+        return;
+    }
+    for r in 0..=p {
+        let mut d = 0.0;
+        if r >= 1 {
+            let a = 1.0 / diff[r - 1];
+            d = a * below[r - 1];
+        }
+        if r < p {
+            let a = -1.0 / diff[r];
+            d += a * below[r];
+        }
+        n1[r] = d;
+    }
+    let factor = p as f64;
+    for v in &mut n1[..=p] {
+        *v *= factor;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`basis_funs_d1`] is [`ders_basis_funs`]'s first two rows bit for bit, for every degree
+    /// the kernel takes, on knots with repeats and at the knots themselves.
+    #[test]
+    fn first_derivatives_alone_are_the_tables_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut compared = 0;
+        for p in 0..=MAX_DEGREE {
+            for _ in 0..20 {
+                let n = p + 1 + (next() * 6.0) as usize;
+                // Knots with repeats (whole numbers) and without (any reals).
+                let whole = next() < 0.5;
+                let mut inner: Vec<f64> = (0..n - p - 1)
+                    .map(|_| {
+                        if whole {
+                            (next() * 8.0).floor()
+                        } else {
+                            next() * 8.0
+                        }
+                    })
+                    .collect();
+                inner.sort_by(f64::total_cmp);
+                let mut knots = vec![0.0; p + 1];
+                knots.extend(inner);
+                knots.extend(vec![8.0; p + 1]);
+                for q in 0..=64 {
+                    let t = if q % 8 == 0 {
+                        q as f64 / 8.0
+                    } else {
+                        8.0 * next()
+                    };
+                    let span = find_span(&knots, p, n, t);
+                    let mut d = [[0.0; MAX_ORDER]; 4];
+                    ders_basis_funs(&knots, span, t, p, 1, &mut d);
+                    let (mut n0, mut n1) = ([0.0; MAX_ORDER], [0.0; MAX_ORDER]);
+                    basis_funs_d1(&knots, span, t, p, &mut n0, &mut n1);
+                    for j in 0..=p {
+                        assert_eq!(n0[j].to_bits(), d[0][j].to_bits(), "N p={p} t={t} j={j}");
+                        assert_eq!(n1[j].to_bits(), d[1][j].to_bits(), "N' p={p} t={t} j={j}");
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert!(compared > 50_000, "{compared} values compared");
+    }
 
     #[test]
     fn partition_of_unity_and_span() {

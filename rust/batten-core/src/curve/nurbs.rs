@@ -2,7 +2,7 @@
 
 use glam::{DVec3, DVec4};
 
-use super::basis::{basis_funs, ders_basis_funs, find_span, MAX_DEGREE, MAX_ORDER};
+use super::basis::{basis_funs, basis_funs_d1, ders_basis_funs, find_span, MAX_DEGREE, MAX_ORDER};
 use super::error::CurveError;
 
 /// A point on a curve with its first three parametric derivatives.
@@ -271,7 +271,16 @@ impl NurbsCurve {
     pub(crate) fn point_d1(&self, t: f64) -> (DVec3, DVec3) {
         let t = self.clamp(t);
         let span = find_span(&self.knots, self.degree, self.cw.len(), t);
-        let h: [DVec4; 2] = self.homogeneous_derivs(span, t);
+        let p = self.degree;
+        let (mut n0, mut n1) = ([0.0; MAX_ORDER], [0.0; MAX_ORDER]);
+        basis_funs_d1(&self.knots, span, t, p, &mut n0, &mut n1);
+        // `homogeneous_derivs::<2>` bit for bit: the same sums in the same order.
+        let mut h = [DVec4::ZERO; 2];
+        for (hk, nk) in h.iter_mut().zip([&n0, &n1]) {
+            for (c, nkj) in self.cw[span - p..=span].iter().zip(nk) {
+                *hk += *c * *nkj;
+            }
+        }
         let c0 = h[0].truncate() / h[0].w;
         let c1 = (h[1].truncate() - h[1].w * c0) / h[0].w;
         (c0, c1)
@@ -416,4 +425,34 @@ fn validate_knots(knots: &[f64], degree: usize, n: usize) -> Result<(), CurveErr
         i = j;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::NurbsCurve;
+
+    /// `point_d1` (the first derivatives alone) is `derivs`'s point and first derivative bit
+    /// for bit, on a rational curve with uneven and repeated knots, at its knots and between.
+    #[test]
+    fn point_and_tangent_alone_are_those_of_all_the_derivatives_bit_for_bit() {
+        let knots = vec![0.0, 0.0, 0.0, 0.0, 0.37, 1.1, 1.1, 2.93, 3.3, 3.3, 3.3, 3.3];
+        let points = (0..8)
+            .map(|i| {
+                let x = f64::from(i);
+                DVec3::new(x * 1.7, (x * 0.9).sin() * 3.1, 0.3 * x * x)
+            })
+            .collect();
+        let weights = vec![1.0, 0.7, 1.3, 0.95, 2.1, 1.0, 0.6, 1.0];
+        let curve = NurbsCurve::try_new(3, knots.clone(), points, Some(weights)).unwrap();
+        let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+        let ts = (0..=2000).map(|i| 3.3 * f64::from(i) / 2000.0).chain(knots);
+        for t in ts {
+            let (p, d1) = curve.point_d1(t);
+            let all = curve.derivs(t);
+            assert_eq!(bits(p), bits(all.point), "point at t = {t}");
+            assert_eq!(bits(d1), bits(all.d1), "first derivative at t = {t}");
+        }
+    }
 }
