@@ -9,7 +9,7 @@
 //! through the segment's [`SpeedMap`] onto the curve's own parameter (at nearly uniform speed
 //! along the curve, whatever its knots), so the side is exactly the designer curve.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use glam::DVec3;
 
@@ -66,6 +66,25 @@ pub(crate) struct SegmentMeasure {
     length: f64,
     fast: BezierDecomposition,
     speed: SpeedMap,
+    /// The curve at [`EVEN_SAMPLES`] + 1 even steps of the segment's fraction, taken by the
+    /// first face that asks ([`PreparedSegment::point_d1_even`]) and read by the other.
+    even: OnceLock<Vec<EvenSample>>,
+}
+
+/// Even steps of a segment's fraction at which [`PreparedSegment::point_d1_even`] keeps the
+/// curve's points: the steps at which a patch measures how its side turns (the ribbon's
+/// transport). A power of two, so that a step counted from either end is the same number.
+pub(crate) const EVEN_SAMPLES: usize = 64;
+
+/// The curve at one even step `u / EVEN_SAMPLES` of a segment's fraction in increasing curve
+/// parameter: its point, its derivative d/dt, the slope dτ/dλ of the segment's speed map
+/// there and the curve parameter.
+#[derive(Clone, Copy, Debug)]
+struct EvenSample {
+    point: DVec3,
+    d1: DVec3,
+    slope: f64,
+    t: f64,
 }
 
 impl SegmentMeasure {
@@ -92,6 +111,7 @@ impl SegmentMeasure {
             length,
             fast,
             speed,
+            even: OnceLock::new(),
         })
     }
 
@@ -349,6 +369,33 @@ impl PreparedSegment {
         (c, d1 * dt, t)
     }
 
+    /// [`PreparedSegment::point_d1`] at `lam = j / EVEN_SAMPLES`, bit for bit, from the
+    /// curve's points at those steps: taken once per segment measure, so the two faces along
+    /// an edge evaluate its curve there once between them.
+    #[inline]
+    pub(crate) fn point_d1_even(&self, j: usize) -> (DVec3, DVec3, f64) {
+        let n = EVEN_SAMPLES;
+        let even = self.measure.even.get_or_init(|| {
+            (0..=n)
+                .map(|u| {
+                    let (tau, slope) = self.speed().tau(u as f64 / n as f64);
+                    let t = self.at_tau(tau);
+                    let piece = self.fast().piece_at(t, t < self.interval().1);
+                    let (point, d1) = self.fast().point_d1_in(piece, t);
+                    EvenSample {
+                        point,
+                        d1,
+                        slope,
+                        t,
+                    }
+                })
+                .collect()
+        });
+        // Run down in the curve's parameter, step j is step n − j up: `1 − j/n` is exact.
+        let e = even[if self.ta <= self.tb { j } else { n - j }];
+        (e.point, e.d1 * (e.slope * (self.tb - self.ta)), e.t)
+    }
+
     /// dt/dλ at curve parameter `t` of the segment, on the side after `t` in the curve's
     /// parameter (`after_in_t`) or before it.
     pub(crate) fn parameter_slope(&self, t: f64, after_in_t: bool) -> f64 {
@@ -431,6 +478,22 @@ impl PreparedSide {
         let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
         let dp = (d1 + (seg.d1 - seg.d0)) / du;
         (p, dp, k, t)
+    }
+
+    /// [`PreparedSide::eval_located`] at `s = j / EVEN_SAMPLES`, bit for bit: on a side of one
+    /// segment from its curve's points kept at those steps
+    /// ([`PreparedSegment::point_d1_even`]).
+    #[inline]
+    pub(crate) fn eval_located_even(&self, j: usize) -> (DVec3, DVec3, usize, f64) {
+        let s = j as f64 / EVEN_SAMPLES as f64;
+        if self.segs.len() != 1 || self.breaks[0] != 0.0 || self.breaks[1] != 1.0 {
+            return self.eval_located(s);
+        }
+        let seg = &self.segs[0];
+        let (c, d1, t) = seg.point_d1_even(j);
+        let p = c + seg.d0 * (1.0 - s) + seg.d1 * s;
+        let dp = (d1 + (seg.d1 - seg.d0)) / (self.breaks[1] - self.breaks[0]);
+        (p, dp, 0, t)
     }
 
     /// Position only.

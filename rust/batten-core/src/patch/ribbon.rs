@@ -29,7 +29,7 @@
 
 use glam::{DVec2, DVec3};
 
-use super::boundary::{PreparedSide, SideSegment};
+use super::boundary::{PreparedSide, SideSegment, EVEN_SAMPLES};
 use super::error::{PatchError, PatchWarning};
 use super::field_key::{same_bits, FieldKey};
 use super::hermite::hermite_basis;
@@ -608,8 +608,9 @@ pub(crate) struct PreparedRibbon {
 /// it.
 const MIN_TURN_DEGREES: f64 = 0.001;
 
-/// Even steps of `s` at which a side's smooth turn is measured ([`Transport`]).
-const TRANSPORT_SAMPLES: usize = 64;
+/// Even steps of `s` at which a side's smooth turn is measured ([`Transport`]): the steps at
+/// which a side's segment keeps its curve's points for the faces along it.
+const TRANSPORT_SAMPLES: usize = EVEN_SAMPLES;
 
 /// The carried ribbon keeps at least this angle to the side's tangent, either way (unless the
 /// blend of its corner angles already comes closer), so it always points into the face.
@@ -735,7 +736,7 @@ fn side_transport(rib: &PreparedRibbon, side: &PreparedSide) -> Option<Transport
     let samples: Vec<(SideSample, usize, f64)> = (0..=n)
         .map(|j| {
             let s = j as f64 / n as f64;
-            let (p, dp, k, t) = side.eval_located(s);
+            let (p, dp, k, t) = side.eval_located_even(j);
             (rib.frame_of(side, s, p, dp, k, t), k, t)
         })
         .collect();
