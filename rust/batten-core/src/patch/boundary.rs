@@ -782,6 +782,59 @@ mod tests {
         );
     }
 
+    /// The even steps a measure keeps are the side's own points there bit for bit, with the
+    /// segment run either way round, the measure shared by both (the two faces of an edge) or
+    /// not, and on a side of two segments (which evaluates them as usual).
+    #[test]
+    fn the_even_steps_kept_on_a_measure_are_the_sides_points_either_way_round() {
+        let tol = Tolerance::DEFAULT;
+        let located = |sides: &[PreparedSide], j: usize| {
+            let (p, d, k, t) = sides[0].eval_located(j as f64 / EVEN_SAMPLES as f64);
+            (
+                p.to_array().map(f64::to_bits),
+                d.to_array().map(f64::to_bits),
+                k,
+                t.to_bits(),
+            )
+        };
+        let even = |sides: &[PreparedSide], j: usize| {
+            let (p, d, k, t) = sides[0].eval_located_even(j);
+            (
+                p.to_array().map(f64::to_bits),
+                d.to_array().map(f64::to_bits),
+                k,
+                t.to_bits(),
+            )
+        };
+        let measured = SideSegment::new(uneven_line(), 0.25, 1.75).measured(tol);
+        for seg in [measured.clone(), measured.reversed(), measured] {
+            let sides = prepare_boundary(&triangle(seg), SideParam::ArcLength, tol, 8)
+                .expect("a valid face");
+            for j in 0..=EVEN_SAMPLES {
+                assert_eq!(even(&sides, j), located(&sides, j), "step {j}");
+            }
+        }
+        // Two segments on one side: each step is evaluated where the side's breaks put it.
+        let c = uneven_line();
+        let x = |v: f64| DVec3::new(v, 0.0, 0.0);
+        let line = |p: DVec3, q: DVec3| {
+            NurbsCurve::try_new(1, vec![0.0, 0.0, 1.0, 1.0], vec![p, q], None).expect("a line")
+        };
+        let apex = DVec3::new(0.5, 1.0, 0.0);
+        let face = FaceBoundary::new(vec![
+            Side::new(vec![
+                SideSegment::new(c.clone(), 0.0, 1.0).measured(tol),
+                SideSegment::new(c, 1.0, 2.0).measured(tol),
+            ]),
+            Side::single(SideSegment::whole(line(x(10.0), apex))),
+            Side::single(SideSegment::whole(line(apex, x(0.0)))),
+        ]);
+        let sides = prepare_boundary(&face, SideParam::ArcLength, tol, 8).expect("a valid face");
+        for j in 0..=EVEN_SAMPLES {
+            assert_eq!(even(&sides, j), located(&sides, j), "composite, step {j}");
+        }
+    }
+
     #[test]
     fn a_side_ending_on_a_knot_takes_its_end_tangent_from_its_own_piece() {
         let c = uneven_line();
