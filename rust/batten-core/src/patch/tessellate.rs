@@ -16,8 +16,8 @@
 //! no slivers for regular counts. Faces are counter-clockwise in the domain, so their normals
 //! point outwards for a counter-clockwise (seen from outside) face.
 
+use rustc_hash::FxHashMap;
 use std::borrow::Borrow;
-use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -542,7 +542,7 @@ pub(crate) struct Weld {
     /// Per mesh (in weld order), the welded vertex of each of its vertices.
     maps: Vec<Vec<u32>>,
     /// The bit pattern of every welded boundary position → its welded vertex.
-    boundary: HashMap<[u64; 3], u32>,
+    boundary: FxHashMap<[u64; 3], u32>,
     /// Per welded vertex, how many mesh vertices it stands for.
     uses: Vec<u32>,
 }
@@ -559,7 +559,7 @@ pub(crate) fn weld_face_meshes_with<M: Borrow<FaceMesh>>(meshes: &[M]) -> (Surfa
     out.positions.reserve(total);
     let mut weld = Weld {
         maps: Vec::with_capacity(meshes.len()),
-        boundary: HashMap::new(),
+        boundary: FxHashMap::default(),
         uses: Vec::with_capacity(total),
     };
     for (pid, m) in meshes.iter().enumerate() {
@@ -624,7 +624,7 @@ impl Weld {
         }
         // The new bit pattern of every welded boundary vertex a changed mesh writes, and how
         // many of its mesh vertices write it.
-        let mut written: HashMap<u32, ([u64; 3], u32)> = HashMap::new();
+        let mut written: FxHashMap<u32, ([u64; 3], u32)> = FxHashMap::default();
         for &(k, _, new) in changed {
             for (q, p) in new.positions[..new.boundary].iter().enumerate() {
                 let key = bits(p.to_array());
@@ -635,7 +635,8 @@ impl Weld {
                 entry.1 += 1;
             }
         }
-        let mut taken: HashMap<[u64; 3], u32> = HashMap::with_capacity(written.len());
+        let mut taken: FxHashMap<[u64; 3], u32> =
+            FxHashMap::with_capacity_and_hasher(written.len(), Default::default());
         for (&g, &(key, count)) in &written {
             let kept_elsewhere = count < self.uses[g as usize];
             let moved = bits(positions[g as usize]) != key;
