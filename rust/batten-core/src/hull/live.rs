@@ -87,8 +87,12 @@ impl LiveHull {
             ),
         };
         let incremental = matches!(last, Rebuild::Incremental { .. });
-        // Rewritten in place: `reassemble` changes the weld only when it gives the surface.
-        let kept = incremental
+        // Rewritten in place where few faces were patched again: `reassemble` changes the weld
+        // only when it gives the surface. Where most were (a change of breadth moves every
+        // curve off the centreplane), checking the weld of each of them costs more than
+        // welding afresh, which gives the same mesh.
+        let few = matches!(last, Rebuild::Incremental { faces, of } if 2 * faces <= of);
+        let kept = few
             .then(|| reassemble(&stages, &self.stages, &self.surface, &mut self.weld))
             .flatten();
         let surface = match kept {
@@ -261,6 +265,74 @@ mod tests {
         let same = reassemble(&hull.stages, &hull.stages, &hull.surface, &mut weld)
             .expect("nothing to rewrite");
         assert_eq!(same.mesh, hull.surface.mesh, "unchanged");
+    }
+
+    /// A change that patches most faces again (a breadth change: every curve off the
+    /// centreplane moves) welds afresh, and the next small move rewrites that weld in place:
+    /// both give the mesh a full build gives, bit for bit.
+    #[test]
+    fn a_change_of_most_faces_is_welded_afresh_and_the_next_small_one_in_place() {
+        let net = frigate();
+        let options = HullOptions::try_new(1e-4, 8).expect("options");
+        let wide = {
+            let curves = net
+                .curves()
+                .iter()
+                .map(|c| {
+                    let points = c
+                        .curve
+                        .control_points()
+                        .into_iter()
+                        .map(|p| p * DVec3::new(1.0, 1.05, 1.0))
+                        .collect();
+                    let curve = NurbsCurve::try_new(
+                        c.curve.degree(),
+                        c.curve.knots().to_vec(),
+                        points,
+                        c.curve.weights(),
+                    )
+                    .expect("curve");
+                    NetworkCurve { curve, ..c.clone() }
+                })
+                .collect();
+            Network::try_new(net.name.clone(), curves).expect("network")
+        };
+        let full = |n: &Network| {
+            LiveHull::new(n, &options)
+                .expect("builds")
+                .surface
+                .mesh
+                .clone()
+        };
+        let mut hull = LiveHull::new(&net, &options).expect("builds");
+        let last = hull.rebuild(&wide).expect("rebuilds").clone();
+        let Rebuild::Incremental { faces, of } = last else {
+            panic!("an incremental rebuild, not {last:?}");
+        };
+        assert!(2 * faces > of, "{faces} of {of} faces patched again");
+        assert_eq!(
+            hull.surface().mesh,
+            full(&wide),
+            "welded afresh, bit for bit"
+        );
+        // Then one control point after another moved a little, each from the widened hull:
+        // those that reach few faces are rewritten in place, the others welded afresh.
+        let mut in_place = 0;
+        for curve in 0..wide.curves().len() {
+            for index in [0, 2] {
+                for after in [
+                    moved(&wide, curve, index, DVec3::new(0.0, 2e-5, 0.0)),
+                    wide.clone(),
+                ] {
+                    let last = hull.rebuild(&after).expect("rebuilds").clone();
+                    if matches!(last, Rebuild::Incremental { faces, of } if 2 * faces <= of) {
+                        in_place += 1;
+                    }
+                    assert_eq!(hull.surface().mesh, full(&after), "curve {curve}: {last:?}");
+                }
+            }
+        }
+        assert!(in_place > 0, "no small move rewritten in place");
     }
 
     #[test]
