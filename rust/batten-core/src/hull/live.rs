@@ -268,8 +268,8 @@ mod tests {
     }
 
     /// A change that patches most faces again (a breadth change: every curve off the
-    /// centreplane moves) welds afresh, and the next small move rewrites that weld in place:
-    /// both give the mesh a full build gives, bit for bit.
+    /// centreplane moves) welds afresh, and small moves after it that reach few faces rewrite
+    /// that weld in place: each gives the mesh a full build gives, bit for bit.
     #[test]
     fn a_change_of_most_faces_is_welded_afresh_and_the_next_small_one_in_place() {
         let net = frigate();
