@@ -700,7 +700,9 @@ impl Transport {
     fn turn(&self, s: f64, f: SideSample) -> f64 {
         let n = self.turned.len() - 1;
         let x = s.clamp(0.0, 1.0) * n as f64;
-        let j = (x.floor() as usize).min(n - 1);
+        // `x` is not negative (or NaN, which casts to 0 either way): the cast is its floor,
+        // without a call to libm's `floor` (not an instruction before SSE4.1).
+        let j = (x as usize).min(n - 1);
         let from = |j: usize| self.turned[j] + turn_between(self.frames[j], f);
         let w = x - j as f64;
         if w <= 0.0 {
@@ -1277,7 +1279,8 @@ fn hermite_slopes_even(values: &[f64]) -> Vec<f64> {
 fn hermite_scalar(values: &[f64], slopes: &[f64], s: f64) -> f64 {
     let m = values.len() - 1;
     let x = s.clamp(0.0, 1.0) * m as f64;
-    let i = (x.floor() as usize).min(m - 1);
+    // Not negative: the cast is the floor (see `Transport::turn`).
+    let i = (x as usize).min(m - 1);
     let h = 1.0 / m as f64;
     let [h00, h10, h01, h11] = hermite_basis(x - i as f64);
     h00 * values[i] + h10 * h * slopes[i] + h01 * values[i + 1] + h11 * h * slopes[i + 1]
