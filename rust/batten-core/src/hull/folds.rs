@@ -92,10 +92,19 @@ fn shared_sides(faces: &[&[u32]], vertices: usize) -> Vec<(u32, u32, usize, usiz
     out
 }
 
-/// Sort one vertex's few sides (an insertion sort in place: a bucket holds two to eight,
-/// where a call to the slice sort cost more than the sorting).
+/// Buckets up to this long are sorted by [`sort_small`]'s insertion sort, longer ones (a
+/// vertex many polygons meet at, a fan's hub) by the slice sort.
+const SMALL_BUCKET: usize = 16;
+
+/// Sort one vertex's sides: in place by insertion where there are few (a bucket mostly holds
+/// two to eight, where a call to the slice sort cost more than the sorting), else by the
+/// slice sort, so a vertex with thousands of sides does not take their square.
 #[inline]
 fn sort_small(bucket: &mut [(u32, usize)]) {
+    if bucket.len() > SMALL_BUCKET {
+        bucket.sort_unstable();
+        return;
+    }
     for i in 1..bucket.len() {
         let mut j = i;
         while j > 0 && bucket[j - 1] > bucket[j] {
@@ -590,7 +599,8 @@ mod tests {
 
     /// `shared_sides` gives what sorting every polygon side at once gives: the sides exactly
     /// two polygons have, in order, on meshes of random triangles and quads over few vertices
-    /// (sides had by one, two, three or more polygons, and polygons with a side twice).
+    /// (sides had by one, two, three or more polygons, polygons with a side twice, and a fan
+    /// whose hub has more sides than the insertion sort takes).
     #[test]
     fn shared_sides_are_the_sides_two_polygons_have_in_order() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
@@ -602,12 +612,14 @@ mod tests {
         };
         let mut found = 0;
         for vertices in [3u32, 5, 12, 40] {
-            let polygons: Vec<Vec<u32>> = (0..60)
+            let mut polygons: Vec<Vec<u32>> = (0..60)
                 .map(|_| {
                     let n = 3 + next(2) as usize;
                     (0..n).map(|_| next(vertices)).collect()
                 })
                 .collect();
+            // A fan round vertex 0: a bucket longer than `SMALL_BUCKET`.
+            polygons.extend((1..vertices).map(|v| vec![0, v, 1 + v % (vertices - 1)]));
             let faces: Vec<&[u32]> = polygons.iter().map(Vec::as_slice).collect();
             let mut all: Vec<(u32, u32, usize)> = Vec::new();
             for (fi, f) in faces.iter().enumerate() {
