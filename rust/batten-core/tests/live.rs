@@ -6,8 +6,8 @@
 use std::path::PathBuf;
 
 use batten_core::{
-    build_hull, tessellate_patches, HullOptions, LiveHull, Network, NetworkCurve, NurbsCurve,
-    PatchKind, Rebuild, TangentPlane,
+    build_hull, tessellate_patches, HullOptions, LiveHull, Network, NetworkCurve, PatchKind,
+    Rebuild, TangentPlane,
 };
 use glam::DVec3;
 
@@ -33,13 +33,7 @@ fn moved(net: &Network, curve: usize, index: usize, by: DVec3) -> Network {
             let mut points = c.curve.control_points();
             points[index] += by;
             NetworkCurve {
-                curve: NurbsCurve::try_new(
-                    c.curve.degree(),
-                    c.curve.knots().to_vec(),
-                    points,
-                    c.curve.weights(),
-                )
-                .expect("a valid curve"),
+                curve: c.curve.with_control_points(points).expect("a valid curve"),
                 ..c.clone()
             }
         })

@@ -165,6 +165,13 @@ impl NurbsCurve {
         self.rational.then(|| self.cw.iter().map(|c| c.w).collect())
     }
 
+    /// The curve of this degree, knots and weights through other Cartesian control points
+    /// (a curve moved, scaled or faired): [`NurbsCurve::try_new`]'s errors, e.g. for another
+    /// number of points or a non-finite one.
+    pub fn with_control_points(&self, points: Vec<DVec3>) -> Result<NurbsCurve, CurveError> {
+        NurbsCurve::try_new(self.degree, self.knots.clone(), points, self.weights())
+    }
+
     /// True when `other` is this curve, bit for bit, wherever either is evaluated on
     /// `[lo, hi]`: the same degree and knot vector, and the same homogeneous control points
     /// over the spans that reach the interval (one span more on each side, for evaluations at
@@ -432,6 +439,26 @@ mod tests {
     use glam::DVec3;
 
     use super::NurbsCurve;
+
+    /// Another curve's control points keep this one's degree, knots and weights; another
+    /// number of them is refused as `try_new` refuses it.
+    #[test]
+    fn other_control_points_keep_degree_knots_and_weights() {
+        let knots = vec![0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0];
+        let points: Vec<DVec3> = (0..4).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
+        let weights = Some(vec![1.0, 0.5, 2.0, 1.0]);
+        let curve = NurbsCurve::try_new(2, knots.clone(), points.clone(), weights.clone()).unwrap();
+        let lifted: Vec<DVec3> = points.iter().map(|p| *p + DVec3::Z).collect();
+        let moved = curve.with_control_points(lifted.clone()).unwrap();
+        assert_eq!(
+            moved,
+            NurbsCurve::try_new(2, knots.clone(), lifted, weights.clone()).unwrap()
+        );
+        assert_eq!(
+            curve.with_control_points(points[..3].to_vec()).unwrap_err(),
+            NurbsCurve::try_new(2, knots, points[..3].to_vec(), weights).unwrap_err()
+        );
+    }
 
     /// `point_d1` (the first derivatives alone) is `derivs`'s point and first derivative bit
     /// for bit, on a rational curve with uneven and repeated knots, at its knots and between.

@@ -20,7 +20,6 @@ use super::error::FormError;
 use super::identify::FormTopology;
 use super::parameters::Bilge;
 use super::transform::{transform, Transformed, VertexMove};
-use crate::curve::NurbsCurve;
 use crate::network::{Network, NetworkCurve, Role};
 use crate::tolerance::Tolerance;
 
@@ -319,18 +318,14 @@ pub fn transform_to(
                         .into_iter()
                         .map(|p| p * scale)
                         .collect();
-                    NurbsCurve::try_new(
-                        c.curve.degree(),
-                        c.curve.knots().to_vec(),
-                        pts,
-                        c.curve.weights(),
-                    )
-                    .map(|curve| NetworkCurve {
-                        name: c.name.clone(),
-                        role: c.role,
-                        curve,
-                    })
-                    .map_err(|e| FormError::from(e.named(&c.name)))
+                    c.curve
+                        .with_control_points(pts)
+                        .map(|curve| NetworkCurve {
+                            name: c.name.clone(),
+                            role: c.role,
+                            curve,
+                        })
+                        .map_err(|e| FormError::from(e.named(&c.name)))
                 })
                 .collect::<Result<Vec<_>, _>>()?;
             let max_move = network

@@ -156,8 +156,9 @@ pub fn transform_bulged(
         points[ci] = moved_edge_points(&c.curve, ci, form, &tv);
     }
     let with_points = |ci: usize, pts: &[DVec3]| -> Result<NurbsCurve, FormError> {
-        let c = &curves[ci].curve;
-        NurbsCurve::try_new(c.degree(), c.knots().to_vec(), pts.to_vec(), c.weights())
+        curves[ci]
+            .curve
+            .with_control_points(pts.to_vec())
             .map_err(|e| FormError::from(e.named(&curves[ci].name)))
     };
     let new_form_curves: Vec<Option<NurbsCurve>> = (0..curves.len())

@@ -207,7 +207,6 @@ impl LiveHull {
 mod tests {
     use super::*;
     use crate::network::NetworkCurve;
-    use crate::NurbsCurve;
     use glam::DVec3;
 
     fn frigate() -> Network {
@@ -224,9 +223,7 @@ mod tests {
         let c = &curves[curve].curve;
         let mut points = c.control_points();
         points[index] += by;
-        curves[curve].curve =
-            NurbsCurve::try_new(c.degree(), c.knots().to_vec(), points, c.weights())
-                .expect("curve");
+        curves[curve].curve = c.with_control_points(points).expect("curve");
         Network::try_new(net.name.clone(), curves).expect("network")
     }
 
@@ -279,19 +276,9 @@ mod tests {
                 .curves()
                 .iter()
                 .map(|c| {
-                    let points = c
-                        .curve
-                        .control_points()
-                        .into_iter()
-                        .map(|p| p * DVec3::new(1.0, 1.05, 1.0))
-                        .collect();
-                    let curve = NurbsCurve::try_new(
-                        c.curve.degree(),
-                        c.curve.knots().to_vec(),
-                        points,
-                        c.curve.weights(),
-                    )
-                    .expect("curve");
+                    let points = c.curve.control_points().into_iter();
+                    let points = points.map(|p| p * DVec3::new(1.0, 1.05, 1.0)).collect();
+                    let curve = c.curve.with_control_points(points).expect("curve");
                     NetworkCurve { curve, ..c.clone() }
                 })
                 .collect();

@@ -55,7 +55,8 @@ impl State {
     /// Curve `c` and its decomposition set to the control points `points`.
     fn set_points(&mut self, c: usize, points: Vec<DVec3>) -> Result<(), Error> {
         let old = &self.curves[c];
-        let curve = NurbsCurve::try_new(old.degree(), old.knots().to_vec(), points, old.weights())
+        let curve = old
+            .with_control_points(points)
             .map_err(|e| e.named(&self.names[c]))?;
         self.decomps[c] = curve.bezier_decomposition();
         self.curves[c] = curve;

@@ -152,7 +152,7 @@ fn placed(c: &NurbsCurve, size: f64, shift: DVec3) -> Option<NurbsCurve> {
         .iter()
         .map(|p| shift + *p * size)
         .collect();
-    NurbsCurve::try_new(c.degree(), c.knots().to_vec(), pts, c.weights()).ok()
+    c.with_control_points(pts).ok()
 }
 
 fn apply(curves: &mut Vec<NurbsCurve>, m: Mutation) {
