@@ -75,7 +75,7 @@ fn shared_sides(faces: &[&[u32]], vertices: usize) -> Vec<(u32, u32, usize, usiz
         if bucket.len() < 2 {
             continue;
         }
-        sort_small(bucket);
+        sort_sides(bucket);
         let mut i = 0;
         while i < bucket.len() {
             let hi = bucket[i].0;
@@ -92,7 +92,7 @@ fn shared_sides(faces: &[&[u32]], vertices: usize) -> Vec<(u32, u32, usize, usiz
     out
 }
 
-/// Buckets up to this long are sorted by [`sort_small`]'s insertion sort, longer ones (a
+/// Buckets up to this long are sorted by [`sort_sides`]'s insertion sort, longer ones (a
 /// vertex many polygons meet at, a fan's hub) by the slice sort.
 const SMALL_BUCKET: usize = 16;
 
@@ -100,7 +100,7 @@ const SMALL_BUCKET: usize = 16;
 /// two to eight, where a call to the slice sort cost more than the sorting), else by the
 /// slice sort, so a vertex with thousands of sides does not take their square.
 #[inline]
-fn sort_small(bucket: &mut [(u32, usize)]) {
+fn sort_sides(bucket: &mut [(u32, usize)]) {
     if bucket.len() > SMALL_BUCKET {
         bucket.sort_unstable();
         return;

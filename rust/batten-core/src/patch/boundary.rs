@@ -364,9 +364,16 @@ impl PreparedSegment {
     #[inline]
     pub(crate) fn point_d1(&self, lam: f64) -> (DVec3, DVec3, f64) {
         let (t, dt) = self.parameter(lam);
-        let piece = self.fast().piece_at(t, t < self.interval().1);
-        let (c, d1) = self.fast().point_d1_in(piece, t);
+        let (c, d1) = self.curve_d1(t);
         (c, d1 * dt, t)
+    }
+
+    /// C(t) and dC/dt at curve parameter `t` of the segment, from the segment's own piece at
+    /// a knot (see [`PreparedSegment::point_d1`]).
+    #[inline]
+    fn curve_d1(&self, t: f64) -> (DVec3, DVec3) {
+        let piece = self.fast().piece_at(t, t < self.interval().1);
+        self.fast().point_d1_in(piece, t)
     }
 
     /// [`PreparedSegment::point_d1`] at `lam = j / EVEN_SAMPLES`, bit for bit, from the
@@ -380,8 +387,7 @@ impl PreparedSegment {
                 .map(|u| {
                     let (tau, slope) = self.speed().tau(u as f64 / n as f64);
                     let t = self.at_tau(tau);
-                    let piece = self.fast().piece_at(t, t < self.interval().1);
-                    let (point, d1) = self.fast().point_d1_in(piece, t);
+                    let (point, d1) = self.curve_d1(t);
                     EvenSample {
                         point,
                         d1,
@@ -472,8 +478,20 @@ impl PreparedSide {
     #[inline]
     pub(crate) fn eval_located(&self, s: f64) -> (DVec3, DVec3, usize, f64) {
         let (k, lam) = self.locate(s);
+        self.corrected(k, lam, self.segs[k].point_d1(lam))
+    }
+
+    /// The side's point and d/ds on segment `k` at its fraction `lam`, from the segment's
+    /// curve point, dC/dλ and curve parameter there: with the segment's end corrections, and
+    /// the segment's share of the side's parameter.
+    #[inline]
+    fn corrected(
+        &self,
+        k: usize,
+        lam: f64,
+        (c, d1, t): (DVec3, DVec3, f64),
+    ) -> (DVec3, DVec3, usize, f64) {
         let seg = &self.segs[k];
-        let (c, d1, t) = seg.point_d1(lam);
         let du = self.breaks[k + 1] - self.breaks[k];
         let p = c + seg.d0 * (1.0 - lam) + seg.d1 * lam;
         let dp = (d1 + (seg.d1 - seg.d0)) / du;
@@ -489,11 +507,8 @@ impl PreparedSide {
         if self.segs.len() != 1 || self.breaks[0] != 0.0 || self.breaks[1] != 1.0 {
             return self.eval_located(s);
         }
-        let seg = &self.segs[0];
-        let (c, d1, t) = seg.point_d1_even(j);
-        let p = c + seg.d0 * (1.0 - s) + seg.d1 * s;
-        let dp = (d1 + (seg.d1 - seg.d0)) / (self.breaks[1] - self.breaks[0]);
-        (p, dp, 0, t)
+        // One segment over the whole side: its fraction is `s`.
+        self.corrected(0, s, self.segs[0].point_d1_even(j))
     }
 
     /// Position only.
