@@ -87,8 +87,8 @@ pub use sections::{
 pub use surface_fair::{
     fair_sections, fair_sections_with, section_noise, HullFairness, SectionFairness, SectionFamily,
     SectionFilter, SectionReport, SurfaceFairOptions, SurfaceFairReport, SurfaceFairing,
-    DEFAULT_BIAS_SHARE, DEFAULT_FIXED_ROLES, DEFAULT_SURFACE_FAIR_ROUNDS,
-    DEFAULT_SURFACE_FAIR_TOLERANCE,
+    DEFAULT_BIAS_SHARE, DEFAULT_FIXED_ROLES, DEFAULT_SMOOTHING_PER_TOLERANCE,
+    DEFAULT_SURFACE_FAIR_ROUNDS, DEFAULT_SURFACE_FAIR_TOLERANCE,
 };
 pub use tolerance::{InvalidTolerance, Tolerance};
 pub use topo::{

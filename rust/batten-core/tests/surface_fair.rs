@@ -295,3 +295,81 @@ fn the_round_callback_sees_every_round_and_stops_the_fairing() {
     assert!(stopped.is_none(), "stopped: no network");
     assert_eq!(calls, 2, "no round after the stop");
 }
+
+/// KCS's sections as an earlier import drew them (47 cubic sections of 7–240 control points):
+/// noise of 30 % of the tolerance at every control point of every station and waterline, the
+/// seed 003 test. The smoothing along the sections takes the curvature variation below the
+/// clean hull's (the relaxation alone left it where the noise put it, 10⁴ times the clean
+/// hull's), keeps every control point within the tolerance of the noisy input, the network
+/// exact and the fixed curves bitwise, and gives back most of the inflections the noise made.
+#[test]
+fn noise_along_the_sections_of_kcs_is_smoothed_out_within_the_tolerance() {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/kcs_faired_apart.json");
+    let clean =
+        Network::from_json(&std::fs::read_to_string(path).expect("fixture")).expect("reads");
+    let noisy = section_noise(&clean, 0.3 * TOL, 2, &options()).expect("noise");
+    let figures = |net: &Network, smoothing: f64| {
+        let opts = SurfaceFairOptions {
+            max_rounds: 0,
+            smoothing_length: Some(smoothing),
+            ..options()
+        };
+        fair_sections(net, &opts).expect("figures").report
+    };
+    let clean_figures = figures(&clean, 0.0).before;
+    let alone = fair_sections(
+        &noisy,
+        &SurfaceFairOptions {
+            smoothing_length: Some(0.0),
+            ..options()
+        },
+    )
+    .expect("relaxation alone")
+    .report;
+    let faired = fair_sections(&noisy, &options()).expect("fairing");
+    let r = &faired.report;
+    assert!(
+        (r.smoothing_length - 200.0 * TOL).abs() < 1e-12,
+        "the default: 200 tolerances"
+    );
+    assert!(r.smoothed >= 40, "sections smoothed: {}", r.smoothed);
+    let (noisy_kv, faired_kv) = (r.before.curvature_variation, r.after.curvature_variation);
+    assert!(
+        faired_kv < 0.01 * noisy_kv && faired_kv < clean_figures.curvature_variation,
+        "∫κ′² ds: clean {}, noisy {noisy_kv}, faired {faired_kv}",
+        clean_figures.curvature_variation
+    );
+    assert!(
+        alone.after.curvature_variation > 1000.0 * clean_figures.curvature_variation,
+        "the relaxation alone keeps the noise: {}",
+        alone.after.curvature_variation
+    );
+    assert!(
+        r.after.inflections < r.before.inflections
+            && r.after.inflections + 20 > clean_figures.inflections,
+        "inflections: clean {}, noisy {}, faired {}",
+        clean_figures.inflections,
+        r.before.inflections,
+        r.after.inflections
+    );
+    assert!(
+        r.max_deviation <= TOL,
+        "within the tolerance: {}",
+        r.max_deviation
+    );
+    assert!(apart(&noisy, &faired.network) <= TOL, "sampled");
+    // Every node stays where both its curves pass (this import's sections were faired one by
+    // one and miss some of their crossings by more than the model tolerance, so a section
+    // smoothed onto its neighbour may gain a node; none loses one).
+    let (before, after) = (nodes_per_curve(&noisy), nodes_per_curve(&faired.network));
+    assert!(
+        before.iter().zip(&after).all(|(b, a)| a >= b),
+        "still exact: {before:?} → {after:?}"
+    );
+    for (a, b) in noisy.curves().iter().zip(faired.network.curves()) {
+        if a.role != Role::Free {
+            assert_eq!(a.curve, b.curve, "{} is fixed: bitwise the same", a.name);
+        }
+    }
+}

@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use crate::curve::{BezierDecomposition, NurbsCurve};
 use crate::error::Error;
+use crate::fair::{curvature_variation, fairness_metrics};
 
 use super::families::Family;
 use super::filter::{section_bias, SectionBias, SectionFilter, Sections};
@@ -15,6 +16,10 @@ use super::nodes::{Freedom, Nodes};
 /// The share of a tolerance the control points may use: the curves go to Blender in single
 /// precision, which rounds a coordinate of 250 m by up to 8 µm (as `import_sections` keeps).
 const TOLERANCE_SHARE: f64 = 0.99;
+
+/// A move must lower the curvature variation of the curves it moves by at least this share
+/// ([`State::fairer`]).
+const FAIRER_BY: f64 = 0.1;
 
 /// A move whose largest control-point change is below this share of the model tolerance moves
 /// nothing a designer could see: the section is stuck (until its neighbours move).
@@ -43,7 +48,7 @@ pub(crate) struct State {
 }
 
 /// The in-plane axes of a section whose plane is normal to `axis`.
-fn in_plane(axis: usize) -> [DVec3; 2] {
+pub(crate) fn in_plane(axis: usize) -> [DVec3; 2] {
     let others: Vec<usize> = (0..3).filter(|&a| a != axis).collect();
     [DVec3::AXES[others[0]], DVec3::AXES[others[1]]]
 }
@@ -52,17 +57,6 @@ fn in_plane(axis: usize) -> [DVec3; 2] {
 pub(crate) type Plan = Vec<(usize, Vec<DVec3>)>;
 
 impl State {
-    /// Curve `c` and its decomposition set to the control points `points`.
-    fn set_points(&mut self, c: usize, points: Vec<DVec3>) -> Result<(), Error> {
-        let old = &self.curves[c];
-        let curve = old
-            .with_control_points(points)
-            .map_err(|e| e.named(&self.names[c]))?;
-        self.decomps[c] = curve.bezier_decomposition();
-        self.curves[c] = curve;
-        Ok(())
-    }
-
     /// The bias of the section `curve` in plane `group` of `family`.
     pub(crate) fn bias(
         &self,
@@ -177,16 +171,58 @@ impl State {
         lambda * largest > NEGLIGIBLE_MOVE * self.model_tolerance
     }
 
+    /// Whether `plan` at `lambda` leaves the curves it moves fairer: the summed curvature
+    /// variation ∫κ′² ds of those of degree 3 or more lower by [`FAIRER_BY`] at least (a
+    /// quadratic's unfairness is in its curvature's jumps at the knots, which the integral
+    /// over the spans does not see; a plan of quadratics only has this test met), and no more
+    /// inflections among them all.
+    /// A move toward the filtered section that does not is the filter's error, not the
+    /// section's: on a real hull the cubic filter is not the section even without noise (KCS:
+    /// the clean hull relaxed unguarded goes from 55 inflections to 90 and ∫κ′² ds up 14 %,
+    /// points moving 9.9 mm; guarded to any decrease, 7 moves still spend 9.8 mm of the
+    /// tolerance for 3 % off ∫κ′² ds; guarded to 10 %, it stays as it is).
+    pub(crate) fn fairer(&self, plan: &Plan, lambda: f64) -> bool {
+        let (mut before, mut after) = (0.0, 0.0);
+        let (mut inflections_before, mut inflections_after) = (0usize, 0usize);
+        for (c, change) in plan {
+            let old = &self.curves[*c];
+            let Ok(new) = self.moved(*c, change, lambda) else {
+                return false;
+            };
+            if old.degree() >= 3 {
+                before += curvature_variation(old);
+                after += curvature_variation(&new);
+            }
+            inflections_before += fairness_metrics(old).inflections;
+            inflections_after += fairness_metrics(&new).inflections;
+        }
+        after <= (1.0 - FAIRER_BY) * before && inflections_after <= inflections_before
+    }
+
+    /// Curve `c` with its control points changed by `lambda · change` (not applied).
+    pub(crate) fn moved(
+        &self,
+        c: usize,
+        change: &[DVec3],
+        lambda: f64,
+    ) -> Result<NurbsCurve, Error> {
+        let points = self.curves[c]
+            .control_points()
+            .iter()
+            .zip(change)
+            .map(|(p, d)| *p + lambda * *d)
+            .collect();
+        self.curves[c]
+            .with_control_points(points)
+            .map_err(|e| e.named(&self.names[c]))
+    }
+
     /// Apply `plan` at `lambda`.
     pub(crate) fn apply(&mut self, plan: &Plan, lambda: f64) -> Result<(), Error> {
         for (c, change) in plan {
-            let points = self.curves[*c]
-                .control_points()
-                .iter()
-                .zip(change)
-                .map(|(p, d)| *p + lambda * *d)
-                .collect();
-            self.set_points(*c, points)?;
+            let curve = self.moved(*c, change, lambda)?;
+            self.decomps[*c] = curve.bezier_decomposition();
+            self.curves[*c] = curve;
             self.moves[*c] += 1;
         }
         Ok(())

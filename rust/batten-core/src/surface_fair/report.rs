@@ -71,6 +71,10 @@ pub struct SurfaceFairReport {
     pub converged: bool,
     /// The RMS bias that counts as fair (m).
     pub bias_target: f64,
+    /// The smoothing length along the sections (m; 0: none).
+    pub smoothing_length: f64,
+    /// Sections the smoothing along the sections moved (before the rounds).
+    pub smoothed: usize,
     /// Movable sections per family, in the order they were faired.
     pub sections: Vec<(SectionFamily, usize)>,
     /// The largest distance of any point from where it started (m).
@@ -87,6 +91,8 @@ pub(crate) struct Totals {
     pub moves: usize,
     pub converged: bool,
     pub bias_target: f64,
+    pub smoothing_length: f64,
+    pub smoothed: usize,
 }
 
 fn figures(curve: &NurbsCurve, bias: Option<&SectionBias>) -> SectionFairness {
@@ -179,5 +185,7 @@ pub(crate) fn report(
         moves: totals.moves,
         converged: totals.converged,
         bias_target: totals.bias_target,
+        smoothing_length: totals.smoothing_length,
+        smoothed: totals.smoothed,
     }
 }
