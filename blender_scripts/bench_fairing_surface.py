@@ -17,7 +17,8 @@ build); then Taubin's smoothing of the noisy surface mesh (lambda = 0.5, mu = -0
 vertices kept, the pass count that brings it nearest the clean hull, at most 50, and 10
 passes) beside batten's faired surface mesh: largest distance from the clean mesh and the
 mesh's curvature variation (the summed squared differences of the umbrella Laplacian's length across edges);
-distances from a mesh are to the tangent plane at its nearest vertex.
+distances from a mesh are to the tangent plane at its nearest vertex, with the share of the
+vertices within the tolerance of the clean mesh.
 
     PYTHONPATH=build/native/release:addon .venv/bin/python blender_scripts/bench_fairing_surface.py
 """
@@ -133,10 +134,18 @@ class Surface:
             normals[f] += a
         self.n = normals / np.maximum(np.linalg.norm(normals, axis=1), 1e-300)[:, None]
 
+    def distances(self, q) -> np.ndarray:
+        """The distances of the points ``q`` from the surface."""
+        i = self.tree.query(q)[1]
+        return np.abs(np.einsum("ij,ij->i", q - self.p[i], self.n[i]))
+
     def distance(self, q) -> float:
         """The largest distance of the points ``q`` from the surface."""
-        i = self.tree.query(q)[1]
-        return float(np.abs(np.einsum("ij,ij->i", q - self.p[i], self.n[i])).max())
+        return float(self.distances(q).max())
+
+    def share_within(self, q, limit: float) -> float:
+        """The share of the points ``q`` within ``limit`` of the surface."""
+        return float(np.mean(self.distances(q) <= limit))
 
 
 def taubin(p, edges, fixed, clean: Surface):
@@ -209,15 +218,26 @@ def run(name: str, clean: list, model_tolerance: float = bn.DEFAULT_TOLERANCE, f
         mesh_variation(pf, fedges),
         mesh_variation(pt, edges),
     )
-    print("  surface mesh        from clean   from noisy   curvature variation")
-    print(f"    noisy              {tc.distance(pn) * 1e3:7.2f} mm                 {mn:.4g}")
+    within = f"within {TOL * 1e3:.0f} mm of clean"
+    print(f"  surface mesh        from clean   from noisy   curvature variation   {within}")
     print(
-        f"    batten (sections)  {tc.distance(pf) * 1e3:7.2f} mm   {tn.distance(pf) * 1e3:7.2f} mm   {mf:.4g}"
+        f"    noisy              {tc.distance(pn) * 1e3:7.2f} mm                 {mn:<20.4g}"
+        f"  {tc.share_within(pn, TOL):.2%}"
     )
-    print(f"    Taubin, {kt:2d} passes  {dt * 1e3:7.2f} mm   {tn.distance(pt) * 1e3:7.2f} mm   {mt:.4g}")
+    print(
+        f"    batten (sections)  {tc.distance(pf) * 1e3:7.2f} mm   {tn.distance(pf) * 1e3:7.2f} mm"
+        f"   {mf:<20.4g}  {tc.share_within(pf, TOL):.2%}"
+    )
+    print(
+        f"    Taubin, {kt:2d} passes  {dt * 1e3:7.2f} mm   {tn.distance(pt) * 1e3:7.2f} mm"
+        f"   {mt:<20.4g}  {tc.share_within(pt, TOL):.2%}"
+    )
     m10 = mesh_variation(p10, edges)
     d10, n10 = tc.distance(p10), tn.distance(p10)
-    print(f"    Taubin, {TAUBIN_FIXED_PASSES} passes  {d10 * 1e3:7.2f} mm   {n10 * 1e3:7.2f} mm   {m10:.4g}")
+    print(
+        f"    Taubin, {TAUBIN_FIXED_PASSES} passes  {d10 * 1e3:7.2f} mm   {n10 * 1e3:7.2f} mm"
+        f"   {m10:<20.4g}  {tc.share_within(p10, TOL):.2%}"
+    )
     print(f"    clean                                         {mc:.4g}")
 
 

@@ -969,15 +969,20 @@ def fair_surface(
     max_rounds: int = 12,
     filter: str = "cubic",
     bias_target: float | None = None,
+    smoothing_length: float | None = None,
     model_tolerance: float = DEFAULT_TOLERANCE,
     progress: ProgressCallback | None = None,
 ) -> dict:
     """Fair the hull in ``source`` through its families of plane sections, as loftsmen did
-    (seed 003, Pla et al. 1998 §4): in each family (``"stations"``, ``"waterlines"``,
-    ``"buttocks"``: the network's curves in planes x, z, y = const) the section of largest bias
-    against its filtered section (``filter``: ``"cubic"`` through two neighbours on each side,
-    or the paper's ``"equidistant"``) is moved toward it as far as every constraint allows, and
-    again, family after family, for at most ``max_rounds`` rounds or until no section's RMS bias
+    (seed 003, Pla et al. 1998 §4). First every section is smoothed along itself, all together
+    so that the nodes stay where both their curves pass: its waves shorter than
+    ``smoothing_length`` (m; default 200 × the tolerance, 2 m at 10 mm; 0 for none) are taken
+    out, its form and its turns tighter than that kept, within the tolerance. Then in each
+    family (``"stations"``, ``"waterlines"``, ``"buttocks"``: the network's curves in planes
+    x, z, y = const) the section of largest bias against its filtered section (``filter``:
+    ``"cubic"`` through two neighbours on each side, or the paper's ``"equidistant"``) is moved
+    toward it as far as every constraint allows when that makes it fairer, and again, family
+    after family, for at most ``max_rounds`` rounds or until no section's RMS bias
     exceeds ``bias_target`` (m; default 1 % of the tolerance). A node moved on a station moves on
     its waterline too, so the network stays exact and the surface rebuilds from it.
 
@@ -990,7 +995,8 @@ def fair_surface(
 
     The curve objects that moved are rewritten in place (all or none, as :func:`fair_curves`;
     a failure changes nothing; the operator's undo restores them). Returns the report: ``rounds``,
-    ``moves``, ``converged``, ``max_deviation`` (m), ``sections`` (per family, its movable
+    ``moves``, ``converged``, ``smoothing_length`` (m), ``smoothed`` (sections the smoothing
+    moved), ``max_deviation`` (m), ``sections`` (per family, its movable
     sections), ``before`` / ``after`` (the hull's ``curvature_variation`` Σ∫κ′² ds, 1/m³,
     ``inflections``, ``max_bias`` m) and ``curves``: per curve ``curve``, ``object``,
     ``family``, ``offset``, ``moves``, ``tolerance``, ``max_deviation``, ``before``, ``after``.
@@ -1009,6 +1015,7 @@ def fair_surface(
         "max_rounds": max_rounds,
         "filter": filter,
         "bias_target": bias_target,
+        "smoothing_length": smoothing_length,
         "model_tolerance": model_tolerance,
     }
     return run(_fair_surface_steps(source, **options), progress)
@@ -1025,6 +1032,7 @@ def _fair_surface_steps(
     max_rounds,
     filter,
     bias_target,
+    smoothing_length,
     model_tolerance,
 ):
     """:func:`fair_surface` as a job: the core's rounds run in a worker thread (it touches no
@@ -1061,6 +1069,7 @@ def _fair_surface_steps(
             filter=filter,
             max_rounds=max_rounds,
             bias_target=bias_target,
+            smoothing_length=smoothing_length,
             model_tolerance=model_tolerance,
             progress=round_done,
         )

@@ -177,7 +177,9 @@ class BATTEN_OT_fair_surface(ModalJob, bpy.types.Operator):
         moved = sum(1 for c in report["curves"] if c["moves"] > 0)
         self.report(
             {"INFO"},
-            f"Faired {moved} section(s) in {report['rounds']} round(s); curvature variation "
+            f"Faired {moved} section(s): {report['smoothed']} smoothed along themselves "
+            f"({report['smoothing_length']:.2f} m), {report['moves']} move(s) in "
+            f"{report['rounds']} round(s); curvature variation "
             f"{before['curvature_variation']:.4g} → {after['curvature_variation']:.4g} /m³, "
             f"inflections {before['inflections']} → {after['inflections']}; largest move "
             f"{report['max_deviation'] * 1e3:.2f} mm",

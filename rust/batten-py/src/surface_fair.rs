@@ -25,6 +25,7 @@ fn options(
     filter: &str,
     max_rounds: usize,
     bias_target: Option<f64>,
+    smoothing_length: Option<f64>,
     model_tolerance: f64,
 ) -> PyResult<SurfaceFairOptions> {
     let families = families
@@ -69,6 +70,7 @@ fn options(
         max_rounds,
         bias_target,
         model_tolerance,
+        smoothing_length,
     })
 }
 
@@ -89,8 +91,10 @@ fn hull_dict<'py>(py: Python<'py>, f: &HullFairness) -> PyResult<Bound<'py, PyDi
 }
 
 /// Fair the sections among `curves` (Pla et al. 1998 §4, `batten_core::fair_sections`):
-/// returns `([Curve, ...], report)`, curve for curve in order (fixed and unmoved ones as
-/// given). The report: `rounds`, `moves`, `converged`, `bias_target`, `sections` (per family,
+/// each section smoothed along itself first (`smoothing_length` m; None: 200 tolerances, 0:
+/// none), then the relaxation's rounds. Returns `([Curve, ...], report)`, curve for curve in
+/// order (fixed and unmoved ones as given). The report: `rounds`, `moves`, `converged`,
+/// `bias_target`, `smoothing_length`, `smoothed` (sections the smoothing moved), `sections` (per family,
 /// its movable sections), `max_deviation` (m), `before` and `after` (the hull's
 /// `curvature_variation` Σ∫κ′² ds, `inflections`, `max_bias`), and `curves`, one dict per
 /// curve: `curve`, `family` (or None), `offset`, `moves`, `tolerance`, `max_deviation`,
@@ -103,7 +107,7 @@ fn hull_dict<'py>(py: Python<'py>, f: &HullFairness) -> PyResult<Bound<'py, PyDi
     families=vec!["stations".to_owned(), "waterlines".to_owned()], fixed_roles=None,
     fixed_curves=Vec::new(), fixed_points=Vec::new(), curve_tolerances=Vec::new(),
     filter="cubic", max_rounds=DEFAULT_SURFACE_FAIR_ROUNDS, bias_target=None,
-    model_tolerance=DEFAULT_TOLERANCE, progress=None))]
+    smoothing_length=None, model_tolerance=DEFAULT_TOLERANCE, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fair_sections<'py>(
     py: Python<'py>,
@@ -117,6 +121,7 @@ pub(crate) fn fair_sections<'py>(
     filter: &str,
     max_rounds: usize,
     bias_target: Option<f64>,
+    smoothing_length: Option<f64>,
     model_tolerance: f64,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Vec<Curve>, Bound<'py, PyDict>)> {
@@ -130,6 +135,7 @@ pub(crate) fn fair_sections<'py>(
         filter,
         max_rounds,
         bias_target,
+        smoothing_length,
         model_tolerance,
     )?;
     let network = network_of("", &curves)?;
@@ -149,6 +155,8 @@ pub(crate) fn fair_sections<'py>(
     d.set_item("moves", r.moves)?;
     d.set_item("converged", r.converged)?;
     d.set_item("bias_target", r.bias_target)?;
+    d.set_item("smoothing_length", r.smoothing_length)?;
+    d.set_item("smoothed", r.smoothed)?;
     let sections = PyDict::new(py);
     for (f, n) in &r.sections {
         sections.set_item(f.name(), n)?;
@@ -205,6 +213,7 @@ pub(crate) fn section_noise(
         Vec::new(),
         "cubic",
         0,
+        None,
         None,
         model_tolerance,
     )?;

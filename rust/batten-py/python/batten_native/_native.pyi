@@ -186,6 +186,7 @@ def fair_sections(
     filter: str = "cubic",
     max_rounds: int = ...,
     bias_target: float | None = None,
+    smoothing_length: float | None = None,  # None: 200 x tolerance; 0: no smoothing along the sections
     model_tolerance: float = ...,  # DEFAULT_TOLERANCE
     progress: Callable[[int, int], object] | None = None,  # False stops: Cancelled
 ) -> tuple[list[Curve], dict]: ...
