@@ -8,7 +8,9 @@ write their hydrostatics at the design draft (logged beside the reference figure
 starts at. Each hull's lines plan is written as ``<name>_lines_plan.svg`` and ``.png``,
 and the whole hull (both halves, no curves) is rendered with its DWL from a three-quarter bow
 view and from the side, framed to fill the picture: ``<name>_hull_bow.png``,
-``<name>_hull_side.png``.
+``<name>_hull_side.png``. Surface fairing is shown before and after on the Wigley lines
+(Gaussian-curvature maps, ``fairing_*_gaussian_curvature.png``) and on KCS with noise of 30 %
+of a 10 mm tolerance (reflection lines of the entrance, ``kcs_fairing_*_zebra.png``).
 
     make demo                                                   # from a checkout
     python blender_scripts/demo.py -- --out out                  # bpy module, batten on PYTHONPATH
@@ -703,6 +705,57 @@ def fairing_showcase(api, examples: Path, out: Path, engine: str, size: str) -> 
         _log(f"fairing: {type(e).__name__}: {e}")
 
 
+def ship_fairing_showcase(api, ships: Path, out: Path, engine: str, size: str) -> None:
+    """Surface fairing on a real ship (issue 17's case): KCS as :func:`batten.api.import_sections`
+    draws it, noise of 30 % of a 10 mm tolerance on every station and waterline control point,
+    then faired at the defaults; reflection lines on its entrance, clean, noisy and faired
+    (``kcs_fairing_{clean,noisy,faired}_zebra.png``: the noise breaks them up, the fairing joins
+    them again). Nothing when ``ships`` has no KCS; an error is logged."""
+    import batten_native
+    from batten.bridge import curves_out
+
+    path = ships / "kcs" / "network.json"
+    if not path.is_file():
+        return
+    bpy.ops.wm.read_homefile(use_empty=True, use_factory_startup=True)
+    try:
+        coll, _ = api.import_sections(path, collection="kcs_fairing")
+        scene = bpy.context.scene
+        result = api.build(coll)
+        _stage(coll, engine, size, result.object, tube=SHIP_TUBE)
+        lo, hi = _bounds(list(coll.objects) + [result.object])
+        aim_camera(scene, "bow", lo, hi)
+        images = {k: out / f"kcs_fairing_{k}_zebra.png" for k in ("clean", "noisy", "faired")}
+        render_zebra(scene, coll, images["clean"])
+        curves = api.read_curves(coll)
+        # The outline (profile, upper edge, chines) is fixed by name: the import draws it free.
+        outline = [c.name for c in curves if c.name.startswith(("profile", "deck", "chine"))]
+        noise = FAIRING_NOISE * FAIRING_TOLERANCE
+        noisy = batten_native.section_noise(curves, noise, FAIRING_SEED, fixed_curves=outline)
+        objects = {o.name: o for o in api.curve_objects(coll)}
+        curves_out.replace_splines_of([(objects[c.name], [c]) for c in noisy])
+        api.build(coll)
+        render_zebra(scene, coll, images["noisy"])
+        t0 = time.perf_counter()
+        fixed = (*api.SURFACE_FAIR_FIXED_ROLES, *outline)
+        report = api.fair_surface(coll, tolerance=FAIRING_TOLERANCE, fixed=fixed)
+        t_fair = time.perf_counter() - t0
+        api.build(coll)
+        render_zebra(scene, coll, images["faired"])
+        before, after = report["before"], report["after"]
+        _log(
+            f"fairing: KCS with {FAIRING_NOISE:.0%} of {FAIRING_TOLERANCE * 1e3:.0f} mm noise faired in "
+            f"{t_fair:.2f} s ({report['smoothed']} sections smoothed along themselves at "
+            f"{report['smoothing_length']:.2f} m, {report['moves']} relaxation move(s)): curvature variation "
+            f"{before['curvature_variation']:.4g} -> {after['curvature_variation']:.4g} /m3, inflections "
+            f"{before['inflections']} -> {after['inflections']}, largest move "
+            f"{report['max_deviation'] * 1e3:.2f} mm; reflection lines of the entrance (clean, noisy, "
+            f"faired) in {out}/kcs_fairing_*_zebra.png"
+        )
+    except api.BattenError as e:
+        _log(f"fairing KCS: {type(e).__name__}: {e}")
+
+
 #: The hierarchy showcase: the hard-chine boat's chine moved (m) at its middle control point,
 #: out and up.
 HIERARCHY_CHINE_MOVE = (0.0, 0.3, 0.15)
@@ -905,6 +958,7 @@ def main() -> None:
     for path in examples:
         run_example(api, path, args.out, args.engine, args.size, args.resolution, args.zebra)
     fairing_showcase(api, args.examples, args.out, args.engine, args.size)
+    ship_fairing_showcase(api, args.ships, args.out, args.engine, args.size)
     form_showcase(api, args.examples, args.out)
     hydrostatic_showcase(api, args.examples, args.out)
     hierarchy_showcase(api, args.examples, args.out, args.engine, args.size)
