@@ -202,9 +202,10 @@ struct Penalty {
 }
 
 impl Penalty {
-    /// The penalty of `curve` smoothed at length `length`, or
-    /// `None` for a curve the smoothing only carries along (rational, or of degree below 3,
-    /// whose curvature variation is not linear in its control points' moves or is nil).
+    /// The penalty of `curve` smoothed at length `length`, or `None` for a curve the smoothing
+    /// only carries along: a rational one (its derivatives are not linear in its control
+    /// points), or one of degree below 3 (a quadratic's unfairness is in its curvature's jumps
+    /// at the knots, which an integral over the spans does not see).
     fn of(curve: &NurbsCurve, length: f64) -> Option<Penalty> {
         let p = curve.degree();
         if length <= 0.0 || p < 3 || curve.is_rational() {
@@ -215,7 +216,6 @@ impl Penalty {
         let (start, end) = curve.domain();
         // The quadrature points: span, parameter, weight, arc length at the point, point.
         let mut quadrature: Vec<(usize, f64, f64, f64, DVec3)> = Vec::new();
-        let mut lengths = vec![0.0; knots.len()];
         let mut arc = 0.0;
         for span in p..pts.len() {
             let (t0, t1) = (knots[span], knots[span + 1]);
@@ -228,7 +228,6 @@ impl Penalty {
                     let t = mid + half * x;
                     let (cs, _) = span_derivatives(curve, &pts, span, t);
                     let speed = cs[0].length();
-                    lengths[span] += w * half * speed;
                     arc += w * half * speed;
                     if speed > 0.0 {
                         quadrature.push((span, t, w * half, arc, curve.point(t)));
