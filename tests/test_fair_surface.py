@@ -89,6 +89,7 @@ def test_a_curve_object_named_in_fixed_stays():
         ({"fixed": ("no such curve",)}, "no such curve"),
         ({"tolerance": -1.0}, "tolerance"),
         ({"curve_tolerances": {"nope": 0.01}}, "nope"),
+        ({"smoothing_length": -2.0}, "smoothing length"),
     ],
 )
 def test_a_bad_request_changes_nothing(bad, message):

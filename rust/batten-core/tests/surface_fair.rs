@@ -222,6 +222,17 @@ fn bad_options_are_errors_naming_them() {
     )
     .expect_err("NaN");
     assert!(e.to_string().contains("NaN"), "{e}");
+    for bad in [-2.0, f64::NAN, f64::INFINITY] {
+        let e = fair_sections(
+            &net,
+            &SurfaceFairOptions {
+                smoothing_length: Some(bad),
+                ..options()
+            },
+        )
+        .expect_err("bad smoothing length");
+        assert!(e.to_string().contains("smoothing length"), "{e}");
+    }
     assert!(
         section_noise(&net, 0.0, 1, &options()).is_err(),
         "zero noise amplitude"
