@@ -47,10 +47,18 @@ pub(crate) struct State {
     pub model_tolerance: f64,
 }
 
+/// The indices of the in-plane axes of a section whose plane is normal to `axis`.
+pub(crate) fn in_plane_axes(axis: usize) -> [usize; 2] {
+    match axis {
+        0 => [1, 2],
+        1 => [0, 2],
+        _ => [0, 1],
+    }
+}
+
 /// The in-plane axes of a section whose plane is normal to `axis`.
 pub(crate) fn in_plane(axis: usize) -> [DVec3; 2] {
-    let others: Vec<usize> = (0..3).filter(|&a| a != axis).collect();
-    [DVec3::AXES[others[0]], DVec3::AXES[others[1]]]
+    in_plane_axes(axis).map(|a| DVec3::AXES[a])
 }
 
 /// A planned move: per curve taking part, its control-point changes at λ = 1.
@@ -89,13 +97,13 @@ impl State {
         let curve = &self.curves[k];
         let mut rows: Vec<Row> = joint_rows(curve, &dirs);
         for &(t, node) in &self.nodes.on_curve[k] {
-            for dir in dirs {
+            for a in in_plane_axes(axis) {
                 let free = match self.nodes.freedom[node] {
                     Freedom::Fixed => false,
-                    Freedom::Along(along) => along[(0..3).position(|a| DVec3::AXES[a] == dir)?],
+                    Freedom::Along(along) => along[a],
                 };
                 if !free {
-                    rows.push(point_row(curve, t, dir, 0.0));
+                    rows.push(point_row(curve, t, DVec3::AXES[a], 0.0));
                 }
             }
         }

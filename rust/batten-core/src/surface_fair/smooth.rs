@@ -48,9 +48,10 @@ use crate::curve::{
 use crate::error::Error;
 
 use super::banded::Banded;
+use super::filter::greville;
 use super::least_change::{joint_rows, least_change, point_row, Row};
 use super::nodes::Freedom;
-use super::relax::{in_plane, Plan, State};
+use super::relax::{in_plane, in_plane_axes, Plan, State};
 
 /// The pull of a section's nodes toward their consensus places (ADMM's ρ), against the unit
 /// weight of a control point's own offset.
@@ -299,11 +300,11 @@ impl Section {
         let pts = c.control_points();
         let n = pts.len();
         let p = c.degree();
-        let knots = c.knots();
         let plane = DVec3::AXES[axis];
-        let dirs: Vec<[DVec3; 2]> = (0..n)
-            .map(|j| {
-                let g = knots[j + 1..=j + p].iter().sum::<f64>() / p.max(1) as f64;
+        let dirs: Vec<[DVec3; 2]> = greville(c)
+            .into_iter()
+            .enumerate()
+            .map(|(j, g)| {
                 let mut tangent = c.derivs(g).d1;
                 tangent[axis] = 0.0;
                 let tangent = match tangent.try_normalize() {
@@ -377,8 +378,8 @@ impl Section {
         for &(t, node) in &state.nodes.on_curve[curve] {
             let row = point_row(c, t, DVec3::X, 0.0);
             let count = (p + 1).min(n - row.first);
-            for dir in in_plane(axis) {
-                let a = (0..3).position(|a| DVec3::AXES[a] == dir).unwrap_or(0);
+            for a in in_plane_axes(axis) {
+                let dir = DVec3::AXES[a];
                 let along = |k: usize, d: DVec3| row.coefficients[k] * d.dot(dir);
                 rows.push(NodeRow {
                     node,
@@ -596,13 +597,10 @@ pub(crate) fn smooth_sections(state: &mut State, lengths: &[Option<f64>]) -> Res
 /// `Σ w_j |ΔP_j|²` is `∫ |ΔC|² ds` and a smoothing length means the same on a section of few
 /// control points as on one of many.
 fn length_shares(curve: &NurbsCurve) -> Vec<f64> {
-    let g: Vec<DVec3> = {
-        let p = curve.degree().max(1);
-        let k = curve.knots();
-        (0..curve.control_point_count())
-            .map(|j| curve.point(k[j + 1..=j + p].iter().sum::<f64>() / p as f64))
-            .collect()
-    };
+    let g: Vec<DVec3> = greville(curve)
+        .into_iter()
+        .map(|t| curve.point(t))
+        .collect();
     let n = g.len();
     let floor = 1e-9;
     (0..n)
@@ -743,14 +741,13 @@ fn smooth_step(
                 }
             }
             for &(t, node) in on {
-                for dir in dirs {
-                    let a = (0..3).position(|a| DVec3::AXES[a] == dir).unwrap_or(0);
+                for a in in_plane_axes(axis) {
                     let by = if free(node, a, &pinned) {
                         place[node][a]
                     } else {
                         0.0
                     };
-                    rows.push(point_row(curve, t, dir, by));
+                    rows.push(point_row(curve, t, DVec3::AXES[a], by));
                 }
             }
             let wish = s.moves();
