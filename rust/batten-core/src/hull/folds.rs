@@ -603,13 +603,9 @@ mod tests {
     /// whose hub has more sides than the insertion sort takes).
     #[test]
     fn shared_sides_are_the_sides_two_polygons_have_in_order() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |n: u32| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % u64::from(n)) as u32
-        };
+        use rand_core::{Rng, SeedableRng};
+        let mut rng = rand_xorshift::XorShiftRng::seed_from_u64(0x9e37_79b9_7f4a_7c15);
+        let mut next = |n: u32| (rng.next_u64() % u64::from(n)) as u32;
         let mut found = 0;
         for vertices in [3u32, 5, 12, 40] {
             let mut polygons: Vec<Vec<u32>> = (0..60)
